@@ -1,0 +1,164 @@
+//! Rasterizing one tile: the opaque pass over its bin with a depth buffer in
+//! NC depth (SPEC §4), then quantization into the image (SPEC §10).
+//!
+//! Kernels are chosen once per primitive — by shading mode and by
+//! interpolation — and monomorphized, so the per-sample loop of a Gouraud
+//! triangle contains no lighting and a screen-linear one no divide. The depth
+//! test comes before any shading (STYLE habit 5).
+
+use glam::Vec3;
+use zline_raster::{for_each_sample, AttributePlanes, DepthPlane, Rect, Span};
+use zline_shading::{LightingModel, Material};
+
+use crate::image::quantize_rgb;
+use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader};
+
+/// Depth initialised to the far plane (SPEC §4).
+pub const DEPTH_CLEAR: f32 = 1.0;
+
+/// What shading reads besides the primitive.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadeContext<'a> {
+    /// Lights in eye space.
+    pub lighting: &'a LightingModel,
+    /// The frame's materials, indexed by [`Shader::Phong::material`].
+    pub materials: &'a [Material],
+}
+
+/// A tile's depth and colour buffers, one value per sample.
+#[derive(Clone, Debug, Default)]
+pub struct TileTarget {
+    rect: Rect,
+    stride: usize,
+    depth: Vec<f32>,
+    color: Vec<Vec3>,
+}
+
+impl TileTarget {
+    /// Resets the buffers for a tile: depth 1, colour the background.
+    pub fn clear(&mut self, rect: Rect, background: Vec3) {
+        let n = (rect.width() * rect.height()) as usize;
+        self.rect = rect;
+        self.stride = rect.width() as usize;
+        self.depth.clear();
+        self.depth.resize(n, DEPTH_CLEAR);
+        self.color.clear();
+        self.color.resize(n, background);
+    }
+
+    /// The tile's pixels.
+    pub fn rect(&self) -> Rect {
+        self.rect
+    }
+
+    /// Depth at a pixel of the tile (window coordinates).
+    pub fn depth_at(&self, x: i32, y: i32) -> f32 {
+        self.depth[self.index(x, y)]
+    }
+
+    #[inline]
+    fn index(&self, x: i32, y: i32) -> usize {
+        (y - self.rect.y0) as usize * self.stride + (x - self.rect.x0) as usize
+    }
+
+    /// Draws the primitives `bin` (indices into `prims`) in order; returns
+    /// the number of samples that passed the depth test.
+    pub fn opaque_pass(&mut self, prims: &[Primitive], bin: &[u32], ctx: &ShadeContext<'_>) -> u64 {
+        let mut shaded = 0;
+        for &i in bin {
+            shaded += self.draw(&prims[i as usize], ctx);
+        }
+        shaded
+    }
+
+    /// Quantizes the colour buffer into `band`, the image rows that hold
+    /// this tile (`band` starts at the tile's first row; `width` is the
+    /// image width).
+    pub fn resolve(&self, band: &mut [u8], width: usize) {
+        for (row, colors) in self.color.chunks_exact(self.stride.max(1)).enumerate() {
+            let start = (row * width + self.rect.x0 as usize) * 3;
+            let out = &mut band[start..start + colors.len() * 3];
+            for (px, c) in out.chunks_exact_mut(3).zip(colors) {
+                px.copy_from_slice(&quantize_rgb(*c));
+            }
+        }
+    }
+
+    fn draw(&mut self, p: &Primitive, ctx: &ShadeContext<'_>) -> u64 {
+        let mut n = 0;
+        let clip = self.rect;
+        match (p.shader, p.perspective) {
+            (Shader::Flat { color }, _) => p.edges.scan(clip, |s| n += self.flat_span(&p.depth, s, color)),
+            (Shader::Gouraud { planes }, true) => {
+                p.edges.scan(clip, |s| n += self.gouraud_span::<true>(&p.depth, &planes, s))
+            }
+            (Shader::Gouraud { planes }, false) => {
+                p.edges.scan(clip, |s| n += self.gouraud_span::<false>(&p.depth, &planes, s))
+            }
+            (Shader::Phong { planes, material }, persp) => {
+                let m = &ctx.materials[material as usize];
+                if persp {
+                    p.edges.scan(clip, |s| n += self.phong_span::<true>(&p.depth, &planes, s, m, ctx.lighting))
+                } else {
+                    p.edges.scan(clip, |s| n += self.phong_span::<false>(&p.depth, &planes, s, m, ctx.lighting))
+                }
+            }
+        }
+        n
+    }
+
+    /// Runs `shade` on every sample of `span` that passes the depth test,
+    /// writing depth and the returned colour.
+    #[inline(always)]
+    fn span<const N: usize>(
+        &mut self,
+        depth: &DepthPlane,
+        attrs: &AttributePlanes<N>,
+        span: Span,
+        mut shade: impl FnMut(&[f32; N]) -> Vec3,
+    ) -> u64 {
+        let row = self.index(span.x0, span.y) as isize - span.x0 as isize;
+        let (zbuf, cbuf) = (&mut self.depth, &mut self.color);
+        let mut n = 0;
+        for_each_sample(depth, attrs, span, |x, z, a| {
+            let i = (row + x as isize) as usize;
+            if z < zbuf[i] {
+                zbuf[i] = z;
+                cbuf[i] = shade(a);
+                n += 1;
+            }
+        });
+        n
+    }
+
+    fn flat_span(&mut self, depth: &DepthPlane, span: Span, color: Vec3) -> u64 {
+        self.span(depth, &AttributePlanes::NONE, span, |_| color)
+    }
+
+    fn gouraud_span<const PERSPECTIVE: bool>(&mut self, depth: &DepthPlane, planes: &GouraudPlanes, span: Span) -> u64 {
+        self.span(depth, planes, span, |a| {
+            let c = Vec3::new(a[1], a[2], a[3]);
+            if PERSPECTIVE {
+                c / a[0]
+            } else {
+                c
+            }
+        })
+    }
+
+    fn phong_span<const PERSPECTIVE: bool>(
+        &mut self,
+        depth: &DepthPlane,
+        planes: &PhongPlanes,
+        span: Span,
+        material: &Material,
+        lighting: &LightingModel,
+    ) -> u64 {
+        self.span(depth, planes, span, |a| {
+            let w = if PERSPECTIVE { 1.0 / a[0] } else { 1.0 };
+            let normal = (Vec3::new(a[1], a[2], a[3]) * w).normalize_or_zero();
+            let eye = Vec3::new(a[4], a[5], a[6]) * w;
+            lighting.shade(material, eye, normal, Vec3::ZERO)
+        })
+    }
+}

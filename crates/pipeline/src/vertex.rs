@@ -1,0 +1,100 @@
+//! The vertex stage: object space → eye and clip space (SPEC §1, §6).
+//!
+//! Positions go to eye space (for lighting and fog) and clip space (for
+//! clipping and the divide); normals go through the inverse transpose of
+//! eye_from_object and are normalized here, before any interpolation. For
+//! Gouraud objects the lighting model is evaluated at every vertex now.
+
+use glam::{Mat3, Mat4, Vec3, Vec4};
+use rayon::prelude::*;
+use zline_scene::Mesh;
+use zline_shading::{LightingModel, Material};
+
+/// Vertices per rayon task: big enough that scheduling costs nothing.
+const VERTEX_CHUNK: usize = 4096;
+
+/// One transformed vertex. `color` is the lit colour for Gouraud objects and
+/// zero otherwise.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ClipVertex {
+    /// Clip-space position.
+    pub clip: Vec4,
+    /// Eye-space position.
+    pub eye: Vec3,
+    /// Unit eye-space normal (zero when the normal matrix is singular).
+    pub normal: Vec3,
+    /// Lit colour (Gouraud only), clamped to [0, 1].
+    pub color: Vec3,
+}
+
+impl ClipVertex {
+    /// Linear interpolation of every field: a + t·(b − a) (SPEC §2: new
+    /// vertices interpolate in clip space).
+    #[inline]
+    pub fn lerp(&self, other: &ClipVertex, t: f32) -> ClipVertex {
+        ClipVertex {
+            clip: self.clip.lerp(other.clip, t),
+            eye: self.eye.lerp(other.eye, t),
+            normal: self.normal.lerp(other.normal, t),
+            color: self.color.lerp(other.color, t),
+        }
+    }
+}
+
+/// The matrices of one object for one frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObjectTransforms {
+    /// Projection · view · model.
+    pub clip_from_object: Mat4,
+    /// View · model.
+    pub eye_from_object: Mat4,
+    /// Inverse transpose of eye_from_object's linear part.
+    pub normal_eye_from_object: Mat3,
+}
+
+impl ObjectTransforms {
+    /// The matrices for a model matrix under a camera.
+    pub fn new(clip_from_eye: Mat4, eye_from_world: Mat4, world_from_object: Mat4) -> ObjectTransforms {
+        let eye_from_object = eye_from_world * world_from_object;
+        ObjectTransforms {
+            clip_from_object: clip_from_eye * eye_from_object,
+            eye_from_object,
+            normal_eye_from_object: Mat3::from_mat4(eye_from_object).inverse().transpose(),
+        }
+    }
+}
+
+/// What the vertex stage computes besides positions.
+#[derive(Clone, Copy, Debug)]
+pub enum VertexLighting<'a> {
+    /// Nothing: flat and Phong shade later.
+    None,
+    /// Light every vertex (Gouraud) with this model, in eye space.
+    Gouraud(&'a LightingModel, &'a Material),
+}
+
+/// Transforms every vertex of `mesh`, in parallel; the result is in vertex
+/// order whatever the thread count.
+pub fn transform_mesh(mesh: &Mesh, t: &ObjectTransforms, lighting: VertexLighting<'_>) -> Vec<ClipVertex> {
+    let mut out = vec![ClipVertex::default(); mesh.positions.len()];
+    out.par_chunks_mut(VERTEX_CHUNK).enumerate().for_each(|(chunk, out)| {
+        let start = chunk * VERTEX_CHUNK;
+        let positions = &mesh.positions[start..start + out.len()];
+        let normals = &mesh.normals[start..start + out.len()];
+        for ((v, &p), &n) in out.iter_mut().zip(positions).zip(normals) {
+            *v = transform_vertex(p, n, t, lighting);
+        }
+    });
+    out
+}
+
+#[inline]
+fn transform_vertex(p: Vec3, n: Vec3, t: &ObjectTransforms, lighting: VertexLighting<'_>) -> ClipVertex {
+    let eye = t.eye_from_object.transform_point3(p);
+    let normal = (t.normal_eye_from_object * n).normalize_or_zero();
+    let color = match lighting {
+        VertexLighting::None => Vec3::ZERO,
+        VertexLighting::Gouraud(model, material) => model.shade(material, eye, normal, Vec3::ZERO),
+    };
+    ClipVertex { clip: t.clip_from_object * p.extend(1.0), eye, normal, color }
+}

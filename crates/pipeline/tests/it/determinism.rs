@@ -1,0 +1,38 @@
+//! The same scene gives the same bytes for any tile size and thread count
+//! (SPEC §10).
+
+use glam::Vec3;
+use zline_pipeline::{render, RenderOptions};
+use zline_scene::Interpolation;
+use zline_shading::{Attenuation, Light, ShadingMode};
+
+use crate::support::{object, scene, wavy_grid};
+
+fn test_scene(mode: ShadingMode, interpolation: Interpolation) -> zline_scene::Scene {
+    let lights = vec![
+        Light::Point { position: Vec3::new(1.0, 2.0, 0.0), color: Vec3::new(1.0, 0.8, 0.6), attenuation: Attenuation { a0: 1.0, a1: 0.1, a2: 0.05 } },
+        Light::Directional { direction: Vec3::new(-0.3, -0.2, -1.0), color: Vec3::new(0.2, 0.3, 0.5) },
+    ];
+    let mut s = scene(173, Vec3::splat(0.1), lights, vec![object(wavy_grid(60, -3.0), Some(mode))]);
+    s.settings.interpolation = interpolation;
+    s.settings.width = 211;
+    s
+}
+
+#[test]
+fn tile_size_and_thread_count_do_not_change_a_single_byte() {
+    for mode in ShadingMode::ALL {
+        for interp in [Interpolation::PerspectiveCorrect, Interpolation::ScreenLinear] {
+            let s = test_scene(mode, interp);
+            let reference = render(&s, &RenderOptions { tile_size: 64 }).0;
+            assert!(reference.rgb.iter().any(|&c| c > 40), "{mode:?}: nothing drawn");
+            for tile_size in [1, 7, 16, 33, 1000] {
+                for threads in [1, 2, 3] {
+                    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                    let image = pool.install(|| render(&s, &RenderOptions { tile_size }).0);
+                    assert!(image == reference, "{mode:?} {interp:?}: tile {tile_size}, {threads} threads differ");
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,127 @@
+//! A square facing a point light: the centre pixel's exact 8-bit colour in
+//! each shading mode, computed here in f64 straight from SPEC §5–6 and §10.
+//!
+//! Set-up: camera at the origin looking down −z (fovy 90°), a 65×65 image so
+//! the centre pixel's sample lies exactly on the optical axis, a square of
+//! half-size 1 at z = −2 facing +z (corners project to NC ±0.5), a point
+//! light at (0.3, 0.8, −0.9) with attenuation (1, 0.2, 0.5) and a specular
+//! material. The square is two triangles split along the diagonal from
+//! (−1, −1) to (1, 1), which passes through the centre sample: by the
+//! top-left rule the sample belongs to the lower-right triangle (the diagonal
+//! is that triangle's left edge in window space).
+
+use glam::{DVec3, Vec3};
+use zline_shading::{Attenuation, Light, Material, ShadingMode};
+
+use crate::support::{draw, object, scene, square};
+
+const LIGHT: [f64; 3] = [0.3, 0.8, -0.9];
+const LIGHT_COLOR: [f64; 3] = [1.0, 0.85, 0.7];
+const ATTENUATION: [f64; 3] = [1.0, 0.2, 0.5];
+const AMBIENT: [f64; 3] = [0.15, 0.1, 0.05];
+const KA: [f64; 3] = [0.3, 0.4, 0.5];
+const KD: [f64; 3] = [0.7, 0.45, 0.3];
+const KS: [f64; 3] = [0.5, 0.5, 0.5];
+const NS: f64 = 12.0;
+
+fn v(a: [f64; 3]) -> DVec3 {
+    DVec3::from_array(a)
+}
+
+/// SPEC §5 in f64 for one point light, the eye at the origin, unclamped.
+fn lighting(p: DVec3, n: DVec3) -> DVec3 {
+    let to_light = v(LIGHT) - p;
+    let d = to_light.length();
+    let l = to_light / d;
+    let view = (-p).normalize();
+    let h = (l + view).normalize();
+    let [a0, a1, a2] = ATTENUATION;
+    let f = (1.0 / (a0 + a1 * d + a2 * d * d)).min(1.0);
+    let n_dot_l = n.dot(l).max(0.0);
+    let spec = if n_dot_l > 0.0 { n.dot(h).max(0.0).powf(NS) } else { 0.0 };
+    v(KA) * v(AMBIENT) + f * v(LIGHT_COLOR) * (v(KD) * n_dot_l + v(KS) * spec)
+}
+
+/// SPEC §10, with a check that the value is not within 0.01 of a rounding
+/// boundary (so f32 arithmetic in the renderer cannot honestly land on the
+/// other side).
+#[track_caller]
+fn quantize_robust(c: DVec3) -> [u8; 3] {
+    c.to_array().map(|x| {
+        let s = x.clamp(0.0, 1.0) * 255.0 + 0.5;
+        let frac = s - s.floor();
+        assert!(frac > 0.01 && frac < 0.99, "expected value {x} is too close to a rounding boundary");
+        s.floor() as u8
+    })
+}
+
+#[track_caller]
+fn check_centre(mode: ShadingMode, expected: DVec3) {
+    let material = Material {
+        ka: Vec3::from_array(KA.map(|x| x as f32)),
+        kd: Vec3::from_array(KD.map(|x| x as f32)),
+        ks: Vec3::from_array(KS.map(|x| x as f32)),
+        ns: NS as f32,
+        opacity: 1.0,
+    };
+    let light = Light::Point {
+        position: Vec3::from_array(LIGHT.map(|x| x as f32)),
+        color: Vec3::from_array(LIGHT_COLOR.map(|x| x as f32)),
+        attenuation: Attenuation { a0: 1.0, a1: 0.2, a2: 0.5 },
+    };
+    let s = scene(
+        65,
+        Vec3::from_array(AMBIENT.map(|x| x as f32)),
+        vec![light],
+        vec![object(square(0.0, 0.0, 1.0, -2.0, material), Some(mode))],
+    );
+    let image = draw(&s);
+    assert_eq!(image.pixel(32, 32), quantize_robust(expected), "{mode:?}");
+}
+
+#[test]
+fn phong_centre_is_the_lighting_model_at_the_centre() {
+    check_centre(ShadingMode::Phong, lighting(DVec3::new(0.0, 0.0, -2.0), DVec3::Z));
+}
+
+#[test]
+fn gouraud_centre_averages_the_diagonal_vertices() {
+    // The centre is the midpoint of the shared diagonal: barycentrics (½, ½)
+    // on its two vertices. w is the same at every vertex, so perspective
+    // correction changes nothing. Vertex colours are clamped before
+    // interpolation (SPEC §5).
+    let at = |x: f64, y: f64| lighting(DVec3::new(x, y, -2.0), DVec3::Z).clamp(DVec3::ZERO, DVec3::ONE);
+    check_centre(ShadingMode::Gouraud, (at(-1.0, -1.0) + at(1.0, 1.0)) * 0.5);
+}
+
+#[test]
+fn flat_centre_is_the_lower_right_triangles_centroid() {
+    let centroid = DVec3::new(1.0 / 3.0, -1.0 / 3.0, -2.0);
+    check_centre(ShadingMode::Flat, lighting(centroid, DVec3::Z));
+}
+
+#[test]
+fn overlapping_squares_give_the_same_image_in_either_order() {
+    let red = Material::plastic(Vec3::new(0.9, 0.1, 0.1), 0.3, 16.0);
+    let blue = Material::plastic(Vec3::new(0.1, 0.2, 0.9), 0.3, 16.0);
+    let near = square(-0.3, -0.2, 1.0, -2.0, red);
+    let far = square(0.4, 0.3, 1.2, -2.5, blue);
+    let light = Light::Point { position: Vec3::new(0.0, 0.0, 1.0), color: Vec3::ONE, attenuation: Attenuation::NONE };
+    let build = |first, second| scene(97, Vec3::splat(0.2), vec![light], vec![object(first, None), object(second, None)]);
+    let a = draw(&build(near.clone(), far.clone()));
+    let b = draw(&build(far, near));
+    assert_eq!(a, b);
+    // The near red square wins where they overlap: around NC (0, 0) it is in front.
+    let [r, _, bl] = a.pixel(48, 48);
+    assert!(r > bl, "overlap shows the far square: {:?}", a.pixel(48, 48));
+}
+
+#[test]
+fn lit_colour_is_within_range_and_background_elsewhere() {
+    let s = scene(33, Vec3::ONE, vec![], vec![object(square(0.0, 0.0, 0.5, -2.0, Material::DEFAULT), None)]);
+    let image = draw(&s);
+    // ka·Ia = 0.8 → floor(0.8·255 + 0.5) = 204 inside; background 0 in the corner.
+    assert_eq!(image.pixel(16, 16), [204, 204, 204]);
+    assert_eq!(image.pixel(0, 0), [0, 0, 0]);
+}
+

@@ -1,0 +1,7 @@
+//! Integration tests of the pipeline: scenes with answers computed by hand
+//! from the SPEC formulas, clipping, draw order and determinism.
+
+mod clipping;
+mod determinism;
+mod lit_square;
+mod support;

@@ -1,0 +1,81 @@
+//! Small scene builders shared by the tests.
+
+use std::sync::Arc;
+
+use glam::{Mat4, Vec3};
+use zline_pipeline::{render, Image, RenderOptions};
+use zline_scene::{Camera, Mesh, Object, Projection, RenderSettings, Scene};
+use zline_shading::{Light, Material, ShadingMode};
+
+/// A mesh from positions and triangles, with the given normals.
+pub(crate) fn mesh(positions: Vec<Vec3>, normals: Vec<Vec3>, triangles: Vec<[u32; 3]>, material: Material) -> Arc<Mesh> {
+    Arc::new(Mesh { name: "test".into(), positions, normals, triangles, material })
+}
+
+/// An axis-aligned square in the plane z = `z`, facing +z, corners at ±`half`
+/// around (cx, cy), split along the diagonal from (−,−) to (+,+).
+pub(crate) fn square(cx: f32, cy: f32, half: f32, z: f32, material: Material) -> Arc<Mesh> {
+    let p = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .map(|(x, y)| Vec3::new(cx + x * half, cy + y * half, z))
+        .to_vec();
+    mesh(p, vec![Vec3::Z; 4], vec![[0, 1, 2], [0, 2, 3]], material)
+}
+
+/// An object with identity transform.
+pub(crate) fn object(mesh: Arc<Mesh>, shading: Option<ShadingMode>) -> Object {
+    Object { mesh, world_from_object: Mat4::IDENTITY, material: None, shading, cull_back_faces: true }
+}
+
+/// A camera at the origin looking down −z with a 90° vertical field of view.
+pub(crate) fn origin_camera(near: f32, far: f32) -> Camera {
+    Camera {
+        eye: Vec3::ZERO,
+        target: Vec3::NEG_Z,
+        up: Vec3::Y,
+        projection: Projection::Perspective { fovy_degrees: 90.0, near, far },
+    }
+}
+
+/// A scene with the origin camera, black background and the given parts.
+pub(crate) fn scene(size: u32, ambient: Vec3, lights: Vec<Light>, objects: Vec<Object>) -> Scene {
+    Scene {
+        camera: origin_camera(0.5, 10.0),
+        background: Vec3::ZERO,
+        ambient,
+        lights,
+        objects,
+        settings: RenderSettings { width: size, height: size, ..RenderSettings::default() },
+    }
+}
+
+/// Renders with the default options on the current thread pool.
+pub(crate) fn draw(scene: &Scene) -> Image {
+    render(scene, &RenderOptions::default()).0
+}
+
+/// A wavy, finely tessellated height field: many small triangles sharing
+/// edges, facing the origin camera.
+pub(crate) fn wavy_grid(n: u32, z: f32) -> Arc<Mesh> {
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (u, v) = (i as f32 / n as f32 * 4.0 - 2.0, j as f32 / n as f32 * 4.0 - 2.0);
+            let h = 0.3 * (3.0 * u).sin() * (2.0 * v).cos();
+            positions.push(Vec3::new(u, v, z + h));
+            let dhdu = 0.9 * (3.0 * u).cos() * (2.0 * v).cos();
+            let dhdv = -0.6 * (3.0 * u).sin() * (2.0 * v).sin();
+            normals.push(Vec3::new(-dhdu, -dhdv, 1.0).normalize());
+        }
+    }
+    let mut triangles = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            let (b, c, d) = (a + 1, a + n + 2, a + n + 1);
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    mesh(positions, normals, triangles, Material::plastic(Vec3::new(0.8, 0.5, 0.3), 0.5, 24.0))
+}

@@ -1,0 +1,136 @@
+//! Fixed-point window coordinates and pixel rectangles.
+//!
+//! Vertices are snapped to a grid of 1/256 pixel ([`SUBPIXEL_BITS`] = 8, as in
+//! most hardware and Mesa's llvmpipe). Every coverage decision is then an
+//! exact integer computation, which is what makes shared edges watertight and
+//! the result independent of tiling. Sample (pixel centre) of pixel `i` sits
+//! at `i·256 + 128`.
+
+/// Bits of sub-pixel precision of snapped window coordinates.
+pub const SUBPIXEL_BITS: u32 = 8;
+/// One pixel in fixed-point units.
+pub const SUBPIXEL_ONE: i64 = 1 << SUBPIXEL_BITS;
+/// Half a pixel in fixed-point units: the offset of a pixel centre.
+pub const SUBPIXEL_HALF: i64 = SUBPIXEL_ONE / 2;
+
+/// Largest accepted |x| or |y| in pixels. With 8 sub-pixel bits coordinates
+/// fit in 30 bits, so every product in the edge arithmetic fits in an `i64`
+/// (|product| < 2^61). The pipeline clips to a far smaller guard band.
+pub const MAX_WINDOW_COORD: f32 = (1 << 21) as f32;
+
+/// A point in window space on the 1/256-pixel grid (y down, row 0 on top).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct FixedPoint {
+    /// x in 1/256 pixels.
+    pub x: i32,
+    /// y in 1/256 pixels.
+    pub y: i32,
+}
+
+impl FixedPoint {
+    /// Snaps a window-space point to the grid (round to nearest). Returns
+    /// `None` for non-finite input or |x|, |y| > [`MAX_WINDOW_COORD`].
+    #[inline]
+    pub fn snap(x: f32, y: f32) -> Option<FixedPoint> {
+        let ok = |v: f32| v.abs() <= MAX_WINDOW_COORD; // false for NaN
+        if !(ok(x) && ok(y)) {
+            return None;
+        }
+        let s = SUBPIXEL_ONE as f32;
+        // Exact: |v·256| ≤ 2^29 fits in i32, and `as` cannot saturate here.
+        Some(FixedPoint { x: (x * s).round() as i32, y: (y * s).round() as i32 })
+    }
+
+    /// The point in pixels, exactly (fixed-point values are exact in f64).
+    #[inline]
+    pub fn to_f64(self) -> (f64, f64) {
+        let s = SUBPIXEL_ONE as f64;
+        (f64::from(self.x) / s, f64::from(self.y) / s)
+    }
+}
+
+/// A half-open rectangle of pixels: columns `x0..x1`, rows `y0..y1`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Rect {
+    /// First column.
+    pub x0: i32,
+    /// First row.
+    pub y0: i32,
+    /// One past the last column.
+    pub x1: i32,
+    /// One past the last row.
+    pub y1: i32,
+}
+
+impl Rect {
+    /// A rectangle from its corner and size.
+    pub fn from_size(x0: i32, y0: i32, width: i32, height: i32) -> Rect {
+        Rect { x0, y0, x1: x0 + width, y1: y0 + height }
+    }
+
+    /// The common part of two rectangles (possibly empty).
+    pub fn intersect(&self, other: &Rect) -> Rect {
+        Rect {
+            x0: self.x0.max(other.x0),
+            y0: self.y0.max(other.y0),
+            x1: self.x1.min(other.x1),
+            y1: self.y1.min(other.y1),
+        }
+    }
+
+    /// True when no pixel is inside.
+    pub fn is_empty(&self) -> bool {
+        self.x0 >= self.x1 || self.y0 >= self.y1
+    }
+
+    /// Width in pixels (0 when empty).
+    pub fn width(&self) -> i32 {
+        (self.x1 - self.x0).max(0)
+    }
+
+    /// Height in pixels (0 when empty).
+    pub fn height(&self) -> i32 {
+        (self.y1 - self.y0).max(0)
+    }
+}
+
+/// ⌈a / b⌉ for b > 0.
+#[inline]
+pub(crate) fn ceil_div(a: i64, b: i64) -> i64 {
+    debug_assert!(b > 0);
+    let q = a.div_euclid(b);
+    if a.rem_euclid(b) != 0 {
+        q + 1
+    } else {
+        q
+    }
+}
+
+/// The first row (or column) whose sample coordinate is ≥ `v` (fixed point).
+#[inline]
+pub(crate) fn first_sample_at_or_after(v: i64) -> i64 {
+    ceil_div(v - SUBPIXEL_HALF, SUBPIXEL_ONE)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn snap_rounds_to_nearest_and_rejects_bad_input() {
+        assert_eq!(FixedPoint::snap(1.5, -0.25), Some(FixedPoint { x: 384, y: -64 }));
+        assert_eq!(FixedPoint::snap(f32::NAN, 0.0), None);
+        assert_eq!(FixedPoint::snap(0.0, f32::INFINITY), None);
+        assert_eq!(FixedPoint::snap(3e6, 0.0), None);
+    }
+
+    #[test]
+    fn first_sample_handles_exact_hits_and_negatives() {
+        assert_eq!(first_sample_at_or_after(128), 0); // exactly on the centre of pixel 0
+        assert_eq!(first_sample_at_or_after(129), 1);
+        assert_eq!(first_sample_at_or_after(-128), -1);
+        assert_eq!(first_sample_at_or_after(-129), -1);
+        assert_eq!(first_sample_at_or_after(-383), -1);
+        assert_eq!(first_sample_at_or_after(-384), -2);
+    }
+}

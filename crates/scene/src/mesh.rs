@@ -1,0 +1,286 @@
+//! Mesh construction: validation of indices and coordinates, and vertex
+//! normals (SPEC §6).
+//!
+//! Contract: [`Mesh::new`] takes positions, optional normals and triangles,
+//! and returns a mesh that upholds [`Mesh`]'s invariants — every index in
+//! range, every position finite, one finite unit normal per vertex — or a
+//! [`MeshError`] naming the first offending triangle or vertex.
+//!
+//! Vertex normals, when the caller has none, are the normalized sum of the
+//! unit normals of the faces around the vertex. Face normals are computed in
+//! f64, so coordinates up to f32::MAX neither overflow nor underflow.
+//! Vertices at the same position are treated as one vertex for this sum:
+//! OBJ loaders split a vertex wherever its texture coordinates or normals
+//! differ, and summing per split vertex would show those seams as creases.
+//! Degenerate faces (zero area) contribute nothing. A vertex whose sum is
+//! zero takes the normal of its first non-degenerate face, and a vertex
+//! with no such face takes [`FALLBACK_NORMAL`] (+Z).
+//!
+//! Supplied normals are re-normalized; a zero or non-finite supplied normal
+//! is replaced by the computed one.
+
+use std::collections::HashMap;
+
+use glam::{DVec3, Vec3};
+use zline_shading::Material;
+
+use crate::error::MeshError;
+use crate::model::Mesh;
+
+/// The normal of a vertex that belongs to no non-degenerate face.
+pub const FALLBACK_NORMAL: Vec3 = Vec3::Z;
+
+impl Mesh {
+    /// Builds a validated mesh. `normals`, when given, must have one entry
+    /// per position; missing or unusable normals are computed (see the
+    /// module documentation).
+    pub fn new(
+        name: impl Into<String>,
+        positions: Vec<Vec3>,
+        normals: Option<Vec<Vec3>>,
+        triangles: Vec<[u32; 3]>,
+        material: Material,
+    ) -> Result<Mesh, MeshError> {
+        check_positions(&positions)?;
+        check_indices(&triangles, positions.len())?;
+        let normals = match normals {
+            Some(given) if given.len() != positions.len() => {
+                return Err(MeshError::NormalCount { normals: given.len(), positions: positions.len() })
+            }
+            Some(given) => repair_normals(given, &positions, &triangles),
+            None => vertex_normals(&positions, &triangles),
+        };
+        Ok(Mesh { name: name.into(), positions, normals, triangles, material })
+    }
+
+    /// The axis-aligned bounding box (min, max) of the positions;
+    /// `(Vec3::ZERO, Vec3::ZERO)` for a mesh without vertices.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        bounds_of(self.positions.iter().copied()).unwrap_or((Vec3::ZERO, Vec3::ZERO))
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// True when the mesh is closed and consistently oriented: every edge
+    /// (between vertex positions, so split vertices count as one) is used
+    /// once in each direction, by exactly two triangles. Such a mesh, when
+    /// opaque, can have its back faces culled (SPEC §2).
+    pub fn is_closed(&self) -> bool {
+        let (group_of, _) = weld_by_position(&self.positions);
+        let mut directed = HashMap::with_capacity(self.triangles.len() * 3);
+        for tri in &self.triangles {
+            let [a, b, c] = tri.map(|i| group_of[i as usize]);
+            for edge in [(a, b), (b, c), (c, a)].into_iter().filter(|(p, q)| p != q) {
+                *directed.entry(edge).or_insert(0u32) += 1;
+            }
+        }
+        !directed.is_empty() && directed.iter().all(|(&(p, q), &n)| n == 1 && directed.get(&(q, p)) == Some(&1))
+    }
+
+    /// The corner positions of triangle `t`.
+    pub fn triangle(&self, t: usize) -> [Vec3; 3] {
+        self.triangles[t].map(|i| self.positions[i as usize])
+    }
+}
+
+/// The bounding box of some points, `None` when there are none.
+pub(crate) fn bounds_of(points: impl IntoIterator<Item = Vec3>) -> Option<(Vec3, Vec3)> {
+    points.into_iter().fold(None, |acc, p| match acc {
+        None => Some((p, p)),
+        Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
+    })
+}
+
+fn check_positions(positions: &[Vec3]) -> Result<(), MeshError> {
+    match positions.iter().position(|p| !p.is_finite()) {
+        Some(vertex) => {
+            let p = positions[vertex];
+            Err(MeshError::NonFinitePosition { vertex, x: p.x, y: p.y, z: p.z })
+        }
+        None => Ok(()),
+    }
+}
+
+fn check_indices(triangles: &[[u32; 3]], vertex_count: usize) -> Result<(), MeshError> {
+    for (triangle, tri) in triangles.iter().enumerate() {
+        if let Some(&index) = tri.iter().find(|&&i| i as usize >= vertex_count) {
+            return Err(MeshError::IndexOutOfRange { triangle, index, vertex_count });
+        }
+    }
+    Ok(())
+}
+
+/// The unit normal of the triangle (a, b, c), counter-clockwise front, or
+/// `None` when it has no area (or its coordinates are not finite).
+pub fn face_normal(a: Vec3, b: Vec3, c: Vec3) -> Option<Vec3> {
+    let (a, b, c) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
+    unit_f64((b - a).cross(c - a))
+}
+
+/// `v / |v|` computed in f64, `None` for a zero or non-finite vector.
+fn unit_f64(v: DVec3) -> Option<Vec3> {
+    let len = v.length();
+    (len > 0.0 && len.is_finite()).then(|| (v / len).as_vec3())
+}
+
+/// One normal per vertex from the faces around it (see the module doc).
+pub(crate) fn vertex_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3> {
+    let (group_of, groups) = weld_by_position(positions);
+    let mut sum = vec![DVec3::ZERO; groups];
+    let mut first = vec![None; groups];
+    for tri in triangles {
+        let [a, b, c] = tri.map(|i| positions[i as usize]);
+        let Some(n) = face_normal(a, b, c) else { continue };
+        for &i in tri {
+            let g = group_of[i as usize];
+            sum[g] += n.as_dvec3();
+            first[g].get_or_insert(n);
+        }
+    }
+    let per_group: Vec<Vec3> = sum
+        .iter()
+        .zip(&first)
+        .map(|(&s, &f)| unit_f64(s).or(f).unwrap_or(FALLBACK_NORMAL))
+        .collect();
+    group_of.iter().map(|&g| per_group[g]).collect()
+}
+
+/// Assigns every vertex the id of the first vertex at the same position.
+/// Returns the group of each vertex and the number of groups.
+pub(crate) fn weld_by_position(positions: &[Vec3]) -> (Vec<usize>, usize) {
+    // Adding 0.0 turns −0.0 into +0.0, so both spell the same key.
+    let key = |p: Vec3| (p + Vec3::ZERO).to_array().map(f32::to_bits);
+    let mut ids = HashMap::with_capacity(positions.len());
+    let group_of = positions
+        .iter()
+        .map(|&p| {
+            let next = ids.len();
+            *ids.entry(key(p)).or_insert(next)
+        })
+        .collect();
+    (group_of, ids.len())
+}
+
+/// Re-normalizes supplied normals, replacing unusable ones by computed ones.
+fn repair_normals(mut given: Vec<Vec3>, positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3> {
+    let mut computed: Option<Vec<Vec3>> = None;
+    for (i, n) in given.iter_mut().enumerate() {
+        *n = match unit_f64(n.as_dvec3()) {
+            Some(unit) => unit,
+            None => computed.get_or_insert_with(|| vertex_normals(positions, triangles))[i],
+        };
+    }
+    given
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[track_caller]
+    fn check_unit(n: Vec3) {
+        assert!(n.is_finite() && (n.length() - 1.0).abs() < 1e-5, "not a unit normal: {n}");
+    }
+
+    fn quad_positions(scale: f32) -> Vec<Vec3> {
+        vec![Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]
+            .into_iter()
+            .map(|p| p * scale)
+            .collect()
+    }
+
+    #[test]
+    fn computed_normals_of_a_ccw_quad_point_to_plus_z() {
+        let mesh =
+            Mesh::new("quad", quad_positions(1.0), None, vec![[0, 1, 2], [0, 2, 3]], Material::DEFAULT).unwrap();
+        for n in &mesh.normals {
+            assert!((*n - Vec3::Z).length() < 1e-6, "{n}");
+        }
+    }
+
+    #[test]
+    fn huge_and_tiny_coordinates_give_unit_normals() {
+        for scale in [1e30, 3e38, 1e-30, 1e-40] {
+            let mesh =
+                Mesh::new("q", quad_positions(scale), None, vec![[0, 1, 2], [0, 2, 3]], Material::DEFAULT)
+                    .unwrap();
+            for &n in &mesh.normals {
+                check_unit(n);
+            }
+        }
+    }
+
+    #[test]
+    fn normal_is_the_normalized_sum_of_unit_face_normals() {
+        // A vertex shared by a big face (+Z) and a small face (+X): the sum of
+        // unit normals is not weighted by area, so the result is the diagonal.
+        let p = vec![
+            Vec3::ZERO,
+            Vec3::new(100.0, 0.0, 0.0),
+            Vec3::new(0.0, 100.0, 0.0),
+            Vec3::new(0.0, 0.0, -0.01),
+            Vec3::new(0.0, 0.01, 0.0),
+        ];
+        let mesh = Mesh::new("v", p, None, vec![[0, 1, 2], [0, 3, 4]], Material::DEFAULT).unwrap();
+        let expected = Vec3::new(1.0, 0.0, 1.0).normalize();
+        assert!((mesh.normals[0] - expected).length() < 1e-6, "{}", mesh.normals[0]);
+    }
+
+    #[test]
+    fn split_vertices_at_one_position_share_a_normal() {
+        // Two triangles folded along the x axis (normals +Z and +Y), the
+        // vertices on the fold duplicated as an OBJ loader would.
+        let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::ZERO, Vec3::Z, Vec3::X];
+        let mesh = Mesh::new("fold", p, None, vec![[0, 1, 2], [3, 4, 5]], Material::DEFAULT).unwrap();
+        assert_eq!(mesh.normals[0], mesh.normals[3]);
+        assert_eq!(mesh.normals[1], mesh.normals[5]);
+        assert!((mesh.normals[0] - Vec3::new(0.0, 1.0, 1.0).normalize()).length() < 1e-6);
+        assert_eq!(mesh.normals[2], Vec3::Z);
+    }
+
+    #[test]
+    fn vertices_without_faces_and_degenerate_faces_get_the_fallback() {
+        let p = vec![Vec3::ZERO, Vec3::X, Vec3::X * 2.0, Vec3::Y];
+        let mesh = Mesh::new("line", p, None, vec![[0, 1, 2]], Material::DEFAULT).unwrap();
+        assert!(mesh.normals.iter().all(|&n| n == FALLBACK_NORMAL));
+    }
+
+    #[test]
+    fn supplied_normals_are_renormalized_and_bad_ones_replaced() {
+        let normals = vec![Vec3::Z * 5.0, Vec3::ZERO, Vec3::NAN, Vec3::new(0.0, 0.0, 1e-30)];
+        let mesh = Mesh::new("q", quad_positions(1.0), Some(normals), vec![[0, 1, 2], [0, 2, 3]], Material::DEFAULT)
+            .unwrap();
+        for &n in &mesh.normals {
+            assert!((n - Vec3::Z).length() < 1e-6, "{n}");
+        }
+    }
+
+    #[test]
+    fn bad_input_is_reported() {
+        let m = Material::DEFAULT;
+        let e = Mesh::new("q", quad_positions(1.0), None, vec![[0, 1, 4]], m).unwrap_err();
+        assert_eq!(e.to_string(), "triangle 0 refers to vertex 4, but there are only 4 vertices");
+        let mut p = quad_positions(1.0);
+        p[2].y = f32::INFINITY;
+        let e = Mesh::new("q", p, None, vec![[0, 1, 2]], m).unwrap_err();
+        assert_eq!(e.to_string(), "vertex 2 has non-finite position (1, inf, 0)");
+        let e = Mesh::new("q", quad_positions(1.0), Some(vec![Vec3::Z]), vec![], m).unwrap_err();
+        assert_eq!(e.to_string(), "1 normals given for 4 vertices");
+    }
+
+    #[test]
+    fn bounds_cover_all_positions() {
+        let mesh = Mesh::new("q", quad_positions(2.0), None, vec![[0, 1, 2]], Material::DEFAULT).unwrap();
+        assert_eq!(mesh.bounds(), (Vec3::ZERO, Vec3::new(2.0, 2.0, 0.0)));
+        assert_eq!(mesh.triangle_count(), 1);
+        assert_eq!(mesh.vertex_count(), 4);
+    }
+}

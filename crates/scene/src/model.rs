@@ -1,0 +1,238 @@
+//! The scene model: meshes, objects, camera, lights and render settings.
+//! Plain data, built by the loaders or by hand, consumed by the pipeline.
+
+use std::sync::Arc;
+
+use glam::{Mat4, Vec3};
+use zline_shading::{Light, Material, ShadingMode};
+
+/// A triangle mesh in object space with one material.
+///
+/// Invariants (upheld by the loaders and [`Mesh::new`]): `normals` has one
+/// unit normal per position; every index is `< positions.len()`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    /// A name for messages (OBJ object or group name, or the primitive).
+    pub name: String,
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Unit vertex normals, one per position: from the file, or the
+    /// normalized sum of the unit face normals around the vertex (SPEC §6).
+    pub normals: Vec<Vec3>,
+    /// Triangles as indices into `positions`, counter-clockwise for front
+    /// faces.
+    pub triangles: Vec<[u32; 3]>,
+    /// The mesh's material.
+    pub material: Material,
+}
+
+/// How values are interpolated across a triangle in window space (SPEC §6).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Interpolation {
+    /// Interpolate a/w and 1/w linearly and divide per sample.
+    #[default]
+    PerspectiveCorrect,
+    /// Interpolate values linearly in window space (the seed's formulas).
+    ScreenLinear,
+}
+
+impl Interpolation {
+    /// The name used by the CLI and scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Interpolation::PerspectiveCorrect => "perspective",
+            Interpolation::ScreenLinear => "linear",
+        }
+    }
+}
+
+/// A mesh placed in the world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Object {
+    /// The mesh, shared between instances.
+    pub mesh: Arc<Mesh>,
+    /// The model matrix.
+    pub world_from_object: Mat4,
+    /// Replaces the mesh's material when set.
+    pub material: Option<Material>,
+    /// Replaces the scene's shading mode for this object when set.
+    pub shading: Option<ShadingMode>,
+    /// Back-face culling: on for closed opaque meshes (SPEC §2).
+    pub cull_back_faces: bool,
+}
+
+impl Object {
+    /// The material the object is drawn with.
+    pub fn material(&self) -> Material {
+        self.material.unwrap_or(self.mesh.material)
+    }
+}
+
+/// The camera's projection (SPEC §1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// `gluPerspective(fovy, aspect, near, far)`.
+    Perspective {
+        /// Vertical field of view in degrees.
+        fovy_degrees: f32,
+        /// Distance to the near plane (> 0).
+        near: f32,
+        /// Distance to the far plane (> near).
+        far: f32,
+    },
+    /// `glOrtho` with a symmetric view volume of the given height.
+    Orthographic {
+        /// Height of the view volume in world units; width = height · aspect.
+        height: f32,
+        /// Distance to the near plane.
+        near: f32,
+        /// Distance to the far plane (> near).
+        far: f32,
+    },
+}
+
+/// A look-at camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position in world space.
+    pub eye: Vec3,
+    /// The point looked at.
+    pub target: Vec3,
+    /// The world's up direction.
+    pub up: Vec3,
+    /// The projection.
+    pub projection: Projection,
+}
+
+impl Camera {
+    /// The view matrix (right-handed, looking down −z, +y up).
+    pub fn eye_from_world(&self) -> Mat4 {
+        look_at_rh(self.eye, self.target, self.up)
+    }
+
+    /// The projection matrix for a viewport aspect ratio (width / height),
+    /// with OpenGL's NC depth range [−1, 1].
+    pub fn clip_from_eye(&self, aspect: f32) -> Mat4 {
+        match self.projection {
+            Projection::Perspective { fovy_degrees, near, far } => {
+                perspective_rh_gl(fovy_degrees.to_radians(), aspect, near, far)
+            }
+            Projection::Orthographic { height, near, far } => {
+                let (h, w) = (height / 2.0, height * aspect / 2.0);
+                Mat4::orthographic_rh_gl(-w, w, -h, h, near, far)
+            }
+        }
+    }
+}
+
+/// `gluLookAt`, as glam's `Mat4::look_at_rh` but normalizing directions
+/// after scaling them by their largest component: glam's `normalize`
+/// squares the components and overflows f32 for eye–target distances
+/// beyond ~1e19, which makes the whole view matrix NaN.
+fn look_at_rh(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
+    use glam::Vec4;
+    let unit = |v: Vec3| (v / v.abs().max_element()).normalize();
+    let f = unit(target - eye);
+    let s = unit(f.cross(up));
+    let u = s.cross(f);
+    Mat4::from_cols(
+        Vec4::new(s.x, u.x, -f.x, 0.0),
+        Vec4::new(s.y, u.y, -f.y, 0.0),
+        Vec4::new(s.z, u.z, -f.z, 0.0),
+        Vec4::new(-s.dot(eye), -u.dot(eye), f.dot(eye), 1.0),
+    )
+}
+
+/// `gluPerspective` with OpenGL's NC depth range, as glam's
+/// `Mat4::perspective_rh_gl` but with the depth term computed as
+/// `2·near · (far / (near − far))`: glam's `2·near·far` overflows f32 once
+/// near·far exceeds ~1.7e38, that is for scenes measured in units of 1e19
+/// and beyond, which then project to infinities.
+fn perspective_rh_gl(fovy_radians: f32, aspect: f32, near: f32, far: f32) -> Mat4 {
+    use glam::Vec4;
+    let inv_length = 1.0 / (near - far);
+    let f = 1.0 / (0.5 * fovy_radians).tan();
+    Mat4::from_cols(
+        Vec4::new(f / aspect, 0.0, 0.0, 0.0),
+        Vec4::new(0.0, f, 0.0, 0.0),
+        Vec4::new(0.0, 0.0, (near + far) * inv_length, -1.0),
+        Vec4::new(0.0, 0.0, (2.0 * near) * (far * inv_length), 0.0),
+    )
+}
+
+/// Settings a scene file may give; the CLI may override them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Shading mode for objects that do not set their own.
+    pub shading: ShadingMode,
+    /// Interpolation of attributes.
+    pub interpolation: Interpolation,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            width: 800,
+            height: 600,
+            shading: ShadingMode::Phong,
+            interpolation: Interpolation::PerspectiveCorrect,
+        }
+    }
+}
+
+/// Everything needed to render one image.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// The camera.
+    pub camera: Camera,
+    /// Background colour (RGB in [0, 1]).
+    pub background: Vec3,
+    /// Ambient light Ia.
+    pub ambient: Vec3,
+    /// Light sources, in world space.
+    pub lights: Vec<Light>,
+    /// The objects.
+    pub objects: Vec<Object>,
+    /// Render settings.
+    pub settings: RenderSettings,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn look_at_matches_glam_and_survives_huge_distances() {
+        let (eye, target) = (Vec3::new(1.0, 2.0, 5.0), Vec3::new(0.5, 0.0, -1.0));
+        let ours = look_at_rh(eye, target, Vec3::Y);
+        let glams = Mat4::look_at_rh(eye, target, Vec3::Y);
+        assert!(ours.abs_diff_eq(glams, 1e-6), "{ours} vs {glams}");
+        let huge = look_at_rh(Vec3::new(1e30, 2e30, 3e30), Vec3::ZERO, Vec3::Y);
+        assert!(huge.is_finite(), "{huge}");
+        let p = huge.transform_point3(Vec3::ZERO);
+        // The target lies straight ahead (−z) at the eye's distance.
+        let distance = 14f32.sqrt() * 1e30;
+        assert!((p.z / -distance - 1.0).abs() < 1e-6 && p.x.abs().max(p.y.abs()) < 1e-6 * distance, "{p}");
+    }
+
+    #[test]
+    fn perspective_matches_glam_and_survives_huge_planes() {
+        let camera = |near, far| Camera {
+            eye: Vec3::ZERO,
+            target: Vec3::NEG_Z,
+            up: Vec3::Y,
+            projection: Projection::Perspective { fovy_degrees: 40.0, near, far },
+        };
+        let ours = camera(0.1, 100.0).clip_from_eye(1.5);
+        let glams = Mat4::perspective_rh_gl(40f32.to_radians(), 1.5, 0.1, 100.0);
+        assert!(ours.abs_diff_eq(glams, 1e-6), "{ours} vs {glams}");
+        let huge = camera(1e30, 4e30).clip_from_eye(1.5);
+        assert!(huge.is_finite(), "{huge}");
+        let nc = huge.project_point3(Vec3::new(0.0, 0.0, -1e30));
+        assert!((nc.z + 1.0).abs() < 1e-5, "near plane maps to z = -1, got {nc}");
+    }
+}

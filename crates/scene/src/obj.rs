@@ -1,0 +1,436 @@
+//! OBJ+MTL loading: a Wavefront OBJ file → one [`Mesh`] per OBJ object,
+//! group or material run.
+//!
+//! Contract: [`load_obj`] returns at least one mesh with at least one
+//! triangle, or a [`SceneError`] naming the file, the line and the text.
+//! Polygons are fan-triangulated, points and lines ignored, and each vertex
+//! split where its (v, vt, vn) index triple differs (tobj's `single_index`).
+//!
+//! tobj does the parsing, but its errors carry no location
+//! (`PositionParseError`), and some malformed input makes it panic (a face
+//! texture index `0`, an MTL colour with two numbers). So the text is first
+//! checked by a small scanner of our own, [`check_obj_text`], that rejects
+//! what tobj would reject or trip over, with the line number and text, and
+//! also non-finite coordinates, which tobj accepts. Face indices must refer
+//! to vertices defined earlier in the file, as the OBJ format says.
+//!
+//! Materials come from the MTL files named by `mtllib`, relative to the OBJ
+//! file: `Ka`, `Kd`, `Ks`, `Ns`, `d` (opacity) or else `Tr` (opacity =
+//! 1 − Tr), sanitized to their valid ranges. A missing `Ka` is taken equal
+//! to `Kd`; other missing keys take [`Material::DEFAULT`]'s values. A
+//! missing or broken MTL file, or an unknown `usemtl` name, is not an error:
+//! the meshes get [`Material::DEFAULT`] and a warning is reported —
+//! returned by [`load_obj_with_warnings`], printed to stderr by
+//! [`load_obj`]. Texture maps are not read.
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use zline_shading::Material;
+
+use crate::error::SceneError;
+use crate::model::Mesh;
+
+/// Loads an OBJ file, printing warnings (such as a missing MTL file) to
+/// stderr as `warning: ...` lines.
+pub fn load_obj(path: &Path) -> Result<Vec<Mesh>, SceneError> {
+    let (meshes, warnings) = load_obj_with_warnings(path)?;
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(meshes)
+}
+
+/// Loads an OBJ file and returns the meshes with the warnings, each a
+/// one-line message starting with the file it is about.
+pub fn load_obj_with_warnings(path: &Path) -> Result<(Vec<Mesh>, Vec<String>), SceneError> {
+    let text = read_text(path)?;
+    check_obj_text(path, &text)?;
+    let warnings = RefCell::new(Vec::new());
+    let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let loaded = tobj::load_obj_buf(&mut Cursor::new(text.as_bytes()), &options, |mtl| {
+        load_mtl(&dir.join(mtl), &mut warnings.borrow_mut())
+    });
+    let (models, materials) = loaded.map_err(|e| SceneError::File {
+        path: path.to_path_buf(),
+        message: format!("cannot load OBJ: {e}"),
+    })?;
+    let materials: Vec<Material> = materials.unwrap_or_default().iter().map(material_from_mtl).collect();
+    let mut warnings = warnings.into_inner();
+    let meshes = meshes_from_models(path, models, &materials, &mut warnings)?;
+    Ok((meshes, warnings))
+}
+
+/// Reads a text file; bytes that are not UTF-8 (Latin-1 comments, say)
+/// become U+FFFD rather than an error.
+pub(crate) fn read_text(path: &Path) -> Result<String, SceneError> {
+    let bytes = std::fs::read(path).map_err(|source| SceneError::Io { path: path.to_path_buf(), source })?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+fn meshes_from_models(
+    path: &Path,
+    models: Vec<tobj::Model>,
+    materials: &[Material],
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Mesh>, SceneError> {
+    let stem = path.file_stem().map_or_else(|| "model".to_owned(), |s| s.to_string_lossy().into_owned());
+    let mut meshes = Vec::with_capacity(models.len());
+    for model in models.into_iter().filter(|m| m.mesh.indices.len() >= 3) {
+        let name = if model.name.is_empty() { stem.clone() } else { model.name };
+        let material = match model.mesh.material_id {
+            Some(id) if id < materials.len() => materials[id],
+            Some(_) => Material::DEFAULT,
+            None => {
+                if !materials.is_empty() {
+                    warnings.push(format!("{}: mesh '{name}' has no known material", path.display()));
+                }
+                Material::DEFAULT
+            }
+        };
+        meshes.push(mesh_from_tobj(path, name, model.mesh, material)?);
+    }
+    if meshes.is_empty() {
+        return Err(SceneError::NoTriangles { path: path.to_path_buf() });
+    }
+    Ok(meshes)
+}
+
+fn mesh_from_tobj(path: &Path, name: String, m: tobj::Mesh, material: Material) -> Result<Mesh, SceneError> {
+    let vec3s = |v: &[f32]| v.chunks_exact(3).map(Vec3::from_slice).collect::<Vec<_>>();
+    let positions = vec3s(&m.positions);
+    // tobj leaves normals out for vertices whose face gave none; use the
+    // file's normals only when every vertex has one.
+    let normals = (m.normals.len() == m.positions.len()).then(|| vec3s(&m.normals));
+    let triangles = m.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+    Mesh::new(name.clone(), positions, normals, triangles, material).map_err(|source| SceneError::Mesh {
+        path: path.to_path_buf(),
+        mesh: name,
+        source,
+    })
+}
+
+/// Converts a tobj material (see the module doc for the defaults).
+fn material_from_mtl(m: &tobj::Material) -> Material {
+    let d = Material::DEFAULT;
+    let kd = m.diffuse.map_or(d.kd, Vec3::from);
+    let tr = m.unknown_param.get("Tr").and_then(|v| v.split_whitespace().next()?.parse::<f32>().ok());
+    let opacity = m.dissolve.or(tr.map(|t| 1.0 - t)).unwrap_or(1.0);
+    Material {
+        ka: m.ambient.map_or(kd, Vec3::from),
+        kd,
+        ks: m.specular.map_or(d.ks, Vec3::from),
+        ns: m.shininess.unwrap_or(d.ns),
+        opacity,
+    }
+    .sanitized()
+}
+
+/// The material loader handed to tobj: reads and checks an MTL file,
+/// turning every failure into a warning (tobj then uses no material).
+fn load_mtl(path: &Path, warnings: &mut Vec<String>) -> tobj::MTLLoadResult {
+    let fail = |warnings: &mut Vec<String>, why: String| {
+        warnings.push(format!("{why}; using the default material"));
+        Err(tobj::LoadError::OpenFileFailed)
+    };
+    let text = match std::fs::read(path) {
+        Ok(bytes) => String::from_utf8_lossy(&bytes).into_owned(),
+        Err(e) => return fail(warnings, format!("{}: cannot read material library: {e}", path.display())),
+    };
+    let text = match check_mtl_text(&text) {
+        Ok(text) => text,
+        Err((line, why)) => return fail(warnings, format!("{}: line {line}: {why}", path.display())),
+    };
+    tobj::load_mtl_buf(&mut Cursor::new(text.as_bytes())).or_else(|e| {
+        fail(warnings, format!("{}: cannot load material library: {e}", path.display()))
+    })
+}
+
+/// Checks the MTL statements that tobj would reject without saying where,
+/// or panic on, and expands the one-number colour form `Kd 0.5` (which
+/// means `Kd 0.5 0.5 0.5`) that tobj does not know. Returns the text to
+/// hand to tobj, or the 1-based line and what is wrong with it.
+fn check_mtl_text(text: &str) -> Result<String, (usize, String)> {
+    let mut out = String::with_capacity(text.len() + 64);
+    for (i, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let key = words.next().unwrap_or("");
+        let args: Vec<&str> = words.collect();
+        let bad = |what: &str| Err((i + 1, format!("{what} in {}", quote(line))));
+        match key {
+            "Ka" | "Kd" | "Ks" | "Ke" => match args.len() {
+                1 => {
+                    let v = args[0];
+                    if v.parse::<f32>().is_err() {
+                        return bad("cannot parse colour");
+                    }
+                    out.push_str(&format!("{key} {v} {v} {v}\n"));
+                    continue;
+                }
+                0 | 2 => return bad("a colour needs 3 numbers"),
+                _ if args[..3].iter().any(|a| a.parse::<f32>().is_err()) => {
+                    return bad("cannot parse colour (only 'r g b' is supported)")
+                }
+                _ => {}
+            },
+            "Ns" | "Ni" | "d" if args.first().and_then(|a| a.parse::<f32>().ok()).is_none() => {
+                return bad("cannot parse number")
+            }
+            "illum" if args.first().and_then(|a| a.parse::<u8>().ok()).is_none() => {
+                return bad("cannot parse illumination model")
+            }
+            "newmtl" if args.is_empty() => return bad("material without a name"),
+            k if (k.starts_with("map_") || k == "bump") && args.is_empty() => {
+                return bad("texture map without a file name")
+            }
+            _ => {}
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// Counts of the vertex attributes defined so far while scanning an OBJ.
+#[derive(Default)]
+struct Defined {
+    positions: usize,
+    texcoords: usize,
+    normals: usize,
+}
+
+/// OBJ statements that tobj ignores but that are valid OBJ (free-form
+/// geometry, display attributes): accepted and skipped.
+const IGNORED_STATEMENTS: &[&str] = &[
+    "s", "vp", "cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv",
+    "sp", "end", "con", "mg", "bevel", "c_interp", "d_interp", "lod", "maplib", "usemap", "shadow_obj",
+    "trace_obj", "ctech", "stech", "call", "csh", "p",
+];
+
+/// Checks every line of an OBJ file (see the module doc).
+fn check_obj_text(path: &Path, text: &str) -> Result<(), SceneError> {
+    if text.contains('\0') {
+        return Err(SceneError::File { path: path.to_path_buf(), message: "binary data, not an OBJ text file".into() });
+    }
+    let mut defined = Defined::default();
+    for (i, line) in text.lines().enumerate() {
+        check_obj_line(line, &mut defined).map_err(|message| SceneError::Line {
+            path: path.to_path_buf(),
+            line: i + 1,
+            message,
+        })?;
+    }
+    Ok(())
+}
+
+fn check_obj_line(line: &str, defined: &mut Defined) -> Result<(), String> {
+    let mut words = line.split_whitespace();
+    let Some(key) = words.next() else { return Ok(()) };
+    let args: Vec<&str> = words.collect();
+    match key {
+        "v" => check_vertex(line, &args).map(|()| defined.positions += 1),
+        "vt" => check_numbers(line, &args, 2, "texture coordinate").map(|()| defined.texcoords += 1),
+        "vn" => check_numbers(line, &args, 3, "normal").map(|()| defined.normals += 1),
+        "f" | "l" => check_face(line, &args, defined),
+        "usemtl" if args.is_empty() => Err(format!("'usemtl' without a material name in {}", quote(line))),
+        "o" | "g" | "mtllib" | "usemtl" => Ok(()),
+        k if k.starts_with('#') || IGNORED_STATEMENTS.contains(&k) => Ok(()),
+        k => Err(format!("unknown statement '{}' in {}", truncate(k), quote(line))),
+    }
+}
+
+/// `v x y z [w | r g b]`: three finite coordinates, an optional non-zero w.
+fn check_vertex(line: &str, args: &[&str]) -> Result<(), String> {
+    if !matches!(args.len(), 3 | 4 | 6) {
+        return Err(format!("a vertex needs 3 coordinates (then optionally w, or r g b) in {}", quote(line)));
+    }
+    let mut xyz = [0.0f32; 3];
+    for (c, a) in xyz.iter_mut().zip(args) {
+        *c = a.parse().map_err(|_| format!("cannot parse vertex position {}", quote(line)))?;
+        if !c.is_finite() {
+            return Err(format!("vertex has non-finite coordinate '{}'", truncate(a)));
+        }
+    }
+    if let [_, _, _, w] = args {
+        let w: f32 = w.parse().map_err(|_| format!("cannot parse vertex w in {}", quote(line)))?;
+        if w == 0.0 || !w.is_finite() || xyz.iter().any(|c| !(c / w).is_finite()) {
+            return Err(format!("vertex has unusable w = {w} in {}", quote(line)));
+        }
+    }
+    Ok(())
+}
+
+/// At least `n` numbers (tobj reads the first `n` and ignores the rest).
+fn check_numbers(line: &str, args: &[&str], n: usize, what: &str) -> Result<(), String> {
+    if args.len() < n || args[..n].iter().any(|a| a.parse::<f32>().is_err()) {
+        return Err(format!("cannot parse {what} {} ({n} numbers expected)", quote(line)));
+    }
+    Ok(())
+}
+
+/// `f v[/vt][/vn] ...`: every index parses and refers to an element
+/// defined earlier (negative indices count back from the last one).
+fn check_face(line: &str, args: &[&str], defined: &Defined) -> Result<(), String> {
+    if args.is_empty() {
+        return Err(format!("a face needs vertices in {}", quote(line)));
+    }
+    let kinds =
+        [("vertex", defined.positions), ("texture coordinate", defined.texcoords), ("normal", defined.normals)];
+    for corner in args {
+        let parts: Vec<&str> = corner.split('/').collect();
+        if parts.len() > 3 || parts[0].is_empty() {
+            return Err(format!("cannot parse face vertex '{}' in {}", truncate(corner), quote(line)));
+        }
+        for (part, &(what, count)) in parts.iter().zip(&kinds).filter(|(p, _)| !p.is_empty()) {
+            let index: i64 = part
+                .parse()
+                .map_err(|_| format!("cannot parse face index '{}' in {}", truncate(part), quote(line)))?;
+            let resolved = if index < 0 { count as i64 + index + 1 } else { index };
+            if resolved < 1 || resolved > count as i64 {
+                return Err(format!(
+                    "face refers to {what} {index}, but {count} are defined before it, in {}",
+                    quote(line)
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A line quoted for a message: trimmed, shortened, control characters
+/// escaped, so the message stays one line.
+fn quote(line: &str) -> String {
+    format!("'{}'", truncate(line.trim()))
+}
+
+fn truncate(s: &str) -> String {
+    const MAX: usize = 60;
+    let mut out: String = s.chars().take(MAX).flat_map(char::escape_debug).collect();
+    if s.chars().count() > MAX {
+        out.push('…');
+    }
+    out
+}
+
+/// Paths of the distinct model files loaded by a scene, each loaded once.
+#[derive(Default)]
+pub(crate) struct ModelCache {
+    loaded: HashMap<PathBuf, Vec<std::sync::Arc<Mesh>>>,
+}
+
+impl ModelCache {
+    /// The meshes of the OBJ file at `path`, loading it on first use.
+    pub(crate) fn get(&mut self, path: &Path) -> Result<Vec<std::sync::Arc<Mesh>>, SceneError> {
+        if let Some(meshes) = self.loaded.get(path) {
+            return Ok(meshes.clone());
+        }
+        let meshes: Vec<_> = load_obj(path)?.into_iter().map(std::sync::Arc::new).collect();
+        self.loaded.insert(path.to_path_buf(), meshes.clone());
+        Ok(meshes)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[track_caller]
+    fn check_line_error(line: &str, expected: &str) {
+        let mut defined = Defined { positions: 4, texcoords: 2, normals: 0 };
+        let message = check_obj_line(line, &mut defined).unwrap_err();
+        assert!(message.contains(expected), "{message:?} does not contain {expected:?}");
+    }
+
+    #[test]
+    fn good_lines_pass() {
+        let mut defined = Defined { positions: 4, texcoords: 2, normals: 1 };
+        for line in [
+            "v 1 2 3",
+            "v 1 2 3 0.5",
+            "v 1 2 3 1 0 0",
+            "vt 0.5 0.5",
+            "vt 0.5 0.5 0",
+            "vn 0 0 1",
+            "f 1 2 3",
+            "f 1/1 2/2 -1/-1",
+            "f 1//1 2//1 3//1 4//1",
+            "f 1/1/1 2/2/1 3/1/1",
+            "# comment",
+            "#comment",
+            "",
+            "   ",
+            "s off",
+            "g group one",
+            "usemtl red",
+            "mtllib a b.mtl",
+            "l 1 2",
+        ] {
+            check_obj_line(line, &mut defined).unwrap_or_else(|e| panic!("{line:?}: {e}"));
+        }
+    }
+
+    #[test]
+    fn bad_lines_are_named() {
+        check_line_error("v 1.0 abc 2", "cannot parse vertex position 'v 1.0 abc 2'");
+        check_line_error("v 1 2", "a vertex needs 3 coordinates");
+        check_line_error("v nan 0 0", "vertex has non-finite coordinate 'nan'");
+        check_line_error("v 1e39 0 0", "vertex has non-finite coordinate '1e39'");
+        check_line_error("v 1 1 1 0", "unusable w = 0");
+        check_line_error("v 1e30 1 1 1e-30", "unusable w");
+        check_line_error("vt 0.5", "cannot parse texture coordinate");
+        check_line_error("vn 0 x 1", "cannot parse normal");
+        check_line_error("f 1 2 5", "face refers to vertex 5, but 4 are defined before it");
+        check_line_error("f 0 1 2", "face refers to vertex 0");
+        check_line_error("f -5 1 2", "face refers to vertex -5");
+        check_line_error("f 1/0 2/1 3/1", "face refers to texture coordinate 0");
+        check_line_error("f 1//1 2//1 3//1", "face refers to normal 1, but 0 are defined");
+        check_line_error("f 1 2 x", "cannot parse face index 'x'");
+        check_line_error("f 1/1/1/1 2 3", "cannot parse face vertex");
+        check_line_error("f 99999999999999999999 1 2", "cannot parse face index");
+        check_line_error("f", "a face needs vertices");
+        check_line_error("usemtl", "without a material name");
+        check_line_error("hello world", "unknown statement 'hello' in 'hello world'");
+    }
+
+    #[test]
+    fn mtl_one_number_colours_are_expanded_and_two_rejected() {
+        let text = check_mtl_text("newmtl a\nKd 0.5\nKs 1 1 1\n").unwrap();
+        assert_eq!(text, "newmtl a\nKd 0.5 0.5 0.5\nKs 1 1 1\n");
+        assert_eq!(check_mtl_text("newmtl a\n\nKd 0.5 0.5\n").unwrap_err().0, 3);
+        assert!(check_mtl_text("Ns high").unwrap_err().1.contains("cannot parse number in 'Ns high'"));
+        assert!(check_mtl_text("Kd spectral x.rfl").is_err());
+    }
+
+    #[test]
+    fn mtl_values_map_to_the_material() {
+        let mut m = tobj::Material { diffuse: Some([0.2, 0.4, 0.6]), shininess: Some(64.0), ..Default::default() };
+        m.unknown_param.insert("Tr".into(), "0.25".into());
+        let mat = material_from_mtl(&m);
+        assert_eq!(mat.ka, Vec3::new(0.2, 0.4, 0.6));
+        assert_eq!(mat.kd, Vec3::new(0.2, 0.4, 0.6));
+        assert_eq!(mat.ks, Material::DEFAULT.ks);
+        assert_eq!(mat.ns, 64.0);
+        assert_eq!(mat.opacity, 0.75);
+        m.dissolve = Some(0.5);
+        m.specular = Some([2.0, f32::NAN, 0.5]);
+        let mat = material_from_mtl(&m);
+        assert_eq!(mat.opacity, 0.5, "d wins over Tr");
+        assert_eq!(mat.ks, Vec3::new(1.0, 0.0, 0.5), "sanitized");
+    }
+
+    #[test]
+    fn quotes_stay_one_line_and_short() {
+        assert_eq!(quote("  a\tb\u{1}  "), "'a\\tb\\u{1}'");
+        assert!(quote(&"x".repeat(500)).chars().count() < 70);
+    }
+}

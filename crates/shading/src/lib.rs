@@ -1,0 +1,41 @@
+//! The lighting model of zline (SPEC §5–6): pure functions of one sample's
+//! inputs — position, normal, material, lights — returning a colour.
+//!
+//! This crate knows nothing of triangles, screens, files or threads. All
+//! vectors handed to [`LightingModel::shade`] must be in one space; the
+//! pipeline uses eye space, where the viewer sits at the origin.
+
+mod light;
+mod material;
+mod model;
+
+pub use light::{Attenuation, Light};
+pub use material::Material;
+pub use model::{LightingModel, LitParts};
+
+/// How a triangle's colour is spread over its samples (SPEC §6).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum ShadingMode {
+    /// One colour per triangle: the lighting model at the centroid with the
+    /// face normal.
+    Flat,
+    /// Lighting at the vertices, colours interpolated.
+    Gouraud,
+    /// Normals and positions interpolated, lighting per sample.
+    #[default]
+    Phong,
+}
+
+impl ShadingMode {
+    /// Every mode, in order of increasing cost.
+    pub const ALL: [ShadingMode; 3] = [ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong];
+
+    /// The lower-case name used by the CLI and scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadingMode::Flat => "flat",
+            ShadingMode::Gouraud => "gouraud",
+            ShadingMode::Phong => "phong",
+        }
+    }
+}

@@ -1,0 +1,152 @@
+//! The basic lighting model, evaluated at one point (SPEC §5):
+//!
+//! ```text
+//! I = ka·Ia + Σ_i f(d_i) · Il_i · [ kd·max(0, N·L_i) + ks·max(0, N·H_i)^ns ]
+//! ```
+//!
+//! with a local viewer, the Blinn half-way vector, and no specular term where
+//! N·L ≤ 0. The result is clamped to [0, 1] per channel.
+
+use glam::Vec3;
+
+use crate::{Light, Material};
+
+/// Ambient light plus a list of lights, all in one coordinate frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LightingModel {
+    /// Ambient light Ia (RGB).
+    pub ambient: Vec3,
+    /// The light sources.
+    pub lights: Vec<Light>,
+}
+
+/// The two parts of the lit colour, kept apart so a texture can modulate the
+/// first and not the second (SPEC §7). Neither part is clamped.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LitParts {
+    /// ka·Ia + Σ f·Il·kd·max(0, N·L).
+    pub ambient_diffuse: Vec3,
+    /// Σ f·Il·ks·max(0, N·H)^ns.
+    pub specular: Vec3,
+}
+
+impl LitParts {
+    /// The lit colour, clamped to [0, 1] per channel.
+    #[inline]
+    pub fn color(&self) -> Vec3 {
+        (self.ambient_diffuse + self.specular).clamp(Vec3::ZERO, Vec3::ONE)
+    }
+}
+
+impl LightingModel {
+    /// The same lights expressed in another frame (see [`Light::transformed`]).
+    pub fn transformed(&self, to: &glam::Mat4) -> LightingModel {
+        LightingModel {
+            ambient: self.ambient,
+            lights: self.lights.iter().map(|l| l.transformed(to)).collect(),
+        }
+    }
+
+    /// The clamped colour at `point` with unit normal `normal`, seen from
+    /// `eye`.
+    #[inline]
+    pub fn shade(&self, material: &Material, point: Vec3, normal: Vec3, eye: Vec3) -> Vec3 {
+        self.shade_parts(material, point, normal, eye).color()
+    }
+
+    /// The ambient+diffuse and specular parts at `point`, unclamped.
+    ///
+    /// `normal` must be unit length. A zero view vector (the eye on the
+    /// surface) or a zero L + V leaves the specular term at 0.
+    #[inline]
+    pub fn shade_parts(&self, material: &Material, point: Vec3, normal: Vec3, eye: Vec3) -> LitParts {
+        let view = (eye - point).normalize_or_zero();
+        let mut diffuse = Vec3::ZERO;
+        let mut specular = Vec3::ZERO;
+        let specular_on = material.has_specular();
+        for light in &self.lights {
+            let (to_light, intensity) = match *light {
+                Light::Point { position, color, attenuation } => {
+                    let d = position - point;
+                    let dist = d.length();
+                    if dist == 0.0 {
+                        continue;
+                    }
+                    (d / dist, color * attenuation.factor(dist))
+                }
+                Light::Directional { direction, color } => (-direction.normalize_or_zero(), color),
+            };
+            let n_dot_l = normal.dot(to_light);
+            if n_dot_l <= 0.0 {
+                continue;
+            }
+            diffuse += intensity * n_dot_l;
+            if specular_on {
+                let half = (to_light + view).normalize_or_zero();
+                let n_dot_h = normal.dot(half);
+                if n_dot_h > 0.0 {
+                    specular += intensity * n_dot_h.powf(material.ns);
+                }
+            }
+        }
+        LitParts {
+            ambient_diffuse: material.ka * self.ambient + material.kd * diffuse,
+            specular: material.ks * specular,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Attenuation;
+
+    #[track_caller]
+    fn check_close(got: Vec3, want: Vec3) {
+        assert!((got - want).abs().max_element() < 1e-6, "got {got}, want {want}");
+    }
+
+    fn white_point(at: Vec3, attenuation: Attenuation) -> LightingModel {
+        LightingModel {
+            ambient: Vec3::ZERO,
+            lights: vec![Light::Point { position: at, color: Vec3::ONE, attenuation }],
+        }
+    }
+
+    #[test]
+    fn head_on_point_light_gives_kd_plus_ks() {
+        // N = L = V = H = +z: N·L = N·H = 1, so I = kd + ks (before clamping).
+        let m = Material { ka: Vec3::ZERO, kd: Vec3::splat(0.5), ks: Vec3::splat(0.25), ns: 10.0, opacity: 1.0 };
+        let model = white_point(Vec3::new(0.0, 0.0, 2.0), Attenuation::NONE);
+        let parts = model.shade_parts(&m, Vec3::ZERO, Vec3::Z, Vec3::new(0.0, 0.0, 5.0));
+        check_close(parts.ambient_diffuse, Vec3::splat(0.5));
+        check_close(parts.specular, Vec3::splat(0.25));
+    }
+
+    #[test]
+    fn attenuation_follows_the_formula_and_clamps_at_one() {
+        let a = Attenuation { a0: 1.0, a1: 0.5, a2: 0.25 };
+        assert_eq!(a.factor(2.0), 1.0 / (1.0 + 1.0 + 1.0));
+        let strong = Attenuation { a0: 0.1, a1: 0.0, a2: 0.0 };
+        assert_eq!(strong.factor(3.0), 1.0);
+    }
+
+    #[test]
+    fn light_behind_surface_gives_no_diffuse_or_specular() {
+        let m = Material::plastic(Vec3::ONE, 1.0, 1.0);
+        let model = white_point(Vec3::new(0.0, 0.0, -1.0), Attenuation::NONE);
+        let parts = model.shade_parts(&m, Vec3::ZERO, Vec3::Z, Vec3::new(0.0, 0.0, 1.0));
+        assert_eq!(parts, LitParts::default());
+    }
+
+    #[test]
+    fn directional_light_uses_minus_direction() {
+        let m = Material { ka: Vec3::ZERO, kd: Vec3::ONE, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0 };
+        let model = LightingModel {
+            ambient: Vec3::splat(0.1),
+            lights: vec![Light::Directional { direction: Vec3::new(0.0, -1.0, -1.0), color: Vec3::ONE }],
+        };
+        let c = model.shade(&m, Vec3::ZERO, Vec3::Z, Vec3::Z);
+        check_close(c, Vec3::splat(std::f32::consts::FRAC_1_SQRT_2));
+    }
+}

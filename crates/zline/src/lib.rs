@@ -1,0 +1,24 @@
+//! zline: a CPU renderer for the classical pipeline — transforms to
+//! normalized coordinates, clipping, scan conversion with edge tables, the
+//! z-buffer, the basic lighting model and flat/Gouraud/Phong shading.
+//!
+//! This crate is the front end: the `zline` binary and a facade that
+//! re-exports the layers below, so a program can depend on `zline` alone:
+//!
+//! ```no_run
+//! let scene = zline::scene::demo_scene();
+//! let (image, _stats) = zline::pipeline::render(&scene, &Default::default());
+//! zline::save_png(&image, std::path::Path::new("demo.png")).unwrap();
+//! ```
+
+use std::path::Path;
+
+pub use zline_pipeline as pipeline;
+pub use zline_raster as raster;
+pub use zline_scene as scene;
+pub use zline_shading as shading;
+
+/// Writes an image as an 8-bit RGB PNG.
+pub fn save_png(image: &pipeline::Image, path: &Path) -> Result<(), image::ImageError> {
+    image::save_buffer(path, &image.rgb, image.width, image.height, image::ExtendedColorType::Rgb8)
+}

@@ -1,0 +1,92 @@
+//! `cargo xtask bench`: median ms/frame, triangles/s and shaded samples/s at
+//! 1920×1080 for the benchmark scenes of BENCHMARKS.md.
+
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use glam::Vec3;
+use zline::pipeline::{render, RenderOptions};
+use zline::scene::{load_obj, scene_for_model, uv_sphere, Camera, Projection, RenderSettings, Scene, ShadingMode};
+
+const WIDTH: u32 = 1920;
+const HEIGHT: u32 = 1080;
+
+/// One benchmark case: a scene and its label.
+struct Case {
+    name: String,
+    scene: Scene,
+}
+
+pub(crate) fn run(frames: usize, threads: &[usize], assets: &Path, filter: Option<&str>) -> Result<()> {
+    let cases: Vec<Case> =
+        cases(assets)?.into_iter().filter(|c| filter.is_none_or(|f| c.name.contains(f))).collect();
+    println!("| scene | threads | ms/frame (median of {frames}) | triangles/s | shaded samples/s | samples shaded |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    for case in &cases {
+        for &t in threads {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build().context("thread pool")?;
+            let options = RenderOptions::default();
+            let (_, stats) = pool.install(|| render(&case.scene, &options)); // warm-up
+            let mut times: Vec<f64> = (0..frames.max(1))
+                .map(|_| {
+                    let start = Instant::now();
+                    let out = pool.install(|| render(&case.scene, &options));
+                    std::hint::black_box(out);
+                    start.elapsed().as_secs_f64()
+                })
+                .collect();
+            times.sort_by(f64::total_cmp);
+            let median = times[times.len() / 2];
+            println!(
+                "| {} | {t} | {:.2} | {:.1} M | {:.0} M | {} |",
+                case.name,
+                median * 1e3,
+                stats.triangles as f64 / median / 1e6,
+                stats.fragments as f64 / median / 1e6,
+                stats.fragments
+            );
+        }
+    }
+    Ok(())
+}
+
+fn settings(shading: ShadingMode) -> RenderSettings {
+    RenderSettings { width: WIDTH, height: HEIGHT, shading, ..RenderSettings::default() }
+}
+
+/// A UV sphere of radius 1 seen from `distance` with a 40° field of view,
+/// lit by the default key and fill lights.
+fn sphere_scene(rings: u32, segments: u32, distance: f32, shading: ShadingMode) -> Scene {
+    let mut scene = scene_for_model(vec![uv_sphere(rings, segments, 1.0)], settings(shading));
+    scene.camera = Camera {
+        eye: Vec3::new(0.0, 0.0, distance),
+        target: Vec3::ZERO,
+        up: Vec3::Y,
+        projection: Projection::Perspective { fovy_degrees: 40.0, near: distance - 1.5, far: distance + 1.5 },
+    };
+    scene
+}
+
+fn cases(assets: &Path) -> Result<Vec<Case>> {
+    let mut out = Vec::new();
+    let bunny = assets.join("obj/bunny/bunny.obj");
+    if bunny.exists() {
+        let meshes = load_obj(&bunny)?;
+        for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
+            let scene = scene_for_model(meshes.clone(), settings(mode));
+            out.push(Case { name: format!("bunny 69k {}", mode.name()), scene });
+        }
+    } else {
+        eprintln!("note: {} not found; skipping the bunny (pass --assets)", bunny.display());
+    }
+    // 32 rings × 32 segments ≈ 2k triangles; at distance 2.6 the sphere covers about half the frame.
+    for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
+        out.push(Case { name: format!("sphere 2k {}", mode.name()), scene: sphere_scene(32, 32, 2.6, mode) });
+    }
+    // 500 × 1000 ≈ 1M triangles.
+    for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
+        out.push(Case { name: format!("sphere 1M {}", mode.name()), scene: sphere_scene(500, 1000, 2.6, mode) });
+    }
+    Ok(out)
+}

@@ -1,0 +1,43 @@
+//! zline developer tasks. `cargo xtask bench` measures frame times.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+
+mod bench;
+
+/// Developer tasks for zline.
+#[derive(Parser)]
+struct Cli {
+    #[command(subcommand)]
+    task: Task,
+}
+
+#[derive(Subcommand)]
+enum Task {
+    /// Median frame times at 1920x1080 for the benchmark scenes, with 1 and
+    /// 2 threads, as a markdown table.
+    Bench {
+        /// Frames timed per case (after one warm-up frame); the median is
+        /// reported.
+        #[arg(long, default_value_t = 9)]
+        frames: usize,
+        /// Thread counts to run.
+        #[arg(long, value_delimiter = ',', default_value = "1,2")]
+        threads: Vec<usize>,
+        /// The shared asset folder holding obj/bunny/bunny.obj (skipped with
+        /// a message when missing).
+        #[arg(long, default_value = "../shared/assets")]
+        assets: PathBuf,
+        /// Only cases whose name contains this text.
+        #[arg(long)]
+        filter: Option<String>,
+    },
+}
+
+fn main() -> Result<()> {
+    match Cli::parse().task {
+        Task::Bench { frames, threads, assets, filter } => bench::run(frames, &threads, &assets, filter.as_deref()),
+    }
+}
