@@ -12,10 +12,11 @@ use zline::scene::{load_obj, scene_for_model, uv_sphere, Camera, Projection, Ren
 const WIDTH: u32 = 1920;
 const HEIGHT: u32 = 1080;
 
-/// One benchmark case: a scene and its label.
+/// One benchmark case: a label and how to build its scene (built only
+/// when the case is selected).
 struct Case {
     name: String,
-    scene: Scene,
+    build: Box<dyn Fn() -> Result<Scene>>,
 }
 
 pub(crate) fn run(frames: usize, threads: &[usize], assets: &Path, filter: Option<&str>) -> Result<()> {
@@ -24,14 +25,15 @@ pub(crate) fn run(frames: usize, threads: &[usize], assets: &Path, filter: Optio
     println!("| scene | threads | ms/frame (median of {frames}) | triangles/s | shaded samples/s | samples shaded |");
     println!("|---|---:|---:|---:|---:|---:|");
     for case in &cases {
+        let scene = (case.build)()?;
         for &t in threads {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build().context("thread pool")?;
             let options = RenderOptions::default();
-            let (_, stats) = pool.install(|| render(&case.scene, &options)); // warm-up
+            let (_, stats) = pool.install(|| render(&scene, &options)); // warm-up
             let mut times: Vec<f64> = (0..frames.max(1))
                 .map(|_| {
                     let start = Instant::now();
-                    let out = pool.install(|| render(&case.scene, &options));
+                    let out = pool.install(|| render(&scene, &options));
                     std::hint::black_box(out);
                     start.elapsed().as_secs_f64()
                 })
@@ -72,21 +74,21 @@ fn cases(assets: &Path) -> Result<Vec<Case>> {
     let mut out = Vec::new();
     let bunny = assets.join("obj/bunny/bunny.obj");
     if bunny.exists() {
-        let meshes = load_obj(&bunny)?;
         for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
-            let scene = scene_for_model(meshes.clone(), settings(mode));
-            out.push(Case { name: format!("bunny 69k {}", mode.name()), scene });
+            let path = bunny.clone();
+            let build = move || Ok(scene_for_model(load_obj(&path)?, settings(mode)));
+            out.push(Case { name: format!("bunny 69k {}", mode.name()), build: Box::new(build) });
         }
     } else {
         eprintln!("note: {} not found; skipping the bunny (pass --assets)", bunny.display());
     }
     // 32 rings × 32 segments ≈ 2k triangles; at distance 2.6 the sphere covers about half the frame.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
-        out.push(Case { name: format!("sphere 2k {}", mode.name()), scene: sphere_scene(32, 32, 2.6, mode) });
+        out.push(Case { name: format!("sphere 2k {}", mode.name()), build: Box::new(move || Ok(sphere_scene(32, 32, 2.6, mode))) });
     }
     // 500 × 1000 ≈ 1M triangles.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
-        out.push(Case { name: format!("sphere 1M {}", mode.name()), scene: sphere_scene(500, 1000, 2.6, mode) });
+        out.push(Case { name: format!("sphere 1M {}", mode.name()), build: Box::new(move || Ok(sphere_scene(500, 1000, 2.6, mode))) });
     }
     Ok(out)
 }

@@ -104,10 +104,14 @@ pub enum SceneError {
         source: MeshError,
     },
     /// A file referenced by a scene file failed to load.
-    #[error("{}: {key}: {source}", scene.display())]
+    #[error("{}: line {line}, column {column}: {key}: {source}", scene.display())]
     Referenced {
         /// The scene file.
         scene: PathBuf,
+        /// 1-based line of the reference in the scene file.
+        line: usize,
+        /// 1-based column of the reference.
+        column: usize,
         /// The key that names the file, e.g. `objects[2].model`.
         key: String,
         /// The referenced file's own error (which names that file).

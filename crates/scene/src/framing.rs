@@ -82,7 +82,10 @@ pub fn default_lights() -> Vec<Light> {
             direction: -Vec3::new(-0.6, 1.0, 0.8).normalize(),
             color: Vec3::new(1.0, 0.92, 0.8) * 0.85,
         },
-        Light::Directional { direction: -Vec3::new(1.0, 0.1, 0.4).normalize(), color: Vec3::new(0.3, 0.36, 0.48) },
+        Light::Directional {
+            direction: -Vec3::new(1.0, 0.1, 0.4).normalize(),
+            color: Vec3::new(0.3, 0.36, 0.48),
+        },
     ]
 }
 

@@ -82,7 +82,8 @@ impl Mesh {
                 *directed.entry(edge).or_insert(0u32) += 1;
             }
         }
-        !directed.is_empty() && directed.iter().all(|(&(p, q), &n)| n == 1 && directed.get(&(q, p)) == Some(&1))
+        !directed.is_empty()
+            && directed.iter().all(|(&(p, q), &n)| n == 1 && directed.get(&(q, p)) == Some(&1))
     }
 
     /// The corner positions of triangle `t`.
@@ -145,11 +146,8 @@ pub(crate) fn vertex_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<
             first[g].get_or_insert(n);
         }
     }
-    let per_group: Vec<Vec3> = sum
-        .iter()
-        .zip(&first)
-        .map(|(&s, &f)| unit_f64(s).or(f).unwrap_or(FALLBACK_NORMAL))
-        .collect();
+    let per_group: Vec<Vec3> =
+        sum.iter().zip(&first).map(|(&s, &f)| unit_f64(s).or(f).unwrap_or(FALLBACK_NORMAL)).collect();
     group_of.iter().map(|&g| per_group[g]).collect()
 }
 
@@ -191,16 +189,22 @@ mod tests {
     }
 
     fn quad_positions(scale: f32) -> Vec<Vec3> {
-        vec![Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]
-            .into_iter()
-            .map(|p| p * scale)
-            .collect()
+        vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ]
+        .into_iter()
+        .map(|p| p * scale)
+        .collect()
     }
 
     #[test]
     fn computed_normals_of_a_ccw_quad_point_to_plus_z() {
         let mesh =
-            Mesh::new("quad", quad_positions(1.0), None, vec![[0, 1, 2], [0, 2, 3]], Material::DEFAULT).unwrap();
+            Mesh::new("quad", quad_positions(1.0), None, vec![[0, 1, 2], [0, 2, 3]], Material::DEFAULT)
+                .unwrap();
         for n in &mesh.normals {
             assert!((*n - Vec3::Z).length() < 1e-6, "{n}");
         }
@@ -256,8 +260,9 @@ mod tests {
     #[test]
     fn supplied_normals_are_renormalized_and_bad_ones_replaced() {
         let normals = vec![Vec3::Z * 5.0, Vec3::ZERO, Vec3::NAN, Vec3::new(0.0, 0.0, 1e-30)];
-        let mesh = Mesh::new("q", quad_positions(1.0), Some(normals), vec![[0, 1, 2], [0, 2, 3]], Material::DEFAULT)
-            .unwrap();
+        let mesh =
+            Mesh::new("q", quad_positions(1.0), Some(normals), vec![[0, 1, 2], [0, 2, 3]], Material::DEFAULT)
+                .unwrap();
         for &n in &mesh.normals {
             assert!((n - Vec3::Z).length() < 1e-6, "{n}");
         }

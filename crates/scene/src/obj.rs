@@ -7,8 +7,10 @@
 //! split where its (v, vt, vn) index triple differs (tobj's `single_index`).
 //!
 //! tobj does the parsing, but its errors carry no location
-//! (`PositionParseError`), and some malformed input makes it panic (a face
-//! texture index `0`, an MTL colour with two numbers). So the text is first
+//! (`PositionParseError`), some malformed input makes it panic (a negative
+//! texture index reaching before the first `vt` overflows; an MTL colour
+//! with two numbers fails an `unwrap`) and some it silently ignores (a
+//! texture index `0` is taken as "none"). So the text is first
 //! checked by a small scanner of our own, [`check_obj_text`], that rejects
 //! what tobj would reject or trip over, with the line number and text, and
 //! also non-finite coordinates, which tobj accepts. Face indices must refer
@@ -47,10 +49,16 @@ pub fn load_obj(path: &Path) -> Result<Vec<Mesh>, SceneError> {
 /// Loads an OBJ file and returns the meshes with the warnings, each a
 /// one-line message starting with the file it is about.
 pub fn load_obj_with_warnings(path: &Path) -> Result<(Vec<Mesh>, Vec<String>), SceneError> {
-    let text = read_text(path)?;
-    check_obj_text(path, &text)?;
+    parse_obj(path, &read_text(path)?)
+}
+
+/// Loads OBJ text read from `path` (which names the file in messages and
+/// locates MTL files).
+fn parse_obj(path: &Path, text: &str) -> Result<(Vec<Mesh>, Vec<String>), SceneError> {
+    check_obj_text(path, text)?;
     let warnings = RefCell::new(Vec::new());
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
+    #[allow(clippy::needless_update, reason = "tobj's `merging`/`reordering` features add fields")]
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -151,9 +159,8 @@ fn load_mtl(path: &Path, warnings: &mut Vec<String>) -> tobj::MTLLoadResult {
         Ok(text) => text,
         Err((line, why)) => return fail(warnings, format!("{}: line {line}: {why}", path.display())),
     };
-    tobj::load_mtl_buf(&mut Cursor::new(text.as_bytes())).or_else(|e| {
-        fail(warnings, format!("{}: cannot load material library: {e}", path.display()))
-    })
+    tobj::load_mtl_buf(&mut Cursor::new(text.as_bytes()))
+        .or_else(|e| fail(warnings, format!("{}: cannot load material library: {e}", path.display())))
 }
 
 /// Checks the MTL statements that tobj would reject without saying where,
@@ -212,15 +219,45 @@ struct Defined {
 /// OBJ statements that tobj ignores but that are valid OBJ (free-form
 /// geometry, display attributes): accepted and skipped.
 const IGNORED_STATEMENTS: &[&str] = &[
-    "s", "vp", "cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv",
-    "sp", "end", "con", "mg", "bevel", "c_interp", "d_interp", "lod", "maplib", "usemap", "shadow_obj",
-    "trace_obj", "ctech", "stech", "call", "csh", "p",
+    "s",
+    "vp",
+    "cstype",
+    "deg",
+    "bmat",
+    "step",
+    "curv",
+    "curv2",
+    "surf",
+    "parm",
+    "trim",
+    "hole",
+    "scrv",
+    "sp",
+    "end",
+    "con",
+    "mg",
+    "bevel",
+    "c_interp",
+    "d_interp",
+    "lod",
+    "maplib",
+    "usemap",
+    "shadow_obj",
+    "trace_obj",
+    "ctech",
+    "stech",
+    "call",
+    "csh",
+    "p",
 ];
 
 /// Checks every line of an OBJ file (see the module doc).
 fn check_obj_text(path: &Path, text: &str) -> Result<(), SceneError> {
     if text.contains('\0') {
-        return Err(SceneError::File { path: path.to_path_buf(), message: "binary data, not an OBJ text file".into() });
+        return Err(SceneError::File {
+            path: path.to_path_buf(),
+            message: "binary data, not an OBJ text file".into(),
+        });
     }
     let mut defined = Defined::default();
     for (i, line) in text.lines().enumerate() {
@@ -284,8 +321,11 @@ fn check_face(line: &str, args: &[&str], defined: &Defined) -> Result<(), String
     if args.is_empty() {
         return Err(format!("a face needs vertices in {}", quote(line)));
     }
-    let kinds =
-        [("vertex", defined.positions), ("texture coordinate", defined.texcoords), ("normal", defined.normals)];
+    let kinds = [
+        ("vertex", defined.positions),
+        ("texture coordinate", defined.texcoords),
+        ("normal", defined.normals),
+    ];
     for corner in args {
         let parts: Vec<&str> = corner.split('/').collect();
         if parts.len() > 3 || parts[0].is_empty() {
@@ -298,7 +338,7 @@ fn check_face(line: &str, args: &[&str], defined: &Defined) -> Result<(), String
             let resolved = if index < 0 { count as i64 + index + 1 } else { index };
             if resolved < 1 || resolved > count as i64 {
                 return Err(format!(
-                    "face refers to {what} {index}, but {count} are defined before it, in {}",
+                    "face refers to {what} {index}, but the file defines {count} before this line: {}",
                     quote(line)
                 ));
             }
@@ -389,11 +429,15 @@ mod tests {
         check_line_error("v 1e30 1 1 1e-30", "unusable w");
         check_line_error("vt 0.5", "cannot parse texture coordinate");
         check_line_error("vn 0 x 1", "cannot parse normal");
-        check_line_error("f 1 2 5", "face refers to vertex 5, but 4 are defined before it");
+        check_line_error(
+            "f 1 2 5",
+            "face refers to vertex 5, but the file defines 4 before this line: 'f 1 2 5'",
+        );
         check_line_error("f 0 1 2", "face refers to vertex 0");
         check_line_error("f -5 1 2", "face refers to vertex -5");
         check_line_error("f 1/0 2/1 3/1", "face refers to texture coordinate 0");
-        check_line_error("f 1//1 2//1 3//1", "face refers to normal 1, but 0 are defined");
+        check_line_error("f 1/-5 2/1 3/1", "face refers to texture coordinate -5");
+        check_line_error("f 1//1 2//1 3//1", "face refers to normal 1, but the file defines 0");
         check_line_error("f 1 2 x", "cannot parse face index 'x'");
         check_line_error("f 1/1/1/1 2 3", "cannot parse face vertex");
         check_line_error("f 99999999999999999999 1 2", "cannot parse face index");
@@ -413,7 +457,8 @@ mod tests {
 
     #[test]
     fn mtl_values_map_to_the_material() {
-        let mut m = tobj::Material { diffuse: Some([0.2, 0.4, 0.6]), shininess: Some(64.0), ..Default::default() };
+        let mut m =
+            tobj::Material { diffuse: Some([0.2, 0.4, 0.6]), shininess: Some(64.0), ..Default::default() };
         m.unknown_param.insert("Tr".into(), "0.25".into());
         let mat = material_from_mtl(&m);
         assert_eq!(mat.ka, Vec3::new(0.2, 0.4, 0.6));
@@ -426,6 +471,39 @@ mod tests {
         let mat = material_from_mtl(&m);
         assert_eq!(mat.opacity, 0.5, "d wins over Tr");
         assert_eq!(mat.ks, Vec3::new(1.0, 0.0, 0.5), "sanitized");
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::test_runner::Config { cases: 512, ..Default::default() })]
+
+        /// Whatever the text, loading returns, never panics: the scanner
+        /// keeps from tobj what it would trip over.
+        #[test]
+        fn arbitrary_obj_text_never_panics(lines in proptest::collection::vec(obj_line(), 0..12)) {
+            let text = lines.join("\n");
+            if let Ok((meshes, _)) = parse_obj(Path::new("fuzz.obj"), &text) {
+                for m in meshes {
+                    proptest::prop_assert!(m.positions.iter().all(|p| p.is_finite()));
+                    proptest::prop_assert!(m.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
+                }
+            }
+        }
+    }
+
+    /// OBJ-like lines built from keywords and troublesome tokens.
+    fn obj_line() -> impl proptest::strategy::Strategy<Value = String> {
+        use proptest::prelude::*;
+        let key = prop::sample::select(vec![
+            "v", "vt", "vn", "f", "l", "p", "g", "o", "usemtl", "mtllib", "s", "x", "",
+        ]);
+        let index =
+            prop::sample::select(vec!["1", "2", "3", "-1", "-4", "0", "7", "99999999999999999999", "a", ""]);
+        let corner = prop::collection::vec(index, 1..4).prop_map(|parts| parts.join("/"));
+        let number =
+            prop::sample::select(vec!["0", "1", "-2.5", "1e30", "1e39", "nan", "inf", "0.0", "x", "1e-40"])
+                .prop_map(str::to_owned);
+        let token = prop_oneof![corner, number];
+        (key, prop::collection::vec(token, 0..7)).prop_map(|(k, t)| format!("{k} {}", t.join(" ")))
     }
 
     #[test]

@@ -144,7 +144,8 @@ mod tests {
         assert!(mesh.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-5));
         for (t, tri) in mesh.triangles.iter().enumerate() {
             let [a, b, c] = mesh.triangle(t);
-            let n = face_normal(a, b, c).unwrap_or_else(|| panic!("{}: triangle {t} is degenerate", mesh.name));
+            let n =
+                face_normal(a, b, c).unwrap_or_else(|| panic!("{}: triangle {t} is degenerate", mesh.name));
             for &i in tri {
                 let dot = n.dot(mesh.normals[i as usize]);
                 assert!(dot > 0.0, "{}: triangle {t} faces against vertex {i}'s normal", mesh.name);
@@ -189,8 +190,16 @@ mod tests {
 
     #[test]
     fn silly_parameters_still_give_valid_meshes() {
-        for mesh in [uv_sphere(0, 0, f32::NAN), plane(f32::INFINITY, 0), cube(f32::NAN), torus(1.0, 0.2, 0, 1)] {
-            let rebuilt = Mesh::new("x", mesh.positions.clone(), Some(mesh.normals.clone()), mesh.triangles.clone(), mesh.material);
+        for mesh in
+            [uv_sphere(0, 0, f32::NAN), plane(f32::INFINITY, 0), cube(f32::NAN), torus(1.0, 0.2, 0, 1)]
+        {
+            let rebuilt = Mesh::new(
+                "x",
+                mesh.positions.clone(),
+                Some(mesh.normals.clone()),
+                mesh.triangles.clone(),
+                mesh.material,
+            );
             assert_eq!(rebuilt.map(|m| m.positions), Ok(mesh.positions));
         }
     }

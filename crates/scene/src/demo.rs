@@ -1,0 +1,109 @@
+//! The built-in demo scene: zline's showcase, needing no files.
+//!
+//! Contract: [`demo_scene`] returns a 960 × 540 scene with a ground plane,
+//! three low-poly spheres side by side shaded Flat, Gouraud and Phong (left
+//! to right) so the three modes of SPEC §6 can be compared, a cube and a
+//! torus behind them, a warm and a cool attenuated point light and a dim
+//! directional light. The spheres are shiny (ns = 60), so Phong shows a
+//! round highlight, Gouraud a smeared one and Flat a bright facet.
+
+use std::sync::Arc;
+
+use glam::{Mat4, Quat, Vec3};
+use zline_shading::{Attenuation, Light, Material, ShadingMode};
+
+use crate::model::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene};
+use crate::primitives::{cube, plane, torus, uv_sphere};
+
+/// The demo scene (see the module doc).
+pub fn demo_scene() -> Scene {
+    let sphere = Arc::new(uv_sphere(8, 12, 0.8));
+    let sphere_material = Material::plastic(Vec3::new(0.85, 0.25, 0.2), 0.7, 60.0);
+    let mut objects = vec![object(
+        plane(24.0, 24),
+        Mat4::IDENTITY,
+        Material::plastic(Vec3::new(0.55, 0.55, 0.5), 0.1, 8.0),
+        None,
+    )];
+    for (x, mode) in [(-2.1, ShadingMode::Flat), (0.0, ShadingMode::Gouraud), (2.1, ShadingMode::Phong)] {
+        objects.push(Object {
+            mesh: Arc::clone(&sphere),
+            world_from_object: Mat4::from_translation(Vec3::new(x, 0.8, 0.0)),
+            material: Some(sphere_material),
+            shading: Some(mode),
+            cull_back_faces: true,
+        });
+    }
+    objects.push(object(
+        cube(1.3),
+        Mat4::from_rotation_translation(
+            Quat::from_rotation_y(35f32.to_radians()),
+            Vec3::new(-4.8, 0.65, -3.2),
+        ),
+        Material::plastic(Vec3::new(0.2, 0.4, 0.85), 0.4, 30.0),
+        None,
+    ));
+    objects.push(object(
+        torus(0.9, 0.3, 48, 24),
+        Mat4::from_rotation_translation(Quat::from_rotation_x(60f32.to_radians()), Vec3::new(4.8, 1.0, -3.2)),
+        Material::plastic(Vec3::new(0.9, 0.7, 0.2), 0.8, 80.0),
+        None,
+    ));
+    Scene {
+        camera: Camera {
+            eye: Vec3::new(0.0, 2.8, 7.5),
+            target: Vec3::new(0.0, 0.7, -0.6),
+            up: Vec3::Y,
+            projection: Projection::Perspective { fovy_degrees: 40.0, near: 1.0, far: 40.0 },
+        },
+        background: Vec3::new(0.06, 0.07, 0.1),
+        ambient: Vec3::splat(0.12),
+        lights: vec![
+            Light::Point {
+                position: Vec3::new(-3.5, 4.5, 4.0),
+                color: Vec3::new(1.0, 0.82, 0.6) * 1.3,
+                attenuation: Attenuation { a0: 1.0, a1: 0.02, a2: 0.012 },
+            },
+            Light::Point {
+                position: Vec3::new(4.5, 3.0, 2.5),
+                color: Vec3::new(0.45, 0.6, 1.0),
+                attenuation: Attenuation { a0: 1.0, a1: 0.02, a2: 0.015 },
+            },
+            Light::Directional { direction: Vec3::new(0.3, -1.0, -0.4), color: Vec3::splat(0.15) },
+        ],
+        objects,
+        settings: RenderSettings {
+            width: 960,
+            height: 540,
+            shading: ShadingMode::Phong,
+            interpolation: Interpolation::PerspectiveCorrect,
+        },
+    }
+}
+
+fn object(mesh: Mesh, world_from_object: Mat4, material: Material, shading: Option<ShadingMode>) -> Object {
+    let cull_back_faces = mesh.is_closed();
+    Object { mesh: Arc::new(mesh), world_from_object, material: Some(material), shading, cull_back_faces }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn demo_has_the_three_shading_modes_left_to_right_and_everything_in_view() {
+        let scene = demo_scene();
+        let modes: Vec<_> = scene.objects.iter().filter_map(|o| o.shading).collect();
+        assert_eq!(modes, ShadingMode::ALL);
+        let aspect = scene.settings.width as f32 / scene.settings.height as f32;
+        let clip_from_world = scene.camera.clip_from_eye(aspect) * scene.camera.eye_from_world();
+        for o in &scene.objects[1..] {
+            for &p in &o.mesh.positions {
+                let nc = clip_from_world.project_point3(o.world_from_object.transform_point3(p));
+                assert!(nc.abs().max_element() < 1.0, "{} out of view at {nc}", o.mesh.name);
+            }
+        }
+        let x: Vec<f32> = scene.objects[1..4].iter().map(|o| o.world_from_object.w_axis.x).collect();
+        assert!(x[0] < x[1] && x[1] < x[2]);
+    }
+}

@@ -1,0 +1,668 @@
+//! Scene files: a TOML description of camera, lights, objects and render
+//! settings → a [`Scene`].
+//!
+//! Contract: [`load_scene`] returns a scene whose every number is finite and
+//! in range, or a [`SceneError`] naming the scene file, the line and column,
+//! the key (`objects[2].scale`) and the offending value. Unknown keys are
+//! errors (typos must not pass silently). Paths are relative to the scene
+//! file. Each distinct model file is loaded once and its meshes shared.
+//!
+//! The format is documented on [`load_scene`].
+
+use std::fmt::Display;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::{EulerRot, Mat4, Quat, Vec3};
+use serde::Deserialize;
+use toml::Spanned;
+use zline_shading::{Attenuation, Light, Material, ShadingMode};
+
+use crate::error::SceneError;
+use crate::framing::{
+    aspect, camera_is_finite, default_culling, default_lights, framing_camera, DEFAULT_AMBIENT,
+    DEFAULT_BACKGROUND,
+};
+use crate::mesh::bounds_of;
+use crate::model::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene};
+use crate::obj::{read_text, ModelCache};
+use crate::primitives::{cube, plane, torus, uv_sphere};
+
+/// Largest image side a scene file may ask for.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// Largest ring, segment or subdivision count of a primitive.
+pub const MAX_PRIMITIVE_DIVISIONS: u32 = 4096;
+
+/// Loads a TOML scene file. Warnings about model files (a missing MTL
+/// file, say) are printed to stderr as `warning: ...` lines.
+/// `examples/scene.toml` is a commented example of the whole format.
+///
+/// The format, every key optional unless marked required:
+///
+/// ```toml
+/// background = [0.05, 0.05, 0.08]   # RGB in [0, 1]; default dark grey
+/// ambient = [0.1, 0.1, 0.1]         # Ia, ≥ 0; default 0.15
+///
+/// [render]
+/// width = 800                       # 1..=16384; default 800 × 600
+/// height = 600
+/// shading = "phong"                 # flat | gouraud | phong (default)
+/// interpolation = "perspective"     # perspective (default) | linear
+///
+/// [camera]                          # omitted: the scene is framed
+/// eye = [0, 1, 5]                   # required
+/// target = [0, 0, 0]                # default the origin
+/// up = [0, 1, 0]                    # default +Y
+/// projection = "perspective"        # perspective (default) | orthographic
+/// fovy = 45                         # degrees, in (0, 180); default 45
+/// height = 4.0                      # orthographic: view height; default fits the scene
+/// near = 0.1                        # default: fitted to the scene's bounding sphere
+/// far = 100
+///
+/// [[lights]]                        # no [[lights]] at all: a default key and fill light;
+/// type = "point"                    # `lights = []`: no lights
+/// position = [2, 3, 4]              # required for point lights
+/// color = [1, 0.9, 0.8]             # Il, ≥ 0; default white
+/// attenuation = [1.0, 0.05, 0.0]    # a0 a1 a2 ≥ 0; default [1, 0, 0] (none)
+/// [[lights]]
+/// type = "directional"
+/// direction = [-1, -1, -1]          # required: the way the light travels
+/// color = [0.3, 0.3, 0.4]
+///
+/// [[objects]]                       # at least one
+/// model = "models/suzanne.obj"      # an OBJ file, or else:
+/// # primitive = "sphere"            # rings (32), segments (64), radius (1)
+/// # primitive = "plane"             # size (10), subdivisions (8)
+/// # primitive = "cube"              # size (1)
+/// # primitive = "torus"             # major_radius (1), minor_radius (0.25), rings (48), segments (24)
+/// translate = [0, 0, 0]
+/// rotate = [0, 30, 0]               # degrees about x, then y, then z
+/// scale = 1.0                       # or [sx, sy, sz]; no zero factors
+/// shading = "gouraud"               # overrides [render] shading
+/// cull_back_faces = true            # default: true for closed, opaque meshes
+/// [objects.material]                # overrides, applied to every mesh of the model
+/// color = [0.8, 0.2, 0.2]           # sets ka and kd together
+/// ka = [0.8, 0.2, 0.2]              # in [0, 1]
+/// kd = [0.8, 0.2, 0.2]
+/// ks = [0.5, 0.5, 0.5]
+/// ns = 32                           # ≥ 0
+/// opacity = 1.0                     # in [0, 1]
+/// ```
+///
+/// Near and far, when not given, hug the bounding sphere of the scene seen
+/// from the eye (near = max(d − 1.1·r, far·10⁻⁴)), as [`framing_camera`](crate::framing_camera)
+/// does.
+pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
+    let text = read_text(path)?;
+    let file: SceneFile = toml::from_str(&text).map_err(|e| toml_error(path, &text, &e))?;
+    Builder { path, text: &text, models: ModelCache::default() }.scene(file)
+}
+
+fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> SceneError {
+    let message = e.message().trim().replace('\n', " ");
+    match e.span() {
+        Some(span) => SceneError::at_offset(path.to_path_buf(), text, span.start, message),
+        None => SceneError::File { path: path.to_path_buf(), message },
+    }
+}
+
+type S<T> = Spanned<T>;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    background: Option<S<[f32; 3]>>,
+    ambient: Option<S<[f32; 3]>>,
+    render: Option<RenderDef>,
+    camera: Option<S<CameraDef>>,
+    lights: Option<Vec<S<LightDef>>>,
+    #[serde(default)]
+    objects: Vec<S<ObjectDef>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RenderDef {
+    width: Option<S<u32>>,
+    height: Option<S<u32>>,
+    shading: Option<ShadingDef>,
+    interpolation: Option<InterpolationDef>,
+}
+
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum ShadingDef {
+    Flat,
+    Gouraud,
+    Phong,
+}
+
+impl From<ShadingDef> for ShadingMode {
+    fn from(s: ShadingDef) -> ShadingMode {
+        match s {
+            ShadingDef::Flat => ShadingMode::Flat,
+            ShadingDef::Gouraud => ShadingMode::Gouraud,
+            ShadingDef::Phong => ShadingMode::Phong,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum InterpolationDef {
+    Perspective,
+    Linear,
+}
+
+#[derive(Clone, Copy, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum ProjectionDef {
+    #[default]
+    Perspective,
+    Orthographic,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CameraDef {
+    eye: S<[f32; 3]>,
+    target: Option<S<[f32; 3]>>,
+    up: Option<S<[f32; 3]>>,
+    #[serde(default)]
+    projection: ProjectionDef,
+    fovy: Option<S<f32>>,
+    height: Option<S<f32>>,
+    near: Option<S<f32>>,
+    far: Option<S<f32>>,
+}
+
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum LightKind {
+    Point,
+    Directional,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightDef {
+    #[serde(rename = "type")]
+    kind: LightKind,
+    position: Option<S<[f32; 3]>>,
+    direction: Option<S<[f32; 3]>>,
+    color: Option<S<[f32; 3]>>,
+    attenuation: Option<S<[f32; 3]>>,
+}
+
+#[derive(Clone, Copy, Deserialize, PartialEq)]
+#[serde(rename_all = "lowercase")]
+enum PrimitiveKind {
+    Sphere,
+    Plane,
+    Cube,
+    Torus,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObjectDef {
+    model: Option<S<String>>,
+    primitive: Option<S<PrimitiveKind>>,
+    rings: Option<S<u32>>,
+    segments: Option<S<u32>>,
+    radius: Option<S<f32>>,
+    size: Option<S<f32>>,
+    subdivisions: Option<S<u32>>,
+    major_radius: Option<S<f32>>,
+    minor_radius: Option<S<f32>>,
+    translate: Option<S<[f32; 3]>>,
+    rotate: Option<S<[f32; 3]>>,
+    scale: Option<S<ScaleDef>>,
+    shading: Option<ShadingDef>,
+    cull_back_faces: Option<bool>,
+    material: Option<MaterialDef>,
+}
+
+#[derive(Clone, Copy, Deserialize)]
+#[serde(untagged, expecting = "a number or an array of 3 numbers [sx, sy, sz]")]
+enum ScaleDef {
+    Uniform(f32),
+    PerAxis([f32; 3]),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MaterialDef {
+    color: Option<S<[f32; 3]>>,
+    ka: Option<S<[f32; 3]>>,
+    kd: Option<S<[f32; 3]>>,
+    ks: Option<S<[f32; 3]>>,
+    ns: Option<S<f32>>,
+    opacity: Option<S<f32>>,
+}
+
+/// Turns the parsed file into a scene, validating as it goes.
+struct Builder<'a> {
+    path: &'a Path,
+    text: &'a str,
+    models: ModelCache,
+}
+
+type Result<T, E = SceneError> = std::result::Result<T, E>;
+
+impl Builder<'_> {
+    fn scene(mut self, file: SceneFile) -> Result<Scene> {
+        let settings = self.settings(file.render)?;
+        let background = match &file.background {
+            Some(c) => self.vec3_in(c, "background", 0.0, 1.0)?,
+            None => DEFAULT_BACKGROUND,
+        };
+        let ambient = match &file.ambient {
+            Some(c) => self.vec3_in(c, "ambient", 0.0, f32::INFINITY)?,
+            None => DEFAULT_AMBIENT,
+        };
+        let lights = match &file.lights {
+            Some(lights) => lights
+                .iter()
+                .enumerate()
+                .map(|(i, l)| self.light(l, &format!("lights[{i}]")))
+                .collect::<Result<_>>()?,
+            None => default_lights(),
+        };
+        if file.objects.is_empty() {
+            return Err(self.file_error("no [[objects]]: a scene needs at least one object"));
+        }
+        let mut objects = Vec::new();
+        for (i, def) in file.objects.iter().enumerate() {
+            objects.extend(self.objects(def, &format!("objects[{i}]"))?);
+        }
+        let (min, max) = world_bounds(&objects);
+        let camera = match &file.camera {
+            Some(def) => self.camera(def, (min, max), aspect(&settings))?,
+            None => framing_camera(min, max, aspect(&settings)),
+        };
+        Ok(Scene { camera, background, ambient, lights, objects, settings })
+    }
+
+    fn settings(&self, render: Option<RenderDef>) -> Result<RenderSettings> {
+        let mut settings = RenderSettings::default();
+        let Some(render) = render else { return Ok(settings) };
+        if let Some(w) = &render.width {
+            settings.width = self.image_side(w, "render.width")?;
+        }
+        if let Some(h) = &render.height {
+            settings.height = self.image_side(h, "render.height")?;
+        }
+        if let Some(s) = render.shading {
+            settings.shading = s.into();
+        }
+        if let Some(i) = render.interpolation {
+            settings.interpolation = match i {
+                InterpolationDef::Perspective => Interpolation::PerspectiveCorrect,
+                InterpolationDef::Linear => Interpolation::ScreenLinear,
+            };
+        }
+        Ok(settings)
+    }
+
+    fn image_side(&self, v: &S<u32>, key: &str) -> Result<u32> {
+        let side = *v.get_ref();
+        if !(1..=MAX_IMAGE_SIDE).contains(&side) {
+            return Err(self.error(v.span(), key, format!("must be in 1..={MAX_IMAGE_SIDE}, got {side}")));
+        }
+        Ok(side)
+    }
+
+    fn camera(&self, def: &S<CameraDef>, bounds: (Vec3, Vec3), aspect: f32) -> Result<Camera> {
+        let c = def.get_ref();
+        let eye = self.vec3(&c.eye, "camera.eye")?;
+        let target = c.target.as_ref().map_or(Ok(Vec3::ZERO), |t| self.vec3(t, "camera.target"))?;
+        let up = c.up.as_ref().map_or(Ok(Vec3::Y), |u| self.vec3(u, "camera.up"))?;
+        if eye == target {
+            return Err(self.error(c.eye.span(), "camera.eye", "must differ from camera.target"));
+        }
+        let direction = target - eye;
+        if (direction / direction.abs().max_element()).cross(up).length() < 1e-6 {
+            let span = c.up.as_ref().map_or(def.span(), |u| u.span());
+            return Err(self.error(span, "camera.up", "must not be parallel to the view direction"));
+        }
+        let fitted = fitted_depth_range(eye, target, bounds);
+        let near = self.optional(&c.near, "camera.near", fitted.0, f32::MIN, f32::MAX)?;
+        let far = self.optional(&c.far, "camera.far", fitted.1, f32::MIN, f32::MAX)?;
+        let projection = match c.projection {
+            ProjectionDef::Perspective => {
+                let fovy = self.optional(&c.fovy, "camera.fovy", 45.0, 0.0, 180.0)?;
+                if fovy <= 0.0 || fovy >= 180.0 {
+                    return Err(self.value_error(
+                        c.fovy.as_ref(),
+                        def,
+                        "camera.fovy",
+                        "must be in (0, 180) degrees",
+                    ));
+                }
+                if near <= 0.0 {
+                    return Err(self.value_error(
+                        c.near.as_ref(),
+                        def,
+                        "camera.near",
+                        "must be > 0 for perspective",
+                    ));
+                }
+                Projection::Perspective { fovy_degrees: fovy, near, far }
+            }
+            ProjectionDef::Orthographic => {
+                let fitted_height = 2.2 * (bounds.1 - bounds.0).length().max(1e-6) / 2.0;
+                let height = self.optional(&c.height, "camera.height", fitted_height, 0.0, f32::MAX)?;
+                if height <= 0.0 {
+                    return Err(self.value_error(c.height.as_ref(), def, "camera.height", "must be > 0"));
+                }
+                Projection::Orthographic { height, near, far }
+            }
+        };
+        if far <= near {
+            let message = format!("must be greater than camera.near ({near}), got {far}");
+            return Err(self.value_error(c.far.as_ref(), def, "camera.far", message));
+        }
+        let camera = Camera { eye, target, up, projection };
+        if !camera_is_finite(&camera, aspect) {
+            return Err(self.error(def.span(), "camera", "its values give a non-finite projection"));
+        }
+        Ok(camera)
+    }
+
+    fn light(&self, def: &S<LightDef>, key: &str) -> Result<Light> {
+        let l = def.get_ref();
+        let color = match &l.color {
+            Some(c) => self.vec3_in(c, &format!("{key}.color"), 0.0, f32::INFINITY)?,
+            None => Vec3::ONE,
+        };
+        match l.kind {
+            LightKind::Point => {
+                self.not_allowed(&l.direction, key, "direction", "point lights")?;
+                let Some(position) = &l.position else {
+                    return Err(self.error(def.span(), key, "a point light needs 'position'"));
+                };
+                let position = self.vec3(position, &format!("{key}.position"))?;
+                let attenuation = match &l.attenuation {
+                    Some(a) => {
+                        let [a0, a1, a2] =
+                            self.vec3_in(a, &format!("{key}.attenuation"), 0.0, f32::INFINITY)?.into();
+                        Attenuation { a0, a1, a2 }
+                    }
+                    None => Attenuation::NONE,
+                };
+                Ok(Light::Point { position, color, attenuation })
+            }
+            LightKind::Directional => {
+                self.not_allowed(&l.position, key, "position", "directional lights")?;
+                self.not_allowed(&l.attenuation, key, "attenuation", "directional lights")?;
+                let Some(d) = &l.direction else {
+                    return Err(self.error(def.span(), key, "a directional light needs 'direction'"));
+                };
+                let direction = self.vec3(d, &format!("{key}.direction"))?;
+                if direction == Vec3::ZERO {
+                    return Err(self.error(d.span(), &format!("{key}.direction"), "must not be [0, 0, 0]"));
+                }
+                Ok(Light::Directional { direction, color })
+            }
+        }
+    }
+
+    /// The objects of one `[[objects]]` entry: one per mesh of its model.
+    fn objects(&mut self, def: &S<ObjectDef>, key: &str) -> Result<Vec<Object>> {
+        let o = def.get_ref();
+        let meshes = match (&o.model, &o.primitive) {
+            (Some(model), None) => self.model(o, model, key)?,
+            (None, Some(kind)) => vec![Arc::new(self.primitive(o, *kind.get_ref(), key)?)],
+            (Some(_), Some(_)) => {
+                return Err(self.error(def.span(), key, "give 'model' or 'primitive', not both"))
+            }
+            (None, None) => return Err(self.error(def.span(), key, "needs 'model' or 'primitive'")),
+        };
+        let world_from_object = self.transform(o, key)?;
+        let shading = o.shading.map(ShadingMode::from);
+        let material_def = o.material.as_ref();
+        let mut objects = Vec::with_capacity(meshes.len());
+        for mesh in meshes {
+            let material = material_def.map(|m| self.material(m, mesh.material, key)).transpose()?;
+            let opacity = material.unwrap_or(mesh.material).opacity;
+            let cull_back_faces = o.cull_back_faces.unwrap_or_else(|| default_culling(&mesh, opacity));
+            objects.push(Object { mesh, world_from_object, material, shading, cull_back_faces });
+        }
+        Ok(objects)
+    }
+
+    fn model(&mut self, o: &ObjectDef, model: &S<String>, key: &str) -> Result<Vec<Arc<Mesh>>> {
+        for (value, name) in
+            [(&o.rings, "rings"), (&o.segments, "segments"), (&o.subdivisions, "subdivisions")]
+        {
+            self.not_allowed(value, key, name, "models")?;
+        }
+        for (value, name) in [
+            (&o.radius, "radius"),
+            (&o.size, "size"),
+            (&o.major_radius, "major_radius"),
+            (&o.minor_radius, "minor_radius"),
+        ] {
+            self.not_allowed(value, key, name, "models")?;
+        }
+        let dir = self.path.parent().unwrap_or(Path::new(""));
+        let model_path: PathBuf = dir.join(model.get_ref());
+        self.models.get(&model_path).map_err(|source| {
+            let (line, column) = crate::error::line_column(self.text, model.span().start);
+            SceneError::Referenced {
+                scene: self.path.to_path_buf(),
+                line,
+                column,
+                key: format!("{key}.model"),
+                source: Box::new(source),
+            }
+        })
+    }
+
+    fn primitive(&self, o: &ObjectDef, kind: PrimitiveKind, key: &str) -> Result<Mesh> {
+        use PrimitiveKind::*;
+        let what = match kind {
+            Sphere => "spheres",
+            Plane => "planes",
+            Cube => "cubes",
+            Torus => "tori",
+        };
+        let count = |v: &Option<S<u32>>, name: &str, uses: &[PrimitiveKind], default: u32, min: u32| {
+            if !uses.contains(&kind) {
+                return self.not_allowed(v, key, name, what).map(|()| 0);
+            }
+            self.count(v, &format!("{key}.{name}"), default, min)
+        };
+        let length = |v: &Option<S<f32>>, name: &str, uses: &[PrimitiveKind], default: f32| {
+            if !uses.contains(&kind) {
+                return self.not_allowed(v, key, name, what).map(|()| 0.0);
+            }
+            self.positive(v, &format!("{key}.{name}"), default)
+        };
+        let (default_rings, min_rings) = if kind == Torus { (48, 3) } else { (32, 2) };
+        let rings = count(&o.rings, "rings", &[Sphere, Torus], default_rings, min_rings)?;
+        let segments =
+            count(&o.segments, "segments", &[Sphere, Torus], if kind == Torus { 24 } else { 64 }, 3)?;
+        let subdivisions = count(&o.subdivisions, "subdivisions", &[Plane], 8, 1)?;
+        let radius = length(&o.radius, "radius", &[Sphere], 1.0)?;
+        let size = length(&o.size, "size", &[Plane, Cube], if kind == Plane { 10.0 } else { 1.0 })?;
+        let major = length(&o.major_radius, "major_radius", &[Torus], 1.0)?;
+        let minor = length(&o.minor_radius, "minor_radius", &[Torus], 0.25)?;
+        Ok(match kind {
+            Sphere => uv_sphere(rings, segments, radius),
+            Plane => plane(size, subdivisions),
+            Cube => cube(size),
+            Torus => torus(major, minor, rings, segments),
+        })
+    }
+
+    fn transform(&self, o: &ObjectDef, key: &str) -> Result<Mat4> {
+        let translate =
+            o.translate.as_ref().map_or(Ok(Vec3::ZERO), |t| self.vec3(t, &format!("{key}.translate")))?;
+        let rotate = o.rotate.as_ref().map_or(Ok(Vec3::ZERO), |r| self.vec3(r, &format!("{key}.rotate")))?;
+        let scale = match &o.scale {
+            None => Vec3::ONE,
+            Some(s) => {
+                let v = match *s.get_ref() {
+                    ScaleDef::Uniform(f) => Vec3::splat(f),
+                    ScaleDef::PerAxis(a) => Vec3::from(a),
+                };
+                if !v.is_finite() || v.cmpeq(Vec3::ZERO).any() {
+                    return Err(self.error(
+                        s.span(),
+                        &format!("{key}.scale"),
+                        format!("must be finite and non-zero, got {v}"),
+                    ));
+                }
+                v
+            }
+        };
+        // Rotate about x first, then y, then z: R = Rz · Ry · Rx.
+        let [rx, ry, rz] = rotate.to_array().map(f32::to_radians);
+        let rotation = Quat::from_euler(EulerRot::ZYX, rz, ry, rx);
+        Ok(Mat4::from_scale_rotation_translation(scale, rotation, translate))
+    }
+
+    fn material(&self, def: &MaterialDef, base: Material, key: &str) -> Result<Material> {
+        let key = format!("{key}.material");
+        let mut m = base;
+        if let Some(c) = &def.color {
+            m.kd = self.vec3_in(c, &format!("{key}.color"), 0.0, 1.0)?;
+            m.ka = m.kd;
+        }
+        for (value, name, field) in
+            [(&def.ka, "ka", &mut m.ka), (&def.kd, "kd", &mut m.kd), (&def.ks, "ks", &mut m.ks)]
+        {
+            if let Some(v) = value {
+                *field = self.vec3_in(v, &format!("{key}.{name}"), 0.0, 1.0)?;
+            }
+        }
+        m.ns = self.optional(&def.ns, &format!("{key}.ns"), m.ns, 0.0, f32::MAX)?;
+        m.opacity = self.optional(&def.opacity, &format!("{key}.opacity"), m.opacity, 0.0, 1.0)?;
+        Ok(m)
+    }
+
+    // ---- value checks ----
+
+    fn vec3(&self, v: &S<[f32; 3]>, key: &str) -> Result<Vec3> {
+        self.vec3_in(v, key, f32::MIN, f32::MAX)
+    }
+
+    /// A finite 3-vector with every component in `lo..=hi`.
+    fn vec3_in(&self, v: &S<[f32; 3]>, key: &str, lo: f32, hi: f32) -> Result<Vec3> {
+        let a = *v.get_ref();
+        if a.iter().any(|c| !c.is_finite()) {
+            return Err(self.error(v.span(), key, format!("must be finite, got {a:?}")));
+        }
+        if a.iter().any(|&c| c < lo || c > hi) {
+            return Err(self.error(
+                v.span(),
+                key,
+                format!("every component must be in {}, got {a:?}", range(lo, hi)),
+            ));
+        }
+        Ok(Vec3::from(a))
+    }
+
+    /// A finite number in `lo..=hi`, or `default` when absent.
+    fn optional(&self, v: &Option<S<f32>>, key: &str, default: f32, lo: f32, hi: f32) -> Result<f32> {
+        let Some(v) = v else { return Ok(default) };
+        let x = *v.get_ref();
+        if !x.is_finite() {
+            return Err(self.error(v.span(), key, format!("must be finite, got {x}")));
+        }
+        if x < lo || x > hi {
+            return Err(self.error(v.span(), key, format!("must be in {}, got {x}", range(lo, hi))));
+        }
+        Ok(x)
+    }
+
+    /// A finite number > 0, or `default` when absent.
+    fn positive(&self, v: &Option<S<f32>>, key: &str, default: f32) -> Result<f32> {
+        let x = self.optional(v, key, default, 0.0, f32::MAX)?;
+        match v {
+            Some(v) if x <= 0.0 => Err(self.error(v.span(), key, format!("must be > 0, got {x}"))),
+            _ => Ok(x),
+        }
+    }
+
+    fn count(&self, v: &Option<S<u32>>, key: &str, default: u32, min: u32) -> Result<u32> {
+        let Some(v) = v else { return Ok(default) };
+        let n = *v.get_ref();
+        if !(min..=MAX_PRIMITIVE_DIVISIONS).contains(&n) {
+            return Err(self.error(
+                v.span(),
+                key,
+                format!("must be in {min}..={MAX_PRIMITIVE_DIVISIONS}, got {n}"),
+            ));
+        }
+        Ok(n)
+    }
+
+    fn not_allowed<T>(&self, v: &Option<S<T>>, key: &str, name: &str, what: &str) -> Result<()> {
+        match v {
+            Some(v) => {
+                Err(self.error(v.span(), &format!("{key}.{name}"), format!("does not apply to {what}")))
+            }
+            None => Ok(()),
+        }
+    }
+
+    // ---- errors ----
+
+    fn error(&self, span: Range<usize>, key: &str, message: impl Display) -> SceneError {
+        SceneError::at_offset(self.path.to_path_buf(), self.text, span.start, format!("{key}: {message}"))
+    }
+
+    /// An error at the value when it was given, else at the enclosing table.
+    fn value_error<T, U>(
+        &self,
+        v: Option<&S<T>>,
+        table: &S<U>,
+        key: &str,
+        message: impl Display,
+    ) -> SceneError {
+        self.error(v.map_or(table.span(), |v| v.span()), key, message)
+    }
+
+    fn file_error(&self, message: &str) -> SceneError {
+        SceneError::File { path: self.path.to_path_buf(), message: message.to_owned() }
+    }
+}
+
+fn range(lo: f32, hi: f32) -> String {
+    match (lo == f32::MIN, hi == f32::MAX || hi == f32::INFINITY) {
+        (true, true) => "any finite value".to_owned(),
+        (false, true) => format!("[{lo}, ∞)"),
+        _ => format!("[{lo}, {hi}]"),
+    }
+}
+
+/// The world-space bounding box of the objects (the transformed corners of
+/// each mesh's box).
+fn world_bounds(objects: &[Object]) -> (Vec3, Vec3) {
+    let corners = objects.iter().flat_map(|o| {
+        let (lo, hi) = o.mesh.bounds();
+        (0..8).map(move |i| {
+            let pick = glam::BVec3::new(i & 1 != 0, i & 2 != 0, i & 4 != 0);
+            o.world_from_object.transform_point3(Vec3::select(pick, hi, lo))
+        })
+    });
+    bounds_of(corners).unwrap_or((Vec3::ZERO, Vec3::ZERO))
+}
+
+/// Near and far planes hugging the scene's bounding sphere seen from `eye`
+/// along the view direction.
+fn fitted_depth_range(eye: Vec3, target: Vec3, (min, max): (Vec3, Vec3)) -> (f32, f32) {
+    let (eye, target) = (eye.as_dvec3(), target.as_dvec3());
+    let center = (min.as_dvec3() + max.as_dvec3()) / 2.0;
+    let radius = ((max.as_dvec3() - min.as_dvec3()).length() / 2.0).max(1e-6);
+    let forward = (target - eye).normalize();
+    let d = (center - eye).dot(forward);
+    let far = (d + 1.1 * radius).max(radius);
+    let near = (d - 1.1 * radius).max(far * 1e-4);
+    (near as f32, far as f32)
+}

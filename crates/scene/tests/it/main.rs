@@ -1,0 +1,38 @@
+//! Integration tests of zline-scene: loaders against fixture files in
+//! `tests/data/`, scene files written to a temporary directory, and the
+//! repository's `examples/` and `assets/`.
+
+mod examples;
+mod obj;
+mod scene_file;
+
+use std::path::{Path, PathBuf};
+
+/// A fixture file under `tests/data/`.
+pub(crate) fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
+}
+
+/// A file under the repository root.
+pub(crate) fn repo(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(path)
+}
+
+/// Writes `text` to a fresh file `name` in this process's temporary
+/// directory and returns its path.
+pub(crate) fn temp_file(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("zline-scene-tests-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Asserts that the error message is one line and contains every part.
+#[track_caller]
+pub(crate) fn check_message(message: &str, parts: &[&str]) {
+    assert!(!message.contains('\n'), "not one line: {message:?}");
+    for part in parts {
+        assert!(message.contains(part), "{message:?}\ndoes not contain {part:?}");
+    }
+}

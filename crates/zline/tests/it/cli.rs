@@ -1,0 +1,65 @@
+//! The commands README.md shows, and the promise of bit-identical output.
+
+use crate::{check_clean_error, check_png, repo, zline};
+
+#[test]
+fn demo_renders_and_threads_do_not_change_the_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let one = dir.path().join("one.png");
+    let two = dir.path().join("two.png");
+    let a = zline(&["demo", "-o", one.to_str().unwrap(), "--size", "320x180", "--threads", "1"]);
+    let b = zline(&["demo", "-o", two.to_str().unwrap(), "--size", "320x180", "--threads", "2", "--tile-size", "13"]);
+    let img = check_png(&a, &one, (320, 180));
+    check_png(&b, &two, (320, 180));
+    assert_eq!(std::fs::read(&one).unwrap(), std::fs::read(&two).unwrap(), "PNG bytes differ");
+    let distinct: std::collections::HashSet<_> = img.pixels().collect();
+    assert!(distinct.len() > 100, "the demo looks empty ({} colours)", distinct.len());
+}
+
+#[test]
+fn obj_renders_in_every_shading_mode() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = repo().join("assets/obj/suzanne/suzanne.obj");
+    for mode in ["flat", "gouraud", "phong"] {
+        let png = dir.path().join(format!("{mode}.png"));
+        let out = zline(&[
+            "render",
+            model.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+            "--size",
+            "96x64",
+            "--shading",
+            mode,
+        ]);
+        let img = check_png(&out, &png, (96, 64));
+        let background = *img.get_pixel(0, 0);
+        let covered = img.pixels().filter(|p| **p != background).count();
+        assert!(covered > 96 * 64 / 10, "{mode}: model covers only {covered} pixels");
+    }
+}
+
+#[test]
+fn example_scene_renders() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("scene.png");
+    let scene = repo().join("examples/scene.toml");
+    let out = zline(&["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "160x90"]);
+    check_png(&out, &png, (160, 90));
+}
+
+#[test]
+fn bad_arguments_are_reported() {
+    let out = zline(&["render", "x.obj", "-o", "y.png", "--size", "0x10"]);
+    assert_eq!(out.status.code(), Some(2), "clap rejects bad values with exit code 2");
+    let out = zline(&["render", "model.stl", "-o", "y.png"]);
+    check_clean_error(&out, &["model.stl", "unsupported"]);
+    let out = zline(&["demo", "-o", "y.png", "--threads", "0"]);
+    check_clean_error(&out, &["--threads"]);
+}
+
+#[test]
+fn unwritable_output_is_a_clean_error() {
+    let out = zline(&["demo", "-o", "/nonexistent-dir/x.png", "--size", "8x8"]);
+    check_clean_error(&out, &["/nonexistent-dir/x.png"]);
+}
