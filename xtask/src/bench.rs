@@ -7,7 +7,9 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use glam::Vec3;
 use zline::pipeline::{render, RenderOptions};
-use zline::scene::{load_obj, scene_for_model, uv_sphere, Camera, Projection, RenderSettings, Scene, ShadingMode};
+use zline::scene::{
+    load_obj, scene_for_model, uv_sphere, Camera, Projection, RenderSettings, Scene, ShadingMode,
+};
 
 const WIDTH: u32 = 1920;
 const HEIGHT: u32 = 1080;
@@ -84,11 +86,17 @@ fn cases(assets: &Path) -> Result<Vec<Case>> {
     }
     // 32 rings × 32 segments ≈ 2k triangles; at distance 2.6 the sphere covers about half the frame.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
-        out.push(Case { name: format!("sphere 2k {}", mode.name()), build: Box::new(move || Ok(sphere_scene(32, 32, 2.6, mode))) });
+        out.push(Case {
+            name: format!("sphere 2k {}", mode.name()),
+            build: Box::new(move || Ok(sphere_scene(32, 32, 2.6, mode))),
+        });
     }
     // 500 × 1000 ≈ 1M triangles.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
-        out.push(Case { name: format!("sphere 1M {}", mode.name()), build: Box::new(move || Ok(sphere_scene(500, 1000, 2.6, mode))) });
+        out.push(Case {
+            name: format!("sphere 1M {}", mode.name()),
+            build: Box::new(move || Ok(sphere_scene(500, 1000, 2.6, mode))),
+        });
     }
     Ok(out)
 }

@@ -38,6 +38,8 @@ enum Task {
 
 fn main() -> Result<()> {
     match Cli::parse().task {
-        Task::Bench { frames, threads, assets, filter } => bench::run(frames, &threads, &assets, filter.as_deref()),
+        Task::Bench { frames, threads, assets, filter } => {
+            bench::run(frames, &threads, &assets, filter.as_deref())
+        }
     }
 }

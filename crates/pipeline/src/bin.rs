@@ -23,7 +23,13 @@ impl TileGrid {
     /// The grid for a window; a tile size of 0 is taken as 1.
     pub fn new(width: u32, height: u32, tile_size: u32) -> TileGrid {
         let tile_size = tile_size.max(1);
-        TileGrid { width, height, tile_size, cols: width.div_ceil(tile_size), rows: height.div_ceil(tile_size) }
+        TileGrid {
+            width,
+            height,
+            tile_size,
+            cols: width.div_ceil(tile_size),
+            rows: height.div_ceil(tile_size),
+        }
     }
 
     /// Number of tiles.

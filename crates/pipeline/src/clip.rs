@@ -51,7 +51,7 @@ impl ClipVolume {
     pub fn clip_code(&self, p: Vec4) -> u8 {
         let mut code = 0;
         for (i, d) in self.distances(p).into_iter().enumerate() {
-            code |= u8::from(!(d >= 0.0)) << i;
+            code |= u8::from(d.is_nan() || d < 0.0) << i;
         }
         code
     }
@@ -64,7 +64,7 @@ pub fn view_code(p: Vec4) -> u8 {
     let d = [p.x + p.w, p.w - p.x, p.y + p.w, p.w - p.y, p.z + p.w, p.w - p.z];
     let mut code = 0;
     for (i, d) in d.into_iter().enumerate() {
-        code |= u8::from(!(d >= 0.0)) << i;
+        code |= u8::from(d.is_nan() || d < 0.0) << i;
     }
     code
 }

@@ -2,7 +2,7 @@
 
 use rayon::prelude::*;
 use zline_scene::{Interpolation, Scene};
-use zline_shading::{LightingModel, Material, ShadingMode};
+use zline_shading::{LightingModel, PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::bin::{bin_primitives, TileGrid};
 use crate::clip::ClipVolume;
@@ -44,8 +44,10 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> (Image, RenderStats) {
     let (width, height) = (s.width.max(1), s.height.max(1));
     let eye_from_world = scene.camera.eye_from_world();
     let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);
-    let lighting = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() }.transformed(&eye_from_world);
-    let materials: Vec<Material> = scene.objects.iter().map(|o| o.material().sanitized()).collect();
+    let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
+    let lighting = PreparedLights::new(&model, &eye_from_world);
+    let materials: Vec<PreparedMaterial> =
+        scene.objects.iter().map(|o| PreparedMaterial::new(o.material().sanitized())).collect();
     let viewport = Viewport { width, height };
     let volume = ClipVolume::new(width, height);
 

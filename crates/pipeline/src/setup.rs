@@ -11,7 +11,7 @@
 
 use glam::Vec3;
 use zline_raster::{AttributePlanes, DepthPlane, EdgeTable, FixedPoint, PlaneBasis};
-use zline_shading::{LightingModel, Material, ShadingMode};
+use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::clip::{clip_polygon, view_code, ClipVolume, MAX_CLIPPED};
 use crate::vertex::ClipVertex;
@@ -80,9 +80,9 @@ pub struct SetupContext<'a> {
     /// Drop back faces.
     pub cull_back_faces: bool,
     /// The object's material and its index in the frame's table.
-    pub material: (&'a Material, u32),
+    pub material: (&'a PreparedMaterial, u32),
     /// The eye-space lighting model (flat shading evaluates it here).
-    pub lighting: &'a LightingModel,
+    pub lighting: &'a PreparedLights,
 }
 
 /// Sets up one triangle (vertices in the mesh's order) and appends 0 or more
@@ -129,7 +129,7 @@ fn emit(tri: &[ClipVertex; 3], flat: Vec3, ctx: &SetupContext<'_>, out: &mut Vec
     let mut inv_w = [0.0f32; 3];
     for (k, v) in tri.iter().enumerate() {
         let cw = f64::from(v.clip.w);
-        if !(cw > 0.0) {
+        if cw.is_nan() || cw <= 0.0 {
             return; // never divide by w ≤ 0 (clipping makes this unreachable for sane matrices)
         }
         let (x, y) = (f64::from(v.clip.x) / cw, f64::from(v.clip.y) / cw);

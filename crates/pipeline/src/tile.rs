@@ -6,11 +6,11 @@
 //! triangle contains no lighting and a screen-linear one no divide. The depth
 //! test comes before any shading (STYLE habit 5).
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 use zline_raster::{for_each_sample, AttributePlanes, DepthPlane, Rect, Span};
-use zline_shading::{LightingModel, Material};
+use zline_shading::{PreparedLights, PreparedMaterial};
 
-use crate::image::quantize_rgb;
+use crate::image::quantize_rgba;
 use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader};
 
 /// Depth initialised to the far plane (SPEC §4).
@@ -20,18 +20,20 @@ pub const DEPTH_CLEAR: f32 = 1.0;
 #[derive(Clone, Copy, Debug)]
 pub struct ShadeContext<'a> {
     /// Lights in eye space.
-    pub lighting: &'a LightingModel,
+    pub lighting: &'a PreparedLights,
     /// The frame's materials, indexed by [`Shader::Phong::material`].
-    pub materials: &'a [Material],
+    pub materials: &'a [PreparedMaterial],
 }
 
-/// A tile's depth and colour buffers, one value per sample.
+/// A tile's depth and colour buffers, one value per sample. Colours are
+/// RGBA in a 16-byte SIMD type (alpha unused): clearing is a run of aligned
+/// vector stores and resolving quantizes four lanes at once.
 #[derive(Clone, Debug, Default)]
 pub struct TileTarget {
     rect: Rect,
     stride: usize,
     depth: Vec<f32>,
-    color: Vec<Vec3>,
+    color: Vec<Vec4>,
 }
 
 impl TileTarget {
@@ -43,7 +45,7 @@ impl TileTarget {
         self.depth.clear();
         self.depth.resize(n, DEPTH_CLEAR);
         self.color.clear();
-        self.color.resize(n, background);
+        self.color.resize(n, background.extend(1.0));
     }
 
     /// The tile's pixels.
@@ -75,11 +77,13 @@ impl TileTarget {
     /// this tile (`band` starts at the tile's first row; `width` is the
     /// image width).
     pub fn resolve(&self, band: &mut [u8], width: usize) {
-        for (row, colors) in self.color.chunks_exact(self.stride.max(1)).enumerate() {
+        if self.stride == 0 {
+            return;
+        }
+        for (row, colors) in self.color.chunks_exact(self.stride).enumerate() {
             let start = (row * width + self.rect.x0 as usize) * 3;
-            let out = &mut band[start..start + colors.len() * 3];
-            for (px, c) in out.chunks_exact_mut(3).zip(colors) {
-                px.copy_from_slice(&quantize_rgb(*c));
+            for (out, c) in band[start..start + colors.len() * 3].chunks_exact_mut(3).zip(colors) {
+                out.copy_from_slice(&quantize_rgba(*c)[..3]);
             }
         }
     }
@@ -98,9 +102,11 @@ impl TileTarget {
             (Shader::Phong { planes, material }, persp) => {
                 let m = &ctx.materials[material as usize];
                 if persp {
-                    p.edges.scan(clip, |s| n += self.phong_span::<true>(&p.depth, &planes, s, m, ctx.lighting))
+                    p.edges
+                        .scan(clip, |s| n += self.phong_span::<true>(&p.depth, &planes, s, m, ctx.lighting))
                 } else {
-                    p.edges.scan(clip, |s| n += self.phong_span::<false>(&p.depth, &planes, s, m, ctx.lighting))
+                    p.edges
+                        .scan(clip, |s| n += self.phong_span::<false>(&p.depth, &planes, s, m, ctx.lighting))
                 }
             }
         }
@@ -124,7 +130,7 @@ impl TileTarget {
             let i = (row + x as isize) as usize;
             if z < zbuf[i] {
                 zbuf[i] = z;
-                cbuf[i] = shade(a);
+                cbuf[i] = shade(a).extend(1.0);
                 n += 1;
             }
         });
@@ -135,7 +141,12 @@ impl TileTarget {
         self.span(depth, &AttributePlanes::NONE, span, |_| color)
     }
 
-    fn gouraud_span<const PERSPECTIVE: bool>(&mut self, depth: &DepthPlane, planes: &GouraudPlanes, span: Span) -> u64 {
+    fn gouraud_span<const PERSPECTIVE: bool>(
+        &mut self,
+        depth: &DepthPlane,
+        planes: &GouraudPlanes,
+        span: Span,
+    ) -> u64 {
         self.span(depth, planes, span, |a| {
             let c = Vec3::new(a[1], a[2], a[3]);
             if PERSPECTIVE {
@@ -151,8 +162,8 @@ impl TileTarget {
         depth: &DepthPlane,
         planes: &PhongPlanes,
         span: Span,
-        material: &Material,
-        lighting: &LightingModel,
+        material: &PreparedMaterial,
+        lighting: &PreparedLights,
     ) -> u64 {
         self.span(depth, planes, span, |a| {
             let w = if PERSPECTIVE { 1.0 / a[0] } else { 1.0 };

@@ -8,7 +8,7 @@
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 use zline_scene::Mesh;
-use zline_shading::{LightingModel, Material};
+use zline_shading::{PreparedLights, PreparedMaterial};
 
 /// Vertices per rayon task: big enough that scheduling costs nothing.
 const VERTEX_CHUNK: usize = 4096;
@@ -70,7 +70,7 @@ pub enum VertexLighting<'a> {
     /// Nothing: flat and Phong shade later.
     None,
     /// Light every vertex (Gouraud) with this model, in eye space.
-    Gouraud(&'a LightingModel, &'a Material),
+    Gouraud(&'a PreparedLights, &'a PreparedMaterial),
 }
 
 /// Transforms every vertex of `mesh`, in parallel; the result is in vertex

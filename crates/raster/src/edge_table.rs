@@ -26,7 +26,9 @@
 //! x' = x + 1/m) that reproduces the exact division at every row, so starting
 //! at any tile's first row gives the same columns as starting at the top.
 
-use crate::fixed::{ceil_div, first_sample_at_or_after, FixedPoint, Rect, SUBPIXEL_HALF, SUBPIXEL_ONE};
+use crate::fixed::{
+    ceil_div, first_sample_at_or_after, floor_div, FixedPoint, Rect, SUBPIXEL_HALF, SUBPIXEL_ONE,
+};
 
 /// A run of covered samples on one row: columns `x0..x1` of row `y`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -77,7 +79,8 @@ impl EdgeWalker {
         let d = SUBPIXEL_ONE * dy;
         let x = ceil_div(num, d);
         let step = SUBPIXEL_ONE * dx;
-        EdgeWalker { x, r: x * d - num, d, step_q: step.div_euclid(d), step_r: step.rem_euclid(d) }
+        let step_q = floor_div(step, d);
+        EdgeWalker { x, r: x * d - num, d, step_q, step_r: step - step_q * d }
     }
 
     /// Moves to the next row: num grows by 256·dx.
@@ -155,14 +158,18 @@ impl EdgeTable {
         let mid_row = first_sample_at_or_after(mid.y.into());
         let (first, end) = (i64::from(area.y0), i64::from(area.y1));
         let mut long_walk = EdgeWalker::at_row(&long, first);
-        let parts = [(Edge::new(top, mid), first, mid_row.min(end)), (Edge::new(mid, bottom), mid_row.max(first), end)];
+        let parts = [
+            (Edge::new(top, mid), first, mid_row.min(end)),
+            (Edge::new(mid, bottom), mid_row.max(first), end),
+        ];
         for (short, from, to) in parts {
             if from >= to {
                 continue;
             }
             let mut short_walk = EdgeWalker::at_row(&short, from);
             for row in from..to {
-                let (l, r) = if self.long_is_left { (long_walk.x, short_walk.x) } else { (short_walk.x, long_walk.x) };
+                let (l, r) =
+                    if self.long_is_left { (long_walk.x, short_walk.x) } else { (short_walk.x, long_walk.x) };
                 let x0 = l.max(area.x0.into());
                 let x1 = r.min(area.x1.into());
                 if x0 < x1 {

@@ -94,22 +94,43 @@ impl Rect {
     }
 }
 
-/// ⌈a / b⌉ for b > 0.
+/// ⌈a / b⌉ for b > 0 and |a| < 2^62.
+///
+/// 64-bit integer division costs 40–90 cycles on common x86 cores, and the
+/// edge walkers need a few per triangle, so the quotient is estimated in f64
+/// (off by at most one: a/b < 2^31 and the estimate's relative error is
+/// ~2^-52) and corrected with exact integer products.
 #[inline]
 pub(crate) fn ceil_div(a: i64, b: i64) -> i64 {
     debug_assert!(b > 0);
-    let q = a.div_euclid(b);
-    if a.rem_euclid(b) != 0 {
-        q + 1
-    } else {
-        q
+    let mut q = (a as f64 / b as f64).ceil() as i64;
+    while q * b < a {
+        q += 1;
     }
+    while (q - 1) * b >= a {
+        q -= 1;
+    }
+    q
+}
+
+/// ⌊a / b⌋ for b > 0 and |a| < 2^62, as [`ceil_div`].
+#[inline]
+pub(crate) fn floor_div(a: i64, b: i64) -> i64 {
+    debug_assert!(b > 0);
+    let mut q = (a as f64 / b as f64).floor() as i64;
+    while q * b > a {
+        q -= 1;
+    }
+    while (q + 1) * b <= a {
+        q += 1;
+    }
+    q
 }
 
 /// The first row (or column) whose sample coordinate is ≥ `v` (fixed point).
 #[inline]
 pub(crate) fn first_sample_at_or_after(v: i64) -> i64 {
-    ceil_div(v - SUBPIXEL_HALF, SUBPIXEL_ONE)
+    (v - SUBPIXEL_HALF + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS
 }
 
 #[cfg(test)]
@@ -122,6 +143,19 @@ mod tests {
         assert_eq!(FixedPoint::snap(f32::NAN, 0.0), None);
         assert_eq!(FixedPoint::snap(0.0, f32::INFINITY), None);
         assert_eq!(FixedPoint::snap(3e6, 0.0), None);
+    }
+
+    #[test]
+    fn divisions_match_integer_division() {
+        let big = (1i64 << 61) - 3;
+        for a in [-big, -1_000_001, -257, -256, -255, -1, 0, 1, 255, 256, 257, 999_999_937, big] {
+            for b in [1, 2, 3, 255, 256, 65_537, (1 << 38) + 7] {
+                let floor = a.div_euclid(b);
+                let ceil = floor + i64::from(a.rem_euclid(b) != 0);
+                assert_eq!(floor_div(a, b), floor, "{a} / {b}");
+                assert_eq!(ceil_div(a, b), ceil, "{a} / {b}");
+            }
+        }
     }
 
     #[test]

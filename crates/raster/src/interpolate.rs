@@ -15,8 +15,12 @@
 //! anchors depend only on the pixel, never on where a span or tile starts, so
 //! the same pixel gets the same bits in any tiling. Bounds (checked by the
 //! property tests, for spans up to 8192 pixels):
-//! - depth is stepped in f64 and rounded once to f32: |z − z_exact| ≤
-//!   [`DepthPlane::ERROR_BOUND`] = 2^-24·|z| + 2^-40.
+//! - depth is evaluated and stepped in f64 and rounded once to f32:
+//!   |z − z_exact| ≤ 2^-24·|z| + 64·2^-52·M, where M is the largest magnitude
+//!   met on the way — |z0| plus the gradients times the offsets from the
+//!   anchor, and a block of steps (see [`DepthPlane::error_bound`]). The f64
+//!   part matters only on steep slivers, where a block may start far outside
+//!   the triangle; elsewhere the bound is the single f32 rounding.
 //! - attributes are stepped in f32: |v − v_exact| ≤ 32·2^-24·M, where M is
 //!   the largest magnitude among v0, the block-start value and the steps
 //!   (see [`AttributePlanes::error_bound`]).
@@ -80,10 +84,8 @@ pub struct DepthPlane {
 }
 
 impl DepthPlane {
-    /// Largest |z − z_exact| relative part: one f32 rounding.
+    /// Relative part of the error bound: one f32 rounding.
     pub const RELATIVE_ERROR: f64 = 1.0 / (1u64 << 24) as f64;
-    /// Absolute part of the error bound, covering the f64 steps.
-    pub const ABSOLUTE_ERROR: f64 = 1.0 / (1u64 << 40) as f64;
 
     /// The depth plane through the vertices' NC depths.
     pub fn new(basis: &PlaneBasis, z: [f64; 3]) -> DepthPlane {
@@ -97,9 +99,16 @@ impl DepthPlane {
         self.z0 + self.dzdx * (x - self.anchor.0) + self.dzdy * (y - self.anchor.1)
     }
 
-    /// The error bound for a stored depth near `z` (see the module doc).
-    pub fn error_bound(z: f64) -> f64 {
-        Self::RELATIVE_ERROR * z.abs() + Self::ABSOLUTE_ERROR
+    /// The bound on |z − z_exact| for the stored depth of the sample at
+    /// (x, y) whose exact depth is `z` (see the module doc): the direct
+    /// evaluation at the block start rounds terms as large as the gradients
+    /// times the offsets, each of up to 15 steps rounds once, and the f32
+    /// conversion rounds once more.
+    pub fn error_bound(&self, x: f64, y: f64, z: f64) -> f64 {
+        let (ox, oy) = ((x - self.anchor.0).abs(), (y - self.anchor.1).abs());
+        let block = f64::from(REANCHOR_BLOCK);
+        let m = self.z0.abs() + self.dzdx.abs() * (ox + block) + self.dzdy.abs() * oy;
+        Self::RELATIVE_ERROR * z.abs() + 64.0 * f64::EPSILON * m + f64::MIN_POSITIVE
     }
 
     /// ∂z/∂x.
@@ -140,11 +149,7 @@ impl<const N: usize> AttributePlanes<N> {
     pub fn at(&self, x: f64, y: f64) -> [f32; N] {
         let ox = (x - self.anchor.0) as f32;
         let oy = (y - self.anchor.1) as f32;
-        let mut out = self.v0;
-        for i in 0..N {
-            out[i] += self.dx[i] * ox + self.dy[i] * oy;
-        }
-        out
+        std::array::from_fn(|i| self.v0[i] + (self.dx[i] * ox + self.dy[i] * oy))
     }
 
     /// ∂v/∂x per attribute.

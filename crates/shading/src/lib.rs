@@ -8,10 +8,12 @@
 mod light;
 mod material;
 mod model;
+mod prepared;
 
 pub use light::{Attenuation, Light};
 pub use material::Material;
 pub use model::{LightingModel, LitParts};
+pub use prepared::{PreparedLights, PreparedMaterial, Shininess, SPECULAR_CUTOFF};
 
 /// How a triangle's colour is spread over its samples (SPEC §6).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]

@@ -19,13 +19,8 @@ pub struct Material {
 
 impl Material {
     /// A matte grey material, the default for models without an MTL file.
-    pub const DEFAULT: Material = Material {
-        ka: Vec3::splat(0.8),
-        kd: Vec3::splat(0.8),
-        ks: Vec3::splat(0.2),
-        ns: 32.0,
-        opacity: 1.0,
-    };
+    pub const DEFAULT: Material =
+        Material { ka: Vec3::splat(0.8), kd: Vec3::splat(0.8), ks: Vec3::splat(0.2), ns: 32.0, opacity: 1.0 };
 
     /// A material with ka = kd = `color`, the given specular and shininess.
     pub fn plastic(color: Vec3, ks: f32, ns: f32) -> Material {

@@ -116,7 +116,8 @@ mod tests {
     #[test]
     fn head_on_point_light_gives_kd_plus_ks() {
         // N = L = V = H = +z: N·L = N·H = 1, so I = kd + ks (before clamping).
-        let m = Material { ka: Vec3::ZERO, kd: Vec3::splat(0.5), ks: Vec3::splat(0.25), ns: 10.0, opacity: 1.0 };
+        let m =
+            Material { ka: Vec3::ZERO, kd: Vec3::splat(0.5), ks: Vec3::splat(0.25), ns: 10.0, opacity: 1.0 };
         let model = white_point(Vec3::new(0.0, 0.0, 2.0), Attenuation::NONE);
         let parts = model.shade_parts(&m, Vec3::ZERO, Vec3::Z, Vec3::new(0.0, 0.0, 5.0));
         check_close(parts.ambient_diffuse, Vec3::splat(0.5));

@@ -108,7 +108,8 @@ fn run(cli: Cli) -> Result<()> {
     let start = Instant::now();
     let (image, stats) = pool.install(|| render(&scene, &options));
     let elapsed = start.elapsed();
-    zline::save_png(&image, &common.output).with_context(|| format!("{}: cannot write PNG", common.output.display()))?;
+    zline::save_png(&image, &common.output)
+        .with_context(|| format!("{}: cannot write PNG", common.output.display()))?;
     eprintln!(
         "wrote {} ({}x{}, {} triangles, {} drawn, {} samples shaded, {:.2} ms)",
         common.output.display(),

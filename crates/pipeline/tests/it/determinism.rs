@@ -10,7 +10,11 @@ use crate::support::{object, scene, wavy_grid};
 
 fn test_scene(mode: ShadingMode, interpolation: Interpolation) -> zline_scene::Scene {
     let lights = vec![
-        Light::Point { position: Vec3::new(1.0, 2.0, 0.0), color: Vec3::new(1.0, 0.8, 0.6), attenuation: Attenuation { a0: 1.0, a1: 0.1, a2: 0.05 } },
+        Light::Point {
+            position: Vec3::new(1.0, 2.0, 0.0),
+            color: Vec3::new(1.0, 0.8, 0.6),
+            attenuation: Attenuation { a0: 1.0, a1: 0.1, a2: 0.05 },
+        },
         Light::Directional { direction: Vec3::new(-0.3, -0.2, -1.0), color: Vec3::new(0.2, 0.3, 0.5) },
     ];
     let mut s = scene(173, Vec3::splat(0.1), lights, vec![object(wavy_grid(60, -3.0), Some(mode))]);
@@ -30,7 +34,10 @@ fn tile_size_and_thread_count_do_not_change_a_single_byte() {
                 for threads in [1, 2, 3] {
                     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
                     let image = pool.install(|| render(&s, &RenderOptions { tile_size }).0);
-                    assert!(image == reference, "{mode:?} {interp:?}: tile {tile_size}, {threads} threads differ");
+                    assert!(
+                        image == reference,
+                        "{mode:?} {interp:?}: tile {tile_size}, {threads} threads differ"
+                    );
                 }
             }
         }

@@ -106,8 +106,11 @@ fn overlapping_squares_give_the_same_image_in_either_order() {
     let blue = Material::plastic(Vec3::new(0.1, 0.2, 0.9), 0.3, 16.0);
     let near = square(-0.3, -0.2, 1.0, -2.0, red);
     let far = square(0.4, 0.3, 1.2, -2.5, blue);
-    let light = Light::Point { position: Vec3::new(0.0, 0.0, 1.0), color: Vec3::ONE, attenuation: Attenuation::NONE };
-    let build = |first, second| scene(97, Vec3::splat(0.2), vec![light], vec![object(first, None), object(second, None)]);
+    let light =
+        Light::Point { position: Vec3::new(0.0, 0.0, 1.0), color: Vec3::ONE, attenuation: Attenuation::NONE };
+    let build = |first, second| {
+        scene(97, Vec3::splat(0.2), vec![light], vec![object(first, None), object(second, None)])
+    };
     let a = draw(&build(near.clone(), far.clone()));
     let b = draw(&build(far, near));
     assert_eq!(a, b);
@@ -124,4 +127,3 @@ fn lit_colour_is_within_range_and_background_elsewhere() {
     assert_eq!(image.pixel(16, 16), [204, 204, 204]);
     assert_eq!(image.pixel(0, 0), [0, 0, 0]);
 }
-

@@ -8,7 +8,12 @@ use zline_scene::{Camera, Mesh, Object, Projection, RenderSettings, Scene};
 use zline_shading::{Light, Material, ShadingMode};
 
 /// A mesh from positions and triangles, with the given normals.
-pub(crate) fn mesh(positions: Vec<Vec3>, normals: Vec<Vec3>, triangles: Vec<[u32; 3]>, material: Material) -> Arc<Mesh> {
+pub(crate) fn mesh(
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    material: Material,
+) -> Arc<Mesh> {
     Arc::new(Mesh { name: "test".into(), positions, normals, triangles, material })
 }
 

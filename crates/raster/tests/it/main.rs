@@ -25,6 +25,8 @@
 mod attributes;
 mod coverage;
 mod depth;
+mod exact;
+mod margins;
 mod oracle;
 mod shapes;
 mod tiling;
@@ -35,7 +37,12 @@ use proptest::test_runner::Config;
 /// Random cases per property (see the module doc for the choice).
 const CASES: u32 = 256;
 
-/// The proptest configuration shared by every property.
+/// The proptest configuration shared by every property: [`CASES`] cases,
+/// unless `PROPTEST_CASES` asks for another number (for a deeper local run).
 fn config() -> Config {
-    Config::with_cases(CASES)
+    let mut config = Config::default();
+    if std::env::var_os("PROPTEST_CASES").is_none() {
+        config.cases = CASES;
+    }
+    config
 }

@@ -49,7 +49,8 @@ fn nan_coordinates() {
 #[test]
 fn huge_coordinates_give_a_well_defined_image() {
     let dir = tempfile::tempdir().unwrap();
-    let text = "v -1e30 -1e30 0\nv 1e30 -1e30 0\nv 0 1e30 1e30\nv 0 0 -1e30\nf 1 2 3\nf 1 3 4\nf 2 4 3\nf 1 4 2\n";
+    let text =
+        "v -1e30 -1e30 0\nv 1e30 -1e30 0\nv 0 1e30 1e30\nv 0 0 -1e30\nf 1 2 3\nf 1 3 4\nf 2 4 3\nf 1 4 2\n";
     let model = write(&dir, "huge.obj", text);
     let png = dir.path().join("o.png");
     let img = check_png(&render(&model, &png), &png, (64, 48));

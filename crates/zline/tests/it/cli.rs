@@ -8,7 +8,17 @@ fn demo_renders_and_threads_do_not_change_the_bytes() {
     let one = dir.path().join("one.png");
     let two = dir.path().join("two.png");
     let a = zline(&["demo", "-o", one.to_str().unwrap(), "--size", "320x180", "--threads", "1"]);
-    let b = zline(&["demo", "-o", two.to_str().unwrap(), "--size", "320x180", "--threads", "2", "--tile-size", "13"]);
+    let b = zline(&[
+        "demo",
+        "-o",
+        two.to_str().unwrap(),
+        "--size",
+        "320x180",
+        "--threads",
+        "2",
+        "--tile-size",
+        "13",
+    ]);
     let img = check_png(&a, &one, (320, 180));
     check_png(&b, &two, (320, 180));
     assert_eq!(std::fs::read(&one).unwrap(), std::fs::read(&two).unwrap(), "PNG bytes differ");
