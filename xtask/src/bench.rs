@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use glam::Vec3;
-use zline::pipeline::{render, RenderOptions};
+use zline::pipeline::{Image, RenderOptions, RenderStats, Renderer};
 use zline::scene::{
     load_obj, scene_for_model, uv_sphere, Camera, Projection, RenderSettings, Scene, ShadingMode,
 };
@@ -24,28 +24,35 @@ struct Case {
 pub(crate) fn run(frames: usize, threads: &[usize], assets: &Path, filter: Option<&str>) -> Result<()> {
     let cases: Vec<Case> =
         cases(assets)?.into_iter().filter(|c| filter.is_none_or(|f| c.name.contains(f))).collect();
-    println!("| scene | threads | ms/frame (median of {frames}) | triangles/s | shaded samples/s | samples shaded |");
-    println!("|---|---:|---:|---:|---:|---:|");
+    println!(
+        "| scene | threads | ms/frame (median of {frames}) | geometry ms | binning ms | raster ms | triangles/s | shaded samples/s | samples shaded |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for case in &cases {
         let scene = (case.build)()?;
         for &t in threads {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build().context("thread pool")?;
             let options = RenderOptions::default();
-            let (_, stats) = pool.install(|| render(&scene, &options)); // warm-up
-            let mut times: Vec<f64> = (0..frames.max(1))
+            let mut renderer = Renderer::default();
+            let mut image = Image::empty();
+            pool.install(|| renderer.render_into(&scene, &options, &mut image)); // warm-up
+            let mut runs: Vec<(f64, RenderStats)> = (0..frames.max(1))
                 .map(|_| {
                     let start = Instant::now();
-                    let out = pool.install(|| render(&scene, &options));
-                    std::hint::black_box(out);
-                    start.elapsed().as_secs_f64()
+                    let stats = pool.install(|| renderer.render_into(&scene, &options, &mut image));
+                    (start.elapsed().as_secs_f64(), stats)
                 })
                 .collect();
-            times.sort_by(f64::total_cmp);
-            let median = times[times.len() / 2];
+            runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let (median, stats) = runs[runs.len() / 2];
+            let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
             println!(
-                "| {} | {t} | {:.2} | {:.1} M | {:.0} M | {} |",
+                "| {} | {t} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1} M | {:.0} M | {} |",
                 case.name,
                 median * 1e3,
+                ms(stats.geometry),
+                ms(stats.binning),
+                ms(stats.raster),
                 stats.triangles as f64 / median / 1e6,
                 stats.fragments as f64 / median / 1e6,
                 stats.fragments

@@ -55,10 +55,13 @@ impl TileGrid {
     }
 }
 
-/// Lists, per tile (row-major), the indices of the primitives whose bounds
-/// touch it, in increasing order — the draw order.
-pub fn bin_primitives(prims: &[Primitive], grid: &TileGrid) -> Vec<Vec<u32>> {
-    let mut bins = vec![Vec::new(); grid.len()];
+/// Lists in `bins`, per tile (row-major), the indices of the primitives
+/// whose bounds touch it, in increasing order — the draw order. The inner
+/// vectors keep their capacity from frame to frame.
+pub fn bin_primitives(prims: &[Primitive], grid: &TileGrid, bins: &mut Vec<Vec<u32>>) {
+    bins.resize_with(grid.len(), Vec::new);
+    bins.truncate(grid.len());
+    bins.iter_mut().for_each(Vec::clear);
     let window = grid.window();
     let ts = grid.tile_size as i32;
     for (i, p) in prims.iter().enumerate() {
@@ -72,5 +75,4 @@ pub fn bin_primitives(prims: &[Primitive], grid: &TileGrid) -> Vec<Vec<u32>> {
             }
         }
     }
-    bins
 }

@@ -28,4 +28,4 @@ pub mod tile;
 pub mod vertex;
 
 pub use image::Image;
-pub use render::{render, RenderOptions, RenderStats};
+pub use render::{render, RenderOptions, RenderStats, Renderer};

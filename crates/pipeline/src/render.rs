@@ -1,7 +1,9 @@
 //! One frame, end to end: vertex stage, setup, binning, tiles in parallel.
 
 use rayon::prelude::*;
-use zline_scene::{Interpolation, Scene};
+use std::time::{Duration, Instant};
+
+use zline_scene::{Interpolation, Mesh, Scene};
 use zline_shading::{LightingModel, PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::bin::{bin_primitives, TileGrid};
@@ -9,7 +11,7 @@ use crate::clip::ClipVolume;
 use crate::image::Image;
 use crate::setup::{setup_triangle, Primitive, SetupContext, Viewport};
 use crate::tile::{ShadeContext, TileTarget};
-use crate::vertex::{transform_mesh, ObjectTransforms, VertexLighting};
+use crate::vertex::{transform_mesh, ClipVertex, ObjectTransforms, VertexLighting};
 
 /// Triangles per rayon task in setup.
 const TRIANGLE_CHUNK: usize = 2048;
@@ -27,7 +29,7 @@ impl Default for RenderOptions {
     }
 }
 
-/// Counts from one frame.
+/// Counts and stage times from one frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RenderStats {
     /// Triangles in the scene.
@@ -36,87 +38,129 @@ pub struct RenderStats {
     pub primitives: u64,
     /// Samples that passed the depth test and were shaded.
     pub fragments: u64,
+    /// Time in the vertex stage and triangle setup.
+    pub geometry: Duration,
+    /// Time binning primitives into tiles.
+    pub binning: Duration,
+    /// Time rasterizing and resolving the tiles.
+    pub raster: Duration,
 }
 
-/// Renders `scene` with the current rayon thread pool.
+/// Renders `scene` with the current rayon thread pool into a new image.
+/// [`Renderer::render_into`] reuses buffers across frames.
 pub fn render(scene: &Scene, options: &RenderOptions) -> (Image, RenderStats) {
-    let s = &scene.settings;
-    let (width, height) = (s.width.max(1), s.height.max(1));
-    let eye_from_world = scene.camera.eye_from_world();
-    let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);
-    let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
-    let lighting = PreparedLights::new(&model, &eye_from_world);
-    let materials: Vec<PreparedMaterial> =
-        scene.objects.iter().map(|o| PreparedMaterial::new(o.material().sanitized())).collect();
-    let viewport = Viewport { width, height };
-    let volume = ClipVolume::new(width, height);
+    let mut image = Image::empty();
+    let stats = Renderer::default().render_into(scene, options, &mut image);
+    (image, stats)
+}
 
-    let mut prims: Vec<Primitive> = Vec::new();
-    let mut stats = RenderStats::default();
-    for (index, object) in scene.objects.iter().enumerate() {
-        let mesh = &object.mesh;
-        stats.triangles += mesh.triangles.len() as u64;
-        let shading = object.shading.unwrap_or(s.shading);
-        let material = &materials[index];
-        let transforms = ObjectTransforms::new(clip_from_eye, eye_from_world, object.world_from_object);
-        let vertex_lighting = match shading {
-            ShadingMode::Gouraud => VertexLighting::Gouraud(&lighting, material),
+/// A renderer that keeps its working buffers (transformed vertices,
+/// primitives, bins) from frame to frame, so a steady stream of frames
+/// allocates nothing. The image is the same as [`render`]'s.
+#[derive(Debug, Default)]
+pub struct Renderer {
+    vertices: Vec<ClipVertex>,
+    chunks: Vec<Vec<Primitive>>,
+    prims: Vec<Primitive>,
+    bins: Vec<Vec<u32>>,
+}
+
+impl Renderer {
+    /// Renders `scene` into `image` (resized as needed) with the current
+    /// rayon thread pool.
+    pub fn render_into(&mut self, scene: &Scene, options: &RenderOptions, image: &mut Image) -> RenderStats {
+        let start = Instant::now();
+        let s = &scene.settings;
+        let (width, height) = (s.width.max(1), s.height.max(1));
+        let eye_from_world = scene.camera.eye_from_world();
+        let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);
+        let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
+        let lighting = PreparedLights::new(&model, &eye_from_world);
+        let materials: Vec<PreparedMaterial> =
+            scene.objects.iter().map(|o| PreparedMaterial::new(o.material().sanitized())).collect();
+        let mut stats = RenderStats::default();
+        self.prims.clear();
+        for (index, object) in scene.objects.iter().enumerate() {
+            stats.triangles += object.mesh.triangles.len() as u64;
+            let ctx = SetupContext {
+                viewport: Viewport { width, height },
+                volume: ClipVolume::new(width, height),
+                shading: object.shading.unwrap_or(s.shading),
+                perspective: s.interpolation == Interpolation::PerspectiveCorrect,
+                cull_back_faces: object.cull_back_faces,
+                material: (&materials[index], index as u32),
+                lighting: &lighting,
+            };
+            let transforms = ObjectTransforms::new(clip_from_eye, eye_from_world, object.world_from_object);
+            self.setup_object(&object.mesh, &transforms, &ctx);
+        }
+        stats.primitives = self.prims.len() as u64;
+        stats.geometry = start.elapsed();
+
+        let start = Instant::now();
+        let grid = TileGrid::new(width, height, options.tile_size);
+        bin_primitives(&self.prims, &grid, &mut self.bins);
+        stats.binning = start.elapsed();
+
+        let start = Instant::now();
+        let shade = ShadeContext { lighting: &lighting, materials: &materials };
+        image.width = width;
+        image.height = height;
+        image.rgba.resize(width as usize * height as usize * 4, 0);
+        let band_len = width as usize * grid.tile_size as usize * 4;
+        let (prims, bins) = (&self.prims, &self.bins);
+        stats.fragments = image
+            .rgba
+            .par_chunks_mut(band_len)
+            .enumerate()
+            .map(|(row, band)| {
+                let mut target = TileTarget::default();
+                let mut shaded = 0;
+                for col in 0..grid.cols {
+                    target.clear(grid.rect(col, row as u32), scene.background);
+                    shaded +=
+                        target.opaque_pass(prims, &bins[row * grid.cols as usize + col as usize], &shade);
+                    target.resolve(band, width as usize);
+                }
+                shaded
+            })
+            .sum();
+        stats.raster = start.elapsed();
+        stats
+    }
+
+    /// The vertex stage and setup of one object, appending its primitives
+    /// in mesh order.
+    fn setup_object(&mut self, mesh: &Mesh, transforms: &ObjectTransforms, ctx: &SetupContext<'_>) {
+        let lighting = match ctx.shading {
+            ShadingMode::Gouraud => VertexLighting::Gouraud(ctx.lighting, ctx.material.0),
             _ => VertexLighting::None,
         };
-        let vertices = transform_mesh(mesh, &transforms, vertex_lighting);
-        let ctx = SetupContext {
-            viewport,
-            volume,
-            shading,
-            perspective: s.interpolation == Interpolation::PerspectiveCorrect,
-            cull_back_faces: object.cull_back_faces,
-            material: (material, index as u32),
-            lighting: &lighting,
-        };
-        let chunks: Vec<Vec<Primitive>> = mesh
-            .triangles
-            .par_chunks(TRIANGLE_CHUNK)
-            .map(|chunk| {
-                let mut out = Vec::with_capacity(chunk.len());
-                for t in chunk {
-                    let Some(tri) = gather(&vertices, t) else { continue };
-                    setup_triangle(tri, &ctx, &mut out);
+        transform_mesh(mesh, transforms, lighting, &mut self.vertices);
+        let vertices = &self.vertices;
+        let n = mesh.triangles.len().div_ceil(TRIANGLE_CHUNK);
+        if self.chunks.len() < n {
+            self.chunks.resize_with(n, Vec::new);
+        }
+        self.chunks[..n].par_iter_mut().zip(mesh.triangles.par_chunks(TRIANGLE_CHUNK)).for_each(
+            |(out, tris)| {
+                out.clear();
+                for t in tris {
+                    if let Some(tri) = gather(vertices, t) {
+                        setup_triangle(tri, ctx, out);
+                    }
                 }
-                out
-            })
-            .collect();
-        for c in chunks {
-            prims.extend(c);
+            },
+        );
+        for c in &self.chunks[..n] {
+            self.prims.extend_from_slice(c);
         }
     }
-    stats.primitives = prims.len() as u64;
-
-    let grid = TileGrid::new(width, height, options.tile_size);
-    let bins = bin_primitives(&prims, &grid);
-    let shade = ShadeContext { lighting: &lighting, materials: &materials };
-    let mut rgb = vec![0u8; width as usize * height as usize * 3];
-    let band_len = width as usize * grid.tile_size as usize * 3;
-    stats.fragments = rgb
-        .par_chunks_mut(band_len)
-        .enumerate()
-        .map(|(row, band)| {
-            let mut target = TileTarget::default();
-            let mut shaded = 0;
-            for col in 0..grid.cols {
-                target.clear(grid.rect(col, row as u32), scene.background);
-                let bin = &bins[row * grid.cols as usize + col as usize];
-                shaded += target.opaque_pass(&prims, bin, &shade);
-                target.resolve(band, width as usize);
-            }
-            shaded
-        })
-        .sum();
-    (Image { width, height, rgb }, stats)
 }
 
 /// The three vertices of a triangle; `None` when an index is out of range
 /// (meshes are validated on load, but a hand-built one may not be).
 #[inline]
-fn gather(vertices: &[crate::vertex::ClipVertex], t: &[u32; 3]) -> Option<[crate::vertex::ClipVertex; 3]> {
+fn gather(vertices: &[ClipVertex], t: &[u32; 3]) -> Option<[ClipVertex; 3]> {
     Some([*vertices.get(t[0] as usize)?, *vertices.get(t[1] as usize)?, *vertices.get(t[2] as usize)?])
 }

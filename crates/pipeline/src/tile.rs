@@ -7,8 +7,9 @@
 //! test comes before any shading (STYLE habit 5).
 
 use glam::{Vec3, Vec4};
+use wide::f32x8;
 use zline_raster::{for_each_sample, AttributePlanes, DepthPlane, Rect, Span};
-use zline_shading::{PreparedLights, PreparedMaterial};
+use zline_shading::{PreparedLights, PreparedMaterial, Vec3x8};
 
 use crate::image::quantize_rgba;
 use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader};
@@ -73,17 +74,17 @@ impl TileTarget {
         shaded
     }
 
-    /// Quantizes the colour buffer into `band`, the image rows that hold
-    /// this tile (`band` starts at the tile's first row; `width` is the
-    /// image width).
+    /// Quantizes the colour buffer into `band`, the RGBA image rows that
+    /// hold this tile (`band` starts at the tile's first row; `width` is the
+    /// image width in pixels).
     pub fn resolve(&self, band: &mut [u8], width: usize) {
         if self.stride == 0 {
             return;
         }
         for (row, colors) in self.color.chunks_exact(self.stride).enumerate() {
-            let start = (row * width + self.rect.x0 as usize) * 3;
-            for (out, c) in band[start..start + colors.len() * 3].chunks_exact_mut(3).zip(colors) {
-                out.copy_from_slice(&quantize_rgba(*c)[..3]);
+            let start = (row * width + self.rect.x0 as usize) * 4;
+            for (out, c) in band[start..start + colors.len() * 4].chunks_exact_mut(4).zip(colors) {
+                out.copy_from_slice(&quantize_rgba(*c));
             }
         }
     }
@@ -100,13 +101,17 @@ impl TileTarget {
                 p.edges.scan(clip, |s| n += self.gouraud_span::<false>(&p.depth, &planes, s))
             }
             (Shader::Phong { planes, material }, persp) => {
-                let m = &ctx.materials[material as usize];
+                let (m, l) = (&ctx.materials[material as usize], ctx.lighting);
+                let mut batch = PhongBatch::default();
                 if persp {
                     p.edges
-                        .scan(clip, |s| n += self.phong_span::<true>(&p.depth, &planes, s, m, ctx.lighting))
+                        .scan(clip, |s| n += self.phong_span::<true>(&p.depth, &planes, s, &mut batch, m, l));
+                    batch.flush::<true>(&mut self.color, m, l);
                 } else {
-                    p.edges
-                        .scan(clip, |s| n += self.phong_span::<false>(&p.depth, &planes, s, m, ctx.lighting))
+                    p.edges.scan(clip, |s| {
+                        n += self.phong_span::<false>(&p.depth, &planes, s, &mut batch, m, l)
+                    });
+                    batch.flush::<false>(&mut self.color, m, l);
                 }
             }
         }
@@ -157,19 +162,86 @@ impl TileTarget {
         })
     }
 
+    /// Depth-tests a Phong span and queues the passing samples; shading
+    /// happens eight at a time in [`PhongBatch::flush`].
     fn phong_span<const PERSPECTIVE: bool>(
         &mut self,
         depth: &DepthPlane,
         planes: &PhongPlanes,
         span: Span,
+        batch: &mut PhongBatch,
         material: &PreparedMaterial,
         lighting: &PreparedLights,
     ) -> u64 {
-        self.span(depth, planes, span, |a| {
-            let w = if PERSPECTIVE { 1.0 / a[0] } else { 1.0 };
-            let normal = (Vec3::new(a[1], a[2], a[3]) * w).normalize_or_zero();
-            let eye = Vec3::new(a[4], a[5], a[6]) * w;
-            lighting.shade(material, eye, normal, Vec3::ZERO)
-        })
+        let row = self.index(span.x0, span.y) as isize - span.x0 as isize;
+        let (zbuf, cbuf) = (&mut self.depth, &mut self.color);
+        let mut n = 0;
+        for_each_sample(depth, planes, span, |x, z, a| {
+            let i = (row + x as isize) as usize;
+            if z < zbuf[i] {
+                zbuf[i] = z;
+                n += 1;
+                if batch.push(i, a) {
+                    batch.flush::<PERSPECTIVE>(cbuf, material, lighting);
+                }
+            }
+        });
+        n
+    }
+}
+
+/// Samples per Phong batch: one `f32x8`.
+const LANES: usize = 8;
+
+/// Up to eight depth-tested Phong samples waiting to be shaded together,
+/// stored attribute by attribute (SoA).
+#[derive(Default)]
+struct PhongBatch {
+    index: [usize; LANES],
+    attrs: [[f32; LANES]; 7],
+    len: usize,
+}
+
+impl PhongBatch {
+    /// Queues a sample; true when the batch is full.
+    #[inline(always)]
+    fn push(&mut self, index: usize, a: &[f32; 7]) -> bool {
+        let k = self.len;
+        self.index[k] = index;
+        for (plane, &v) in self.attrs.iter_mut().zip(a) {
+            plane[k] = v;
+        }
+        self.len += 1;
+        self.len == LANES
+    }
+
+    /// Shades the queued samples (SPEC §6 Phong: the normal re-normalized
+    /// per sample) and writes their colours. Unused lanes repeat lane 0 and
+    /// are not written. Each lane does the scalar path's arithmetic, so a
+    /// colour does not depend on how samples were batched.
+    #[inline(never)]
+    fn flush<const PERSPECTIVE: bool>(
+        &mut self,
+        cbuf: &mut [Vec4],
+        material: &PreparedMaterial,
+        lighting: &PreparedLights,
+    ) {
+        let len = std::mem::take(&mut self.len);
+        if len == 0 {
+            return;
+        }
+        for plane in &mut self.attrs {
+            let first = plane[0];
+            plane[len..].fill(first);
+        }
+        let a = self.attrs.map(f32x8::from);
+        let w = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
+        let normal = Vec3x8 { x: a[1] * w, y: a[2] * w, z: a[3] * w }.normalize_or_zero();
+        let eye = Vec3x8 { x: a[4] * w, y: a[5] * w, z: a[6] * w };
+        let c = lighting.shade_x8(material, eye, normal);
+        let (r, g, b) = (c.x.to_array(), c.y.to_array(), c.z.to_array());
+        for k in 0..len {
+            cbuf[self.index[k]] = Vec4::new(r[k], g[k], b[k], 1.0);
+        }
     }
 }

@@ -73,10 +73,15 @@ pub enum VertexLighting<'a> {
     Gouraud(&'a PreparedLights, &'a PreparedMaterial),
 }
 
-/// Transforms every vertex of `mesh`, in parallel; the result is in vertex
-/// order whatever the thread count.
-pub fn transform_mesh(mesh: &Mesh, t: &ObjectTransforms, lighting: VertexLighting<'_>) -> Vec<ClipVertex> {
-    let mut out = vec![ClipVertex::default(); mesh.positions.len()];
+/// Transforms every vertex of `mesh` into `out` (resized), in parallel; the
+/// result is in vertex order whatever the thread count.
+pub fn transform_mesh(
+    mesh: &Mesh,
+    t: &ObjectTransforms,
+    lighting: VertexLighting<'_>,
+    out: &mut Vec<ClipVertex>,
+) {
+    out.resize(mesh.positions.len(), ClipVertex::default());
     out.par_chunks_mut(VERTEX_CHUNK).enumerate().for_each(|(chunk, out)| {
         let start = chunk * VERTEX_CHUNK;
         let positions = &mesh.positions[start..start + out.len()];
@@ -85,7 +90,6 @@ pub fn transform_mesh(mesh: &Mesh, t: &ObjectTransforms, lighting: VertexLightin
             *v = transform_vertex(p, n, t, lighting);
         }
     });
-    out
 }
 
 #[inline]

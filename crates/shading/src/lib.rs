@@ -9,11 +9,13 @@ mod light;
 mod material;
 mod model;
 mod prepared;
+mod simd;
 
 pub use light::{Attenuation, Light};
 pub use material::Material;
 pub use model::{LightingModel, LitParts};
 pub use prepared::{PreparedLights, PreparedMaterial, Shininess, SPECULAR_CUTOFF};
+pub use simd::Vec3x8;
 
 /// How a triangle's colour is spread over its samples (SPEC §6).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]

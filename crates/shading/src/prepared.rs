@@ -180,6 +180,21 @@ impl PreparedLights {
         LitParts { ambient_diffuse: mat.ka * self.ambient + mat.kd * diffuse, specular: mat.ks * specular }
     }
 
+    /// Ambient light Ia.
+    pub(crate) fn ambient(&self) -> Vec3 {
+        self.ambient
+    }
+
+    /// (unit vector towards the light, colour) of each directional light.
+    pub(crate) fn directional_lights(&self) -> impl Iterator<Item = (Vec3, Vec3)> + '_ {
+        self.directional.iter().map(|d| (d.to_light, d.color))
+    }
+
+    /// (position, colour, attenuation unless 1) of each point light.
+    pub(crate) fn point_lights(&self) -> impl Iterator<Item = (Vec3, Vec3, Option<Attenuation>)> + '_ {
+        self.point.iter().map(|p| (p.position, p.color, p.attenuation))
+    }
+
     /// [`Self::shade_parts`], summed and clamped to [0, 1].
     #[inline]
     pub fn shade(&self, m: &PreparedMaterial, point: Vec3, normal: Vec3, eye: Vec3) -> Vec3 {

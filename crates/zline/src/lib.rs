@@ -20,5 +20,5 @@ pub use zline_shading as shading;
 
 /// Writes an image as an 8-bit RGB PNG.
 pub fn save_png(image: &pipeline::Image, path: &Path) -> Result<(), image::ImageError> {
-    image::save_buffer(path, &image.rgb, image.width, image.height, image::ExtendedColorType::Rgb8)
+    image::save_buffer(path, &image.to_rgb(), image.width, image.height, image::ExtendedColorType::Rgb8)
 }

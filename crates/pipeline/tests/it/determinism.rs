@@ -29,7 +29,7 @@ fn tile_size_and_thread_count_do_not_change_a_single_byte() {
         for interp in [Interpolation::PerspectiveCorrect, Interpolation::ScreenLinear] {
             let s = test_scene(mode, interp);
             let reference = render(&s, &RenderOptions { tile_size: 64 }).0;
-            assert!(reference.rgb.iter().any(|&c| c > 40), "{mode:?}: nothing drawn");
+            assert!(reference.to_rgb().iter().any(|&c| c > 40), "{mode:?}: nothing drawn");
             for tile_size in [1, 7, 16, 33, 1000] {
                 for threads in [1, 2, 3] {
                     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
