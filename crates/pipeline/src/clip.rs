@@ -79,6 +79,7 @@ pub fn clip_polygon(
     out: &mut [ClipVertex; MAX_CLIPPED],
 ) -> usize {
     let mut a = [ClipVertex::default(); MAX_CLIPPED];
+    let code = code & !crate::vertex::NEEDS_SETUP;
     a[..3].copy_from_slice(&tri);
     let mut n = 3;
     for plane in 0..6 {
@@ -115,7 +116,7 @@ mod tests {
     use glam::Vec3;
 
     fn v(x: f32, y: f32, z: f32, w: f32) -> ClipVertex {
-        ClipVertex { clip: Vec4::new(x, y, z, w), eye: Vec3::ZERO, normal: Vec3::Z, color: Vec3::ZERO }
+        ClipVertex { clip: Vec4::new(x, y, z, w), normal: Vec3::Z, ..ClipVertex::default() }
     }
 
     #[test]

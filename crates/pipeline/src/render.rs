@@ -11,7 +11,7 @@ use crate::clip::ClipVolume;
 use crate::image::Image;
 use crate::setup::{setup_triangle, Primitive, SetupContext, Viewport};
 use crate::tile::{ShadeContext, TileTarget};
-use crate::vertex::{transform_mesh, ClipVertex, ObjectTransforms, VertexLighting};
+use crate::vertex::{transform_mesh, ClipVertex, ObjectTransforms, Screen, VertexLighting};
 
 /// Triangles per rayon task in setup.
 const TRIANGLE_CHUNK: usize = 2048;
@@ -136,7 +136,8 @@ impl Renderer {
             ShadingMode::Gouraud => VertexLighting::Gouraud(ctx.lighting, ctx.material.0),
             _ => VertexLighting::None,
         };
-        transform_mesh(mesh, transforms, lighting, &mut self.vertices);
+        let screen = Screen { viewport: ctx.viewport, volume: ctx.volume };
+        transform_mesh(mesh, transforms, lighting, &screen, &mut self.vertices);
         let vertices = &self.vertices;
         let n = mesh.triangles.len().div_ceil(TRIANGLE_CHUNK);
         if self.chunks.len() < n {
@@ -161,6 +162,6 @@ impl Renderer {
 /// The three vertices of a triangle; `None` when an index is out of range
 /// (meshes are validated on load, but a hand-built one may not be).
 #[inline]
-fn gather(vertices: &[ClipVertex], t: &[u32; 3]) -> Option<[ClipVertex; 3]> {
-    Some([*vertices.get(t[0] as usize)?, *vertices.get(t[1] as usize)?, *vertices.get(t[2] as usize)?])
+fn gather<'a>(vertices: &'a [ClipVertex], t: &[u32; 3]) -> Option<[&'a ClipVertex; 3]> {
+    Some([vertices.get(t[0] as usize)?, vertices.get(t[1] as usize)?, vertices.get(t[2] as usize)?])
 }

@@ -13,7 +13,7 @@ use glam::Vec3;
 use zline_raster::{AttributePlanes, DepthPlane, EdgeTable, FixedPoint, PlaneBasis};
 use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode};
 
-use crate::clip::{clip_polygon, view_code, ClipVolume, MAX_CLIPPED};
+use crate::clip::{clip_polygon, ClipVolume, MAX_CLIPPED};
 use crate::vertex::ClipVertex;
 
 /// Attributes of a Gouraud primitive: [1/w, r, g, b] (each over w when
@@ -87,33 +87,65 @@ pub struct SetupContext<'a> {
 
 /// Sets up one triangle (vertices in the mesh's order) and appends 0 or more
 /// primitives to `out` (more than one only when clipping made a polygon).
-pub fn setup_triangle(tri: [ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut Vec<Primitive>) {
-    if !tri.iter().all(|v| v.clip.is_finite()) {
-        return;
-    }
-    if tri.iter().fold(u8::MAX, |c, v| c & view_code(v.clip)) != 0 {
-        return; // entirely outside one plane of the view volume
+pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut Vec<Primitive>) {
+    if tri[0].view_code & tri[1].view_code & tri[2].view_code != 0 {
+        return; // entirely outside one plane of the view volume (NaN vertices included)
     }
     let flat = match ctx.shading {
         ShadingMode::Flat => flat_color(&tri, ctx),
         _ => Vec3::ZERO,
     };
-    let code = tri.iter().fold(0, |c, v| c | ctx.volume.clip_code(v.clip));
+    let code = tri[0].clip_code | tri[1].clip_code | tri[2].clip_code;
     if code == 0 {
-        emit(&tri, flat, ctx, out);
+        // The common case: projected once per vertex by the vertex stage.
+        emit(tri, [tri[0].projected, tri[1].projected, tri[2].projected], flat, ctx, out);
+        return;
+    }
+    if !tri.iter().all(|v| v.clip.is_finite()) {
         return;
     }
     let mut poly = [ClipVertex::default(); MAX_CLIPPED];
-    let n = clip_polygon(&ctx.volume, tri, code, &mut poly);
+    let n = clip_polygon(&ctx.volume, tri.map(|v| *v), code, &mut poly);
     for i in 1..n.saturating_sub(1) {
-        emit(&[poly[0], poly[i], poly[i + 1]], flat, ctx, out);
+        let t = [&poly[0], &poly[i], &poly[i + 1]];
+        let p = t.map(|v| Projected::new(v.clip, ctx.viewport));
+        if let [Some(a), Some(b), Some(c)] = p {
+            emit(t, [a, b, c], flat, ctx, out);
+        }
+    }
+}
+
+/// A vertex after the divide and the window mapping (SPEC §1).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Projected {
+    /// Window position snapped to the 1/256 grid.
+    pub fixed: FixedPoint,
+    /// NC depth z/w.
+    pub z: f64,
+    /// 1/w.
+    pub inv_w: f32,
+}
+
+impl Projected {
+    /// Divides by w and maps to the window. `None` when w ≤ 0 or NaN (never
+    /// divided) or the position cannot be snapped.
+    #[inline]
+    pub fn new(clip: glam::Vec4, viewport: Viewport) -> Option<Projected> {
+        let cw = f64::from(clip.w);
+        if cw.is_nan() || cw <= 0.0 {
+            return None;
+        }
+        let (w, h) = (f64::from(viewport.width), f64::from(viewport.height));
+        let (x, y) = (f64::from(clip.x) / cw, f64::from(clip.y) / cw);
+        let fixed = FixedPoint::snap(((x + 1.0) * 0.5 * w) as f32, ((1.0 - y) * 0.5 * h) as f32)?;
+        Some(Projected { fixed, z: f64::from(clip.z) / cw, inv_w: (1.0 / cw) as f32 })
     }
 }
 
 /// SPEC §6 flat shading: the lighting model at the centroid of the original
 /// triangle with its face normal (computed in f64 so huge coordinates do not
 /// overflow).
-fn flat_color(tri: &[ClipVertex; 3], ctx: &SetupContext<'_>) -> Vec3 {
+fn flat_color(tri: &[&ClipVertex; 3], ctx: &SetupContext<'_>) -> Vec3 {
     let p = tri.map(|v| v.eye.as_dvec3());
     let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero().as_vec3();
     let centroid = ((p[0] + p[1] + p[2]) / 3.0).as_vec3();
@@ -122,32 +154,22 @@ fn flat_color(tri: &[ClipVertex; 3], ctx: &SetupContext<'_>) -> Vec3 {
 
 /// Projects, snaps, culls and builds the planes of one clipped triangle.
 #[inline]
-fn emit(tri: &[ClipVertex; 3], flat: Vec3, ctx: &SetupContext<'_>, out: &mut Vec<Primitive>) {
-    let (w, h) = (f64::from(ctx.viewport.width), f64::from(ctx.viewport.height));
-    let mut fixed = [FixedPoint { x: 0, y: 0 }; 3];
-    let mut z = [0.0f64; 3];
-    let mut inv_w = [0.0f32; 3];
-    for (k, v) in tri.iter().enumerate() {
-        let cw = f64::from(v.clip.w);
-        if cw.is_nan() || cw <= 0.0 {
-            return; // never divide by w ≤ 0 (clipping makes this unreachable for sane matrices)
-        }
-        let (x, y) = (f64::from(v.clip.x) / cw, f64::from(v.clip.y) / cw);
-        let Some(p) = FixedPoint::snap(((x + 1.0) * 0.5 * w) as f32, ((1.0 - y) * 0.5 * h) as f32) else {
-            return;
-        };
-        fixed[k] = p;
-        z[k] = f64::from(v.clip.z) / cw;
-        inv_w[k] = (1.0 / cw) as f32;
-    }
+fn emit(
+    tri: [&ClipVertex; 3],
+    p: [Projected; 3],
+    flat: Vec3,
+    ctx: &SetupContext<'_>,
+    out: &mut Vec<Primitive>,
+) {
+    let fixed = p.map(|v| v.fixed);
     if ctx.cull_back_faces && !is_front_facing(&fixed) {
         return;
     }
     let (Some(edges), Some(basis)) = (EdgeTable::new(fixed), PlaneBasis::new(fixed)) else {
         return;
     };
-    let depth = DepthPlane::new(&basis, z);
-    let q = if ctx.perspective { inv_w } else { [1.0; 3] };
+    let depth = DepthPlane::new(&basis, p.map(|v| v.z));
+    let q = if ctx.perspective { p.map(|v| v.inv_w) } else { [1.0; 3] };
     let shader = match ctx.shading {
         ShadingMode::Flat => Shader::Flat { color: flat },
         ShadingMode::Gouraud => {

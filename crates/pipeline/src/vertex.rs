@@ -8,13 +8,18 @@
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 use zline_scene::Mesh;
+
+use crate::clip::{view_code, ClipVolume};
+use crate::setup::{Projected, Viewport};
 use zline_shading::{PreparedLights, PreparedMaterial};
 
 /// Vertices per rayon task: big enough that scheduling costs nothing.
 const VERTEX_CHUNK: usize = 4096;
 
 /// One transformed vertex. `color` is the lit colour for Gouraud objects and
-/// zero otherwise.
+/// zero otherwise. The vertex stage also classifies it against the view
+/// volume and the clipping planes and, when it needs no clipping, divides
+/// and snaps it once here instead of once per triangle that uses it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ClipVertex {
     /// Clip-space position.
@@ -25,7 +30,18 @@ pub struct ClipVertex {
     pub normal: Vec3,
     /// Lit colour (Gouraud only), clamped to [0, 1].
     pub color: Vec3,
+    /// Window position, NC depth and 1/w; meaningful when `clip_code` is 0.
+    pub projected: Projected,
+    /// Outcode against the view volume (see [`view_code`]).
+    pub view_code: u8,
+    /// Outcode against the clipping planes ([`ClipVolume::clip_code`]),
+    /// with [`NEEDS_SETUP`] when the vertex must be projected in setup.
+    pub clip_code: u8,
 }
+
+/// A `clip_code` bit meaning "not projected by the vertex stage" (set on
+/// vertices made by clipping).
+pub const NEEDS_SETUP: u8 = 1 << 7;
 
 impl ClipVertex {
     /// Linear interpolation of every field: a + t·(b − a) (SPEC §2: new
@@ -37,6 +53,9 @@ impl ClipVertex {
             eye: self.eye.lerp(other.eye, t),
             normal: self.normal.lerp(other.normal, t),
             color: self.color.lerp(other.color, t),
+            projected: Projected::default(),
+            view_code: 0,
+            clip_code: NEEDS_SETUP,
         }
     }
 }
@@ -64,6 +83,15 @@ impl ObjectTransforms {
     }
 }
 
+/// Where the vertex stage puts vertices on the screen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Screen {
+    /// The window.
+    pub viewport: Viewport,
+    /// The clipping planes.
+    pub volume: ClipVolume,
+}
+
 /// What the vertex stage computes besides positions.
 #[derive(Clone, Copy, Debug)]
 pub enum VertexLighting<'a> {
@@ -79,6 +107,7 @@ pub fn transform_mesh(
     mesh: &Mesh,
     t: &ObjectTransforms,
     lighting: VertexLighting<'_>,
+    screen: &Screen,
     out: &mut Vec<ClipVertex>,
 ) {
     out.resize(mesh.positions.len(), ClipVertex::default());
@@ -87,18 +116,38 @@ pub fn transform_mesh(
         let positions = &mesh.positions[start..start + out.len()];
         let normals = &mesh.normals[start..start + out.len()];
         for ((v, &p), &n) in out.iter_mut().zip(positions).zip(normals) {
-            *v = transform_vertex(p, n, t, lighting);
+            *v = transform_vertex(p, n, t, lighting, screen);
         }
     });
 }
 
 #[inline]
-fn transform_vertex(p: Vec3, n: Vec3, t: &ObjectTransforms, lighting: VertexLighting<'_>) -> ClipVertex {
+fn transform_vertex(
+    p: Vec3,
+    n: Vec3,
+    t: &ObjectTransforms,
+    lighting: VertexLighting<'_>,
+    s: &Screen,
+) -> ClipVertex {
     let eye = t.eye_from_object.transform_point3(p);
     let normal = (t.normal_eye_from_object * n).normalize_or_zero();
     let color = match lighting {
         VertexLighting::None => Vec3::ZERO,
         VertexLighting::Gouraud(model, material) => model.shade(material, eye, normal, Vec3::ZERO),
     };
-    ClipVertex { clip: t.clip_from_object * p.extend(1.0), eye, normal, color }
+    let clip = t.clip_from_object * p.extend(1.0);
+    let mut clip_code = s.volume.clip_code(clip);
+    let projected = if clip_code == 0 { Projected::new(clip, s.viewport) } else { None };
+    if projected.is_none() {
+        clip_code |= NEEDS_SETUP;
+    }
+    ClipVertex {
+        clip,
+        eye,
+        normal,
+        color,
+        projected: projected.unwrap_or_default(),
+        view_code: view_code(clip),
+        clip_code,
+    }
 }

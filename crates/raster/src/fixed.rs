@@ -19,7 +19,7 @@ pub const SUBPIXEL_HALF: i64 = SUBPIXEL_ONE / 2;
 pub const MAX_WINDOW_COORD: f32 = (1 << 21) as f32;
 
 /// A point in window space on the 1/256-pixel grid (y down, row 0 on top).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct FixedPoint {
     /// x in 1/256 pixels.
     pub x: i32,
