@@ -1,35 +1,42 @@
 //! The output image: 8-bit RGB, top row first (SPEC §10).
 
 use glam::Vec4;
+use wide::{f32x4, CmpEq};
 
-/// An 8-bit image, rows top to bottom, stored RGBA (4 bytes per pixel,
-/// alpha always 255) so the resolve step writes whole words; the PNG writer
-/// drops alpha.
+/// An 8-bit image, rows top to bottom, one packed RGBA word per pixel
+/// (bytes R, G, B, A in memory order via `u32::to_le_bytes`; alpha always
+/// 255), so the resolve step writes whole words; the PNG writer drops alpha.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Image {
     /// Width in pixels.
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// Pixel data, `width · height · 4` bytes.
-    pub rgba: Vec<u8>,
+    /// Pixels, `width · height` words.
+    pub pixels: Vec<u32>,
 }
 
 impl Image {
     /// An image with no pixels, to be filled by a renderer.
     pub fn empty() -> Image {
-        Image { width: 0, height: 0, rgba: Vec::new() }
+        Image { width: 0, height: 0, pixels: Vec::new() }
     }
 
     /// The colour of pixel (x, y) as RGB bytes.
     pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
-        let i = (y as usize * self.width as usize + x as usize) * 4;
-        [self.rgba[i], self.rgba[i + 1], self.rgba[i + 2]]
+        let [r, g, b, _] = self.pixels[y as usize * self.width as usize + x as usize].to_le_bytes();
+        [r, g, b]
     }
 
     /// The pixels as packed RGB bytes (3 per pixel), for encoders.
     pub fn to_rgb(&self) -> Vec<u8> {
-        self.rgba.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect()
+        self.pixels
+            .iter()
+            .flat_map(|p| {
+                let [r, g, b, _] = p.to_le_bytes();
+                [r, g, b]
+            })
+            .collect()
     }
 }
 
@@ -51,12 +58,16 @@ pub fn quantize(c: f32) -> u8 {
 
 /// [`quantize`] for four channels at once: c·255 + 0.5 lies in
 /// [0.5, 255.5] after the clamp, where truncation (one SIMD conversion) is
-/// the floor. Same bytes as [`quantize`] per lane.
+/// the floor. Same bytes as [`quantize`] per lane, packed as in [`Image`].
 #[inline]
-pub fn quantize_rgba(c: Vec4) -> [u8; 4] {
-    // Vec4::max/min return the second operand for NaN lanes: NaN becomes 0.
-    let v = (c.max(Vec4::ZERO).min(Vec4::ONE) * 255.0 + 0.5).as_ivec4();
-    v.to_array().map(|x| x as u8)
+pub fn quantize_rgba(c: Vec4) -> u32 {
+    // glam's `as_ivec4` converts lane by lane with Rust's saturating casts;
+    // wide's truncation is one instruction, valid here because the clamp has
+    // removed NaN and put every lane in [0.5, 255.5].
+    let v = f32x4::from(c.to_array());
+    let v = v.cmp_eq(v).blend(v, f32x4::ZERO);
+    let v = v.fast_max(f32x4::ZERO).fast_min(f32x4::ONE) * f32x4::splat(255.0) + f32x4::splat(0.5);
+    u32::from_le_bytes(v.fast_trunc_int().to_array().map(|x| x as u8))
 }
 
 #[cfg(test)]
@@ -71,13 +82,17 @@ mod tests {
         assert_eq!(quantize(-3.0), 0);
         assert_eq!(quantize(7.0), 255);
         assert_eq!(quantize(f32::NAN), 0);
-        assert_eq!(quantize_rgba(Vec4::new(f32::NAN, -1.0, 2.0, f32::INFINITY)), [0, 0, 255, 255]);
+        assert_eq!(
+            quantize_rgba(Vec4::new(f32::NAN, -1.0, 2.0, f32::INFINITY)).to_le_bytes(),
+            [0, 0, 255, 255]
+        );
         assert_eq!(quantize(1.0 / 255.0 * 0.49), 0);
         for k in 0..=255u8 {
             let c = f32::from(k) / 255.0;
             assert_eq!(quantize(c), k);
             assert_eq!(quantize(c + 0.49 / 255.0), k);
-            assert_eq!(quantize_rgba(Vec4::new(c, c + 0.49 / 255.0, c - 0.49 / 255.0, 1.0)), [k, k, k, 255]);
+            let q = quantize_rgba(Vec4::new(c, c + 0.49 / 255.0, c - 0.49 / 255.0, 1.0));
+            assert_eq!(q.to_le_bytes(), [k, k, k, 255]);
         }
     }
 }

@@ -3,12 +3,13 @@
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
+use zline_raster::Rect;
 use zline_scene::{Interpolation, Mesh, Scene};
 use zline_shading::{LightingModel, PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::bin::{bin_primitives, TileGrid};
 use crate::clip::ClipVolume;
-use crate::image::Image;
+use crate::image::{quantize_rgba, Image};
 use crate::setup::{setup_triangle, Primitive, SetupContext, Viewport};
 use crate::tile::{ShadeContext, TileTarget};
 use crate::vertex::{transform_mesh, ClipVertex, ObjectTransforms, Screen, VertexLighting};
@@ -106,20 +107,27 @@ impl Renderer {
         let shade = ShadeContext { lighting: &lighting, materials: &materials };
         image.width = width;
         image.height = height;
-        image.rgba.resize(width as usize * height as usize * 4, 0);
-        let band_len = width as usize * grid.tile_size as usize * 4;
+        image.pixels.resize(width as usize * height as usize, 0);
+        let band_len = width as usize * grid.tile_size as usize;
         let (prims, bins) = (&self.prims, &self.bins);
+        let background = quantize_rgba(scene.background.extend(1.0));
         stats.fragments = image
-            .rgba
+            .pixels
             .par_chunks_mut(band_len)
             .enumerate()
             .map(|(row, band)| {
                 let mut target = TileTarget::default();
                 let mut shaded = 0;
                 for col in 0..grid.cols {
-                    target.clear(grid.rect(col, row as u32), scene.background);
-                    shaded +=
-                        target.opaque_pass(prims, &bins[row * grid.cols as usize + col as usize], &shade);
+                    let (rect, bin) =
+                        (grid.rect(col, row as u32), &bins[row * grid.cols as usize + col as usize]);
+                    if bin.is_empty() {
+                        // Nothing to draw: the background's bytes, without the buffers.
+                        fill_rect(band, width as usize, rect, background);
+                        continue;
+                    }
+                    target.clear(rect, scene.background);
+                    shaded += target.opaque_pass(prims, bin, &shade);
                     target.resolve(band, width as usize);
                 }
                 shaded
@@ -156,6 +164,15 @@ impl Renderer {
         for c in &self.chunks[..n] {
             self.prims.extend_from_slice(c);
         }
+    }
+}
+
+/// Fills a tile's pixels in `band` (the image rows from the tile's first
+/// row) with one packed colour.
+fn fill_rect(band: &mut [u32], width: usize, rect: Rect, color: u32) {
+    for row in 0..rect.height() as usize {
+        let start = row * width + rect.x0 as usize;
+        band[start..start + rect.width() as usize].fill(color);
     }
 }
 

@@ -77,14 +77,14 @@ impl TileTarget {
     /// Quantizes the colour buffer into `band`, the RGBA image rows that
     /// hold this tile (`band` starts at the tile's first row; `width` is the
     /// image width in pixels).
-    pub fn resolve(&self, band: &mut [u8], width: usize) {
+    pub fn resolve(&self, band: &mut [u32], width: usize) {
         if self.stride == 0 {
             return;
         }
         for (row, colors) in self.color.chunks_exact(self.stride).enumerate() {
-            let start = (row * width + self.rect.x0 as usize) * 4;
-            for (out, c) in band[start..start + colors.len() * 4].chunks_exact_mut(4).zip(colors) {
-                out.copy_from_slice(&quantize_rgba(*c));
+            let start = row * width + self.rect.x0 as usize;
+            for (out, c) in band[start..start + colors.len()].iter_mut().zip(colors) {
+                *out = quantize_rgba(*c);
             }
         }
     }

@@ -11,7 +11,8 @@ use zline_scene::Mesh;
 
 use crate::clip::{view_code, ClipVolume};
 use crate::setup::{Projected, Viewport};
-use zline_shading::{PreparedLights, PreparedMaterial};
+use wide::f32x8;
+use zline_shading::{PreparedLights, PreparedMaterial, Vec3x8};
 
 /// Vertices per rayon task: big enough that scheduling costs nothing.
 const VERTEX_CHUNK: usize = 4096;
@@ -116,25 +117,39 @@ pub fn transform_mesh(
         let positions = &mesh.positions[start..start + out.len()];
         let normals = &mesh.normals[start..start + out.len()];
         for ((v, &p), &n) in out.iter_mut().zip(positions).zip(normals) {
-            *v = transform_vertex(p, n, t, lighting, screen);
+            *v = transform_vertex(p, n, t, screen);
+        }
+        if let VertexLighting::Gouraud(lights, material) = lighting {
+            light_vertices(out, lights, material);
         }
     });
 }
 
+/// Gouraud: the lighting model at every vertex, eight at a time (the lanes
+/// compute exactly what [`PreparedLights::shade`] would, see
+/// `zline_shading::Vec3x8`).
+fn light_vertices(vertices: &mut [ClipVertex], lights: &PreparedLights, material: &PreparedMaterial) {
+    for group in vertices.chunks_mut(8) {
+        let lane = |k: usize| &group[k.min(group.len() - 1)];
+        let gather = |f: fn(&ClipVertex) -> Vec3| {
+            let v: [Vec3; 8] = std::array::from_fn(|k| f(lane(k)));
+            Vec3x8 {
+                x: f32x8::from(v.map(|p| p.x)),
+                y: f32x8::from(v.map(|p| p.y)),
+                z: f32x8::from(v.map(|p| p.z)),
+            }
+        };
+        let c = lights.shade_x8(material, gather(|v| v.eye), gather(|v| v.normal));
+        for (k, v) in group.iter_mut().enumerate() {
+            v.color = c.lane(k);
+        }
+    }
+}
+
 #[inline]
-fn transform_vertex(
-    p: Vec3,
-    n: Vec3,
-    t: &ObjectTransforms,
-    lighting: VertexLighting<'_>,
-    s: &Screen,
-) -> ClipVertex {
+fn transform_vertex(p: Vec3, n: Vec3, t: &ObjectTransforms, s: &Screen) -> ClipVertex {
     let eye = t.eye_from_object.transform_point3(p);
     let normal = (t.normal_eye_from_object * n).normalize_or_zero();
-    let color = match lighting {
-        VertexLighting::None => Vec3::ZERO,
-        VertexLighting::Gouraud(model, material) => model.shade(material, eye, normal, Vec3::ZERO),
-    };
     let clip = t.clip_from_object * p.extend(1.0);
     let mut clip_code = s.volume.clip_code(clip);
     let projected = if clip_code == 0 { Projected::new(clip, s.viewport) } else { None };
@@ -145,7 +160,7 @@ fn transform_vertex(
         clip,
         eye,
         normal,
-        color,
+        color: Vec3::ZERO,
         projected: projected.unwrap_or_default(),
         view_code: view_code(clip),
         clip_code,

@@ -82,8 +82,9 @@ impl Vec3x8 {
     }
 
     /// Lane `i` as a glam vector.
+    #[inline]
     pub fn lane(&self, i: usize) -> glam::Vec3 {
-        glam::Vec3::new(self.x.to_array()[i], self.y.to_array()[i], self.z.to_array()[i])
+        glam::Vec3::new(self.x.as_array_ref()[i], self.y.as_array_ref()[i], self.z.as_array_ref()[i])
     }
 }
 
