@@ -7,10 +7,10 @@ use zline_raster::Rect;
 use zline_scene::{Interpolation, Mesh, Scene};
 use zline_shading::{LightingModel, PreparedLights, PreparedMaterial, ShadingMode};
 
-use crate::bin::{bin_primitives, TileGrid};
+use crate::bin::{bin_primitives, PrimitiveChunk, PrimitiveRef, TileGrid};
 use crate::clip::ClipVolume;
 use crate::image::{quantize_rgba, Image};
-use crate::setup::{setup_triangle, Primitive, SetupContext, Viewport};
+use crate::setup::{setup_triangle, SetupContext, Viewport};
 use crate::tile::{ShadeContext, TileTarget};
 use crate::vertex::{transform_mesh, ClipVertex, ObjectTransforms, Screen, VertexLighting};
 
@@ -61,9 +61,11 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> (Image, RenderStats) {
 #[derive(Debug, Default)]
 pub struct Renderer {
     vertices: Vec<ClipVertex>,
-    chunks: Vec<Vec<Primitive>>,
-    prims: Vec<Primitive>,
-    bins: Vec<Vec<u32>>,
+    /// Setup output, one chunk per rayon task; `chunks[..used]` hold this
+    /// frame's primitives in draw order.
+    chunks: Vec<PrimitiveChunk>,
+    used: usize,
+    bins: Vec<Vec<PrimitiveRef>>,
 }
 
 impl Renderer {
@@ -80,7 +82,7 @@ impl Renderer {
         let materials: Vec<PreparedMaterial> =
             scene.objects.iter().map(|o| PreparedMaterial::new(o.material().sanitized())).collect();
         let mut stats = RenderStats::default();
-        self.prims.clear();
+        self.used = 0;
         for (index, object) in scene.objects.iter().enumerate() {
             stats.triangles += object.mesh.triangles.len() as u64;
             let ctx = SetupContext {
@@ -95,12 +97,13 @@ impl Renderer {
             let transforms = ObjectTransforms::new(clip_from_eye, eye_from_world, object.world_from_object);
             self.setup_object(&object.mesh, &transforms, &ctx);
         }
-        stats.primitives = self.prims.len() as u64;
+        let chunks = &self.chunks[..self.used];
+        stats.primitives = chunks.iter().map(|c| c.prims.len() as u64).sum();
         stats.geometry = start.elapsed();
 
         let start = Instant::now();
         let grid = TileGrid::new(width, height, options.tile_size);
-        bin_primitives(&self.prims, &grid, &mut self.bins);
+        bin_primitives(chunks, &grid, &mut self.bins);
         stats.binning = start.elapsed();
 
         let start = Instant::now();
@@ -109,7 +112,7 @@ impl Renderer {
         image.height = height;
         image.pixels.resize(width as usize * height as usize, 0);
         let band_len = width as usize * grid.tile_size as usize;
-        let (prims, bins) = (&self.prims, &self.bins);
+        let bins = &self.bins;
         let background = quantize_rgba(scene.background.extend(1.0));
         stats.fragments = image
             .pixels
@@ -127,7 +130,7 @@ impl Renderer {
                         continue;
                     }
                     target.clear(rect, scene.background);
-                    shaded += target.opaque_pass(prims, bin, &shade);
+                    shaded += target.opaque_pass(chunks, bin, &shade);
                     target.resolve(band, width as usize);
                 }
                 shaded
@@ -147,23 +150,22 @@ impl Renderer {
         let screen = Screen { viewport: ctx.viewport, volume: ctx.volume };
         transform_mesh(mesh, transforms, lighting, &screen, &mut self.vertices);
         let vertices = &self.vertices;
-        let n = mesh.triangles.len().div_ceil(TRIANGLE_CHUNK);
-        if self.chunks.len() < n {
-            self.chunks.resize_with(n, Vec::new);
+        let (first, n) = (self.used, mesh.triangles.len().div_ceil(TRIANGLE_CHUNK));
+        self.used += n;
+        if self.chunks.len() < self.used {
+            self.chunks.resize_with(self.used, PrimitiveChunk::default);
         }
-        self.chunks[..n].par_iter_mut().zip(mesh.triangles.par_chunks(TRIANGLE_CHUNK)).for_each(
-            |(out, tris)| {
-                out.clear();
-                for t in tris {
-                    if let Some(tri) = gather(vertices, t) {
-                        setup_triangle(tri, ctx, out);
-                    }
+        let tris = mesh.triangles.par_chunks(TRIANGLE_CHUNK);
+        self.chunks[first..self.used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
+            out.prims.clear();
+            for t in tris {
+                if let Some(tri) = gather(vertices, t) {
+                    setup_triangle(tri, ctx, &mut out.prims);
                 }
-            },
-        );
-        for c in &self.chunks[..n] {
-            self.prims.extend_from_slice(c);
-        }
+            }
+            out.bounds.clear();
+            out.bounds.extend(out.prims.iter().map(|p| p.edges.bounds()));
+        });
     }
 }
 

@@ -11,6 +11,7 @@ use wide::f32x8;
 use zline_raster::{for_each_sample, AttributePlanes, DepthPlane, Rect, Span};
 use zline_shading::{PreparedLights, PreparedMaterial, Vec3x8};
 
+use crate::bin::{PrimitiveChunk, PrimitiveRef};
 use crate::image::quantize_rgba;
 use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader};
 
@@ -64,12 +65,17 @@ impl TileTarget {
         (y - self.rect.y0) as usize * self.stride + (x - self.rect.x0) as usize
     }
 
-    /// Draws the primitives `bin` (indices into `prims`) in order; returns
+    /// Draws the primitives `bin` (references into `chunks`) in order; returns
     /// the number of samples that passed the depth test.
-    pub fn opaque_pass(&mut self, prims: &[Primitive], bin: &[u32], ctx: &ShadeContext<'_>) -> u64 {
+    pub fn opaque_pass(
+        &mut self,
+        chunks: &[PrimitiveChunk],
+        bin: &[PrimitiveRef],
+        ctx: &ShadeContext<'_>,
+    ) -> u64 {
         let mut shaded = 0;
-        for &i in bin {
-            shaded += self.draw(&prims[i as usize], ctx);
+        for r in bin {
+            shaded += self.draw(&chunks[r.chunk as usize].prims[r.index as usize], ctx);
         }
         shaded
     }

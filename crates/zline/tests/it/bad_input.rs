@@ -35,7 +35,9 @@ fn face_index_out_of_range() {
 fn missing_file() {
     let dir = tempfile::tempdir().unwrap();
     let out = render(&dir.path().join("nowhere.obj"), &dir.path().join("o.png"));
-    check_clean_error(&out, &["nowhere.obj"]);
+    check_clean_error(&out, &["nowhere.obj", "cannot read file"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.matches("os error").count(), 1, "the cause is repeated: {stderr}");
 }
 
 #[test]
