@@ -21,7 +21,13 @@ struct Case {
     build: Box<dyn Fn() -> Result<Scene>>,
 }
 
-pub(crate) fn run(frames: usize, threads: &[usize], assets: &Path, filter: Option<&str>) -> Result<()> {
+pub(crate) fn run(
+    frames: usize,
+    threads: &[usize],
+    assets: &Path,
+    filter: Option<&str>,
+    options: &RenderOptions,
+) -> Result<()> {
     let cases: Vec<Case> =
         cases(assets)?.into_iter().filter(|c| filter.is_none_or(|f| c.name.contains(f))).collect();
     println!(
@@ -32,14 +38,13 @@ pub(crate) fn run(frames: usize, threads: &[usize], assets: &Path, filter: Optio
         let scene = (case.build)()?;
         for &t in threads {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build().context("thread pool")?;
-            let options = RenderOptions::default();
             let mut renderer = Renderer::default();
             let mut image = Image::empty();
-            pool.install(|| renderer.render_into(&scene, &options, &mut image)); // warm-up
+            pool.install(|| renderer.render_into(&scene, options, &mut image)); // warm-up
             let mut runs: Vec<(f64, RenderStats)> = (0..frames.max(1))
                 .map(|_| {
                     let start = Instant::now();
-                    let stats = pool.install(|| renderer.render_into(&scene, &options, &mut image));
+                    let stats = pool.install(|| renderer.render_into(&scene, options, &mut image));
                     (start.elapsed().as_secs_f64(), stats)
                 })
                 .collect();

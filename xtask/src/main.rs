@@ -33,13 +33,17 @@ enum Task {
         /// Only cases whose name contains this text.
         #[arg(long)]
         filter: Option<String>,
+        /// Tile edge in pixels.
+        #[arg(long, default_value_t = zline::pipeline::RenderOptions::default().tile_size)]
+        tile_size: u32,
     },
 }
 
 fn main() -> Result<()> {
     match Cli::parse().task {
-        Task::Bench { frames, threads, assets, filter } => {
-            bench::run(frames, &threads, &assets, filter.as_deref())
+        Task::Bench { frames, threads, assets, filter, tile_size } => {
+            let options = zline::pipeline::RenderOptions { tile_size };
+            bench::run(frames, &threads, &assets, filter.as_deref(), &options)
         }
     }
 }

@@ -1,7 +1,7 @@
 //! The output image: 8-bit RGB, top row first (SPEC §10).
 
 use glam::Vec4;
-use wide::{f32x4, CmpEq};
+use wide::{f32x4, f32x8, CmpEq};
 
 /// An 8-bit image, rows top to bottom, one packed RGBA word per pixel
 /// (bytes R, G, B, A in memory order via `u32::to_le_bytes`; alpha always
@@ -70,6 +70,19 @@ pub fn quantize_rgba(c: Vec4) -> u32 {
     u32::from_le_bytes(v.fast_trunc_int().to_array().map(|x| x as u8))
 }
 
+/// [`quantize_rgba`] for two pixels in one 8-lane vector (the same
+/// operations per lane, so the same bytes).
+#[inline]
+pub fn quantize_rgba_pair(a: Vec4, b: Vec4) -> [u32; 2] {
+    let (a, b) = (a.to_array(), b.to_array());
+    let v = f32x8::from([a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]);
+    let v = v.cmp_eq(v).blend(v, f32x8::ZERO);
+    let v = v.fast_max(f32x8::ZERO).fast_min(f32x8::ONE) * f32x8::splat(255.0) + f32x8::splat(0.5);
+    // Each lane holds a value in 0..=255: its low byte, picked by a shuffle.
+    let q: [u8; 32] = bytemuck::cast(v.fast_trunc_int().to_array());
+    [u32::from_le_bytes([q[0], q[4], q[8], q[12]]), u32::from_le_bytes([q[16], q[20], q[24], q[28]])]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -93,6 +106,11 @@ mod tests {
             assert_eq!(quantize(c + 0.49 / 255.0), k);
             let q = quantize_rgba(Vec4::new(c, c + 0.49 / 255.0, c - 0.49 / 255.0, 1.0));
             assert_eq!(q.to_le_bytes(), [k, k, k, 255]);
+            let c2 = Vec4::new(c - 0.49 / 255.0, f32::NAN, c, 0.5);
+            assert_eq!(
+                quantize_rgba_pair(c2, Vec4::splat(c)),
+                [quantize_rgba(c2), quantize_rgba(Vec4::splat(c))]
+            );
         }
     }
 }

@@ -12,7 +12,7 @@ use zline_raster::{for_each_sample, AttributePlanes, DepthPlane, Rect, Span};
 use zline_shading::{PreparedLights, PreparedMaterial, Vec3x8};
 
 use crate::bin::{PrimitiveChunk, PrimitiveRef};
-use crate::image::quantize_rgba;
+use crate::image::{quantize_rgba, quantize_rgba_pair};
 use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader};
 
 /// Depth initialised to the far plane (SPEC §4).
@@ -89,8 +89,17 @@ impl TileTarget {
         }
         for (row, colors) in self.color.chunks_exact(self.stride).enumerate() {
             let start = row * width + self.rect.x0 as usize;
-            for (out, c) in band[start..start + colors.len()].iter_mut().zip(colors) {
-                *out = quantize_rgba(*c);
+            let out = &mut band[start..start + colors.len()];
+            // Two pixels per 8-lane vector, then the odd one out.
+            let mut pairs = out.chunks_exact_mut(2);
+            let mut colors2 = colors.chunks_exact(2);
+            for (o, c) in (&mut pairs).zip(&mut colors2) {
+                let [a, b] = quantize_rgba_pair(c[0], c[1]);
+                o[0] = a;
+                o[1] = b;
+            }
+            for (o, c) in pairs.into_remainder().iter_mut().zip(colors2.remainder()) {
+                *o = quantize_rgba(*c);
             }
         }
     }
