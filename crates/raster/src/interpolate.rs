@@ -7,27 +7,34 @@
 //! triangle's first vertex — not at the window origin, where steep gradients
 //! would cost fractional bits (STYLE habit 4). Gradients are set up in f64.
 //!
-//! ## Incremental evaluation and its drift
+//! ## Incremental evaluation without drift
 //! Along a span the seed steps v(x+1) = v(x) + ∂v/∂x. Each step rounds, so
-//! error grows with the span's length. zline re-anchors on a fixed global
-//! grid: at every column that is a multiple of [`REANCHOR_BLOCK`] the plane
-//! is evaluated directly, and at most `REANCHOR_BLOCK − 1` steps follow. The
-//! anchors depend only on the pixel, never on where a span or tile starts, so
-//! the same pixel gets the same bits in any tiling. Bounds (checked by the
-//! property tests, for spans up to 8192 pixels):
-//! - depth is evaluated and stepped in f64 and rounded once to f32:
-//!   |z − z_exact| ≤ 2^-24·|z| + 64·2^-52·M, where M is the largest magnitude
-//!   met on the way — |z0| plus the gradients times the offsets from the
-//!   anchor, and a block of steps (see [`DepthPlane::error_bound`]). The f64
-//!   part matters only on steep slivers, where a block may start far outside
-//!   the triangle; elsewhere the bound is the single f32 rounding.
-//! - attributes are stepped in f32: |v − v_exact| ≤ 32·2^-24·M, where M is
-//!   the largest magnitude among v0, the block-start value and the steps
-//!   (see [`AttributePlanes::error_bound`]).
+//! error grows with the span's length. zline evaluates the plane directly
+//! at anchors on a fixed global grid — every column that is a multiple of
+//! [`REANCHOR_BLOCK`] — and reaches the k-th column after an anchor (k < 16)
+//! in one step of k increments: v = v(anchor) + k·∂v/∂x. That is the seed's
+//! recurrence unrolled: one rounding per sample instead of k, and the eight
+//! samples of a [`SampleBlock`] are independent, so they fill SIMD lanes.
+//! (Accumulating the steps was measured first; it chains one add per sample
+//! and cost about 4 cycles per pixel of latency in the depth loop alone.)
+//! The anchors and blocks depend only on the pixel, never on where a span or
+//! tile starts, so the same pixel gets the same bits in any tiling, and
+//! [`for_each_sample`] and [`for_each_block`] give the same bits.
 //!
-//! The seed also interpolates down the edges (x' = x − 1/m, z' = z + …); a
-//! direct evaluation at each block start replaces that walk, which is the
-//! same plane without the drift down tall edges.
+//! Bounds (checked by the property tests, for spans up to 8192 pixels):
+//! - depth is evaluated in f64 and rounded once to f32: |z − z_exact| ≤
+//!   2^-24·|z| + 64·2^-52·M, where M is the largest magnitude met on the way
+//!   — |z0| plus the gradients times the offsets from the anchor (see
+//!   [`DepthPlane::error_bound`]). The f64 part matters only on steep
+//!   slivers, where an anchor may lie far outside the triangle; elsewhere the
+//!   bound is the single f32 rounding.
+//! - attributes are evaluated in f32: |v − v_exact| ≤ 32·2^-24·M, with M the
+//!   largest magnitude among v0, the anchor value and k·∂v/∂x (see
+//!   [`AttributePlanes::error_bound`]).
+//!
+//! The seed also interpolates down the edges (x' = x − 1/m, z' = z + …); the
+//! direct evaluation at each anchor replaces that walk, which is the same
+//! plane without the drift down tall edges.
 
 use crate::edge_table::Span;
 use crate::fixed::FixedPoint;
@@ -100,10 +107,9 @@ impl DepthPlane {
     }
 
     /// The bound on |z − z_exact| for the stored depth of the sample at
-    /// (x, y) whose exact depth is `z` (see the module doc): the direct
-    /// evaluation at the block start rounds terms as large as the gradients
-    /// times the offsets, each of up to 15 steps rounds once, and the f32
-    /// conversion rounds once more.
+    /// (x, y) whose exact depth is `z` (see the module doc): the anchor's
+    /// evaluation rounds terms as large as the gradients times the offsets,
+    /// the step of k ≤ 15 columns rounds twice, and the f32 conversion once.
     pub fn error_bound(&self, x: f64, y: f64, z: f64) -> f64 {
         let (ox, oy) = ((x - self.anchor.0).abs(), (y - self.anchor.1).abs());
         let block = f64::from(REANCHOR_BLOCK);
@@ -157,10 +163,10 @@ impl<const N: usize> AttributePlanes<N> {
         self.dx
     }
 
-    /// The bound on |v − v_exact| for attribute `i` of a sample whose exact
-    /// value is `v` (see the module doc): direct evaluation costs a few
-    /// roundings of terms as large as the offsets times the gradients, and
-    /// each of up to 15 steps one rounding.
+    /// The bound on |v − v_exact| for attribute `i` of the sample at (x, y)
+    /// (see the module doc): the anchor's evaluation rounds terms as large as
+    /// the offsets times the gradients, and the step of k ≤ 15 columns
+    /// rounds its product and its sum.
     pub fn error_bound(&self, i: usize, x: f64, y: f64) -> f32 {
         let ox = (x - self.anchor.0).abs() as f32;
         let oy = (y - self.anchor.1).abs() as f32;
@@ -170,9 +176,57 @@ impl<const N: usize> AttributePlanes<N> {
     }
 }
 
-/// Walks one span, calling `f(x, z, attributes)` for each sample in order,
-/// with depth and attributes stepped incrementally and re-anchored at every
-/// multiple of [`REANCHOR_BLOCK`].
+/// Samples per [`SampleBlock`].
+pub const LANES: usize = 8;
+
+/// Column offsets 0, 1, …, 15 as floats (exact).
+const OFFSETS: [f32; 16] =
+    [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0, 12.0, 13.0, 14.0, 15.0];
+
+/// Eight consecutive samples of one row, starting at a column that is a
+/// multiple of [`LANES`]; lanes outside the span are evaluated too but not
+/// in `mask`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SampleBlock<const N: usize> {
+    /// Column of lane 0 (a multiple of [`LANES`]).
+    pub x: i32,
+    /// Bit k set when column `x + k` is in the span.
+    pub mask: u8,
+    /// NC depth per lane.
+    pub z: [f32; LANES],
+    /// Attribute i per lane.
+    pub attrs: [[f32; LANES]; N],
+}
+
+/// The values at one anchor column of a row.
+struct Anchor<const N: usize> {
+    column: i32,
+    z: f64,
+    attrs: [f32; N],
+}
+
+impl<const N: usize> Anchor<N> {
+    #[inline(always)]
+    fn new(depth: &DepthPlane, attrs: &AttributePlanes<N>, column: i32, yc: f64) -> Anchor<N> {
+        let xc = f64::from(column) + 0.5;
+        Anchor { column, z: depth.at(xc, yc), attrs: attrs.at(xc, yc) }
+    }
+
+    /// Depth `k` columns after the anchor.
+    #[inline(always)]
+    fn z(&self, depth: &DepthPlane, k: usize) -> f32 {
+        (self.z + depth.dzdx * f64::from(OFFSETS[k])) as f32
+    }
+
+    /// Attribute `i`, `k` columns after the anchor.
+    #[inline(always)]
+    fn attr(&self, attrs: &AttributePlanes<N>, i: usize, k: usize) -> f32 {
+        self.attrs[i] + attrs.dx[i] * OFFSETS[k]
+    }
+}
+
+/// Walks one span, calling `f(x, z, attributes)` for each sample in order
+/// (see the module doc for how values are evaluated).
 #[inline(always)]
 pub fn for_each_sample<const N: usize>(
     depth: &DepthPlane,
@@ -183,27 +237,44 @@ pub fn for_each_sample<const N: usize>(
     let yc = f64::from(span.y) + 0.5;
     let mut x = span.x0;
     while x < span.x1 {
-        let block = x & !(REANCHOR_BLOCK - 1);
-        let end = (block + REANCHOR_BLOCK).min(span.x1);
-        let xc = f64::from(block) + 0.5;
-        let mut z = depth.at(xc, yc);
-        let mut a = attrs.at(xc, yc);
-        for _ in block..x {
-            z += depth.dzdx;
-            add(&mut a, &attrs.dx);
-        }
+        let anchor = Anchor::new(depth, attrs, x & !(REANCHOR_BLOCK - 1), yc);
+        let end = (anchor.column + REANCHOR_BLOCK).min(span.x1);
         for xi in x..end {
-            f(xi, z as f32, &a);
-            z += depth.dzdx;
-            add(&mut a, &attrs.dx);
+            let k = (xi - anchor.column) as usize;
+            f(xi, anchor.z(depth, k), &std::array::from_fn(|i| anchor.attr(attrs, i, k)));
         }
         x = end;
     }
 }
 
+/// Walks one span in [`SampleBlock`]s of eight lanes, left to right. Lane
+/// values are bit-identical to [`for_each_sample`]'s.
 #[inline(always)]
-fn add<const N: usize>(a: &mut [f32; N], d: &[f32; N]) {
-    for i in 0..N {
-        a[i] += d[i];
+pub fn for_each_block<const N: usize>(
+    depth: &DepthPlane,
+    attrs: &AttributePlanes<N>,
+    span: Span,
+    mut f: impl FnMut(&SampleBlock<N>),
+) {
+    let yc = f64::from(span.y) + 0.5;
+    let lanes = LANES as i32;
+    let mut anchor = Anchor::new(depth, attrs, span.x0 & !(REANCHOR_BLOCK - 1), yc);
+    let mut x = span.x0 & !(lanes - 1);
+    while x < span.x1 {
+        if x >= anchor.column + REANCHOR_BLOCK {
+            anchor = Anchor::new(depth, attrs, x & !(REANCHOR_BLOCK - 1), yc);
+        }
+        let first = (x - anchor.column) as usize;
+        let lo = (span.x0 - x).clamp(0, lanes);
+        let hi = (span.x1 - x).clamp(0, lanes);
+        let mask = ((0xFFu32 << lo) & (0xFFu32 >> (lanes - hi))) as u8;
+        let block = SampleBlock {
+            x,
+            mask,
+            z: std::array::from_fn(|k| anchor.z(depth, first + k)),
+            attrs: std::array::from_fn(|i| std::array::from_fn(|k| anchor.attr(attrs, i, first + k))),
+        };
+        f(&block);
+        x += lanes;
     }
 }

@@ -18,4 +18,7 @@ pub mod interpolate;
 
 pub use edge_table::{EdgeTable, Span};
 pub use fixed::{FixedPoint, Rect, MAX_WINDOW_COORD, SUBPIXEL_BITS, SUBPIXEL_ONE};
-pub use interpolate::{for_each_sample, AttributePlanes, DepthPlane, PlaneBasis, REANCHOR_BLOCK};
+pub use interpolate::{
+    for_each_block, for_each_sample, AttributePlanes, DepthPlane, PlaneBasis, SampleBlock, LANES,
+    REANCHOR_BLOCK,
+};

@@ -1,7 +1,8 @@
 //! The values a pixel gets do not depend on how the screen is tiled
 //! (SPEC §10): scanning a triangle with its whole bounds as the clip, or tile
 //! by tile with tiles of 1, 5, 16 or 64 px at any origin, gives the same
-//! pixels with bit-identical depth and attributes.
+//! pixels with bit-identical depth and attributes — from the per-sample
+//! walker and from the eight-lane block walker alike.
 
 use crate::depth::depths;
 use crate::exact::DEPTH_SCALE;
@@ -9,7 +10,9 @@ use crate::shapes::{all_spans, spans, tiles, Shape, Tri};
 use proptest::array::{uniform2, uniform3};
 use proptest::prelude::*;
 use std::collections::BTreeSet;
-use zline_raster::{for_each_sample, AttributePlanes, DepthPlane, EdgeTable, PlaneBasis, Rect};
+use zline_raster::{
+    for_each_block, for_each_sample, AttributePlanes, DepthPlane, EdgeTable, PlaneBasis, Rect,
+};
 
 /// What a pixel gets: (row, col, depth bits, attribute bits).
 type Bits = (i32, i32, u32, [u32; 2]);
@@ -26,6 +29,33 @@ fn values(t: Tri, p: &Planes, clips: &[Rect]) -> Vec<Bits> {
         for span in spans(t, clip) {
             for_each_sample(&p.depth, &p.attrs, span, |x, z, a| {
                 out.push((span.y, x, z.to_bits(), a.map(f32::to_bits)));
+            });
+        }
+    }
+    out.sort_unstable();
+    out
+}
+
+/// The same as [`values`], from the eight-lane walker: the lanes in each
+/// block's mask.
+fn block_values(t: Tri, p: &Planes, clips: &[Rect]) -> Vec<Bits> {
+    let mut out = Vec::new();
+    for &clip in clips {
+        for span in spans(t, clip) {
+            for_each_block(&p.depth, &p.attrs, span, |b| {
+                assert_eq!(b.x % 8, 0, "blocks start on multiples of 8");
+                for k in 0..8 {
+                    let x = b.x + k as i32;
+                    assert_eq!(b.mask & (1 << k) != 0, (span.x0..span.x1).contains(&x), "mask of lane {k}");
+                    if b.mask & (1 << k) != 0 {
+                        out.push((
+                            span.y,
+                            x,
+                            b.z[k].to_bits(),
+                            [b.attrs[0][k].to_bits(), b.attrs[1][k].to_bits()],
+                        ));
+                    }
+                }
             });
         }
     }
@@ -50,9 +80,17 @@ fn tiles_near(t: Tri, size: i32, origin: (i32, i32)) -> Vec<Rect> {
 fn check_tiling_invariant(t: Tri, p: &Planes, origins: [(i32, i32); 4]) {
     let Some(table) = EdgeTable::new(t) else { return };
     let whole = values(t, p, &[table.bounds()]);
+    assert!(
+        block_values(t, p, &[table.bounds()]) == whole,
+        "the block walker differs from the sample walker for {t:?}"
+    );
     for (size, origin) in [1, 5, 16, 64].into_iter().zip(origins) {
         let origin = (origin.0 % size, origin.1 % size);
         let tiled = values(t, p, &tiles_near(t, size, origin));
+        assert!(
+            block_values(t, p, &tiles_near(t, size, origin)) == tiled,
+            "block walker, {size} px tiles, {t:?}"
+        );
         if tiled != whole {
             let first = whole.iter().zip(&tiled).find(|(a, b)| a != b);
             panic!(
