@@ -31,14 +31,16 @@ pub fn uv_sphere(rings: u32, segments: u32, radius: f32) -> Mesh {
     let south = directions.len() as u32 - 1;
     let row = |i: u32, j: u32| 1 + (i - 1) * segments + j % segments;
     let mut triangles = Vec::with_capacity(2 * (segments * (rings - 1)) as usize);
-    for j in 0..segments {
-        triangles.push([0, row(1, j), row(1, j + 1)]);
-        for i in 1..rings - 1 {
+    // Ring by ring, like the vertices, so consecutive triangles share
+    // vertices that are close in memory.
+    triangles.extend((0..segments).map(|j| [0, row(1, j), row(1, j + 1)]));
+    for i in 1..rings - 1 {
+        for j in 0..segments {
             let (a, b, c, d) = (row(i, j), row(i + 1, j), row(i + 1, j + 1), row(i, j + 1));
             triangles.extend([[a, b, c], [a, c, d]]);
         }
-        triangles.push([south, row(rings - 1, j + 1), row(rings - 1, j)]);
     }
+    triangles.extend((0..segments).map(|j| [south, row(rings - 1, j + 1), row(rings - 1, j)]));
     let positions = directions.iter().map(|&d| d * radius).collect();
     primitive("sphere", positions, directions, triangles)
 }
