@@ -59,21 +59,27 @@ impl Shininess {
     #[inline]
     pub fn pow(self, x: f32) -> f32 {
         match self {
-            Shininess::Whole(mut n) => {
-                let (mut base, mut acc) = (x, 1.0);
-                loop {
-                    if n & 1 == 1 {
-                        acc *= base;
-                    }
-                    n >>= 1;
-                    if n == 0 {
-                        return acc;
-                    }
-                    base *= base;
-                }
-            }
+            Shininess::Whole(n) => pow_by_squaring(x, 1.0, n),
             Shininess::Real(ns) => x.powf(ns),
         }
+    }
+}
+
+/// x^n by repeated squaring (`one` is the multiplicative identity), for f32
+/// and for SIMD lanes alike: the same multiplications in the same order.
+/// The last base is not squared, so nothing past x^n is computed.
+#[inline(always)]
+pub(crate) fn pow_by_squaring<T: Copy + std::ops::MulAssign>(x: T, one: T, mut n: u32) -> T {
+    let (mut base, mut acc) = (x, one);
+    loop {
+        if n & 1 == 1 {
+            acc *= base;
+        }
+        n >>= 1;
+        if n == 0 {
+            return acc;
+        }
+        base *= base;
     }
 }
 

@@ -11,7 +11,7 @@
 
 use wide::{f32x8, CmpGt, CmpLe};
 
-use crate::prepared::{PreparedLights, PreparedMaterial, Shininess};
+use crate::prepared::{pow_by_squaring, PreparedLights, PreparedMaterial, Shininess};
 
 /// Three coordinates of eight vectors.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -93,19 +93,7 @@ impl Shininess {
     #[inline]
     fn pow_x8(self, x: f32x8) -> f32x8 {
         match self {
-            Shininess::Whole(mut n) => {
-                let (mut base, mut acc) = (x, f32x8::ONE);
-                loop {
-                    if n & 1 == 1 {
-                        acc *= base;
-                    }
-                    n >>= 1;
-                    if n == 0 {
-                        return acc;
-                    }
-                    base *= base;
-                }
-            }
+            Shininess::Whole(n) => pow_by_squaring(x, f32x8::ONE, n),
             Shininess::Real(ns) => f32x8::from(x.to_array().map(|v| v.powf(ns))),
         }
     }
