@@ -3,5 +3,6 @@
 
 mod clipping;
 mod determinism;
+mod interpolation;
 mod lit_square;
 mod support;
