@@ -127,3 +127,18 @@ fn lit_colour_is_within_range_and_background_elsewhere() {
     assert_eq!(image.pixel(16, 16), [204, 204, 204]);
     assert_eq!(image.pixel(0, 0), [0, 0, 0]);
 }
+
+#[test]
+fn undrawn_samples_get_the_background_in_tiles_with_and_without_geometry() {
+    let mut s =
+        scene(40, Vec3::ONE, vec![], vec![object(square(0.0, 0.0, 0.3, -2.0, Material::DEFAULT), None)]);
+    s.background = Vec3::new(0.2, 0.4, 0.6);
+    // 0.2·255 + 0.5 = 51.5 → 51; 0.4 → 102.5 → 102; 0.6 → 153.5 → 153.
+    let bg = [51, 102, 153];
+    for tile_size in [8, 64] {
+        let image = zline_pipeline::render(&s, &zline_pipeline::RenderOptions { tile_size }).0;
+        assert_eq!(image.pixel(20, 20), [204, 204, 204], "tile {tile_size}: the square");
+        assert_eq!(image.pixel(14, 20), bg, "tile {tile_size}: beside the square, in its tile");
+        assert_eq!(image.pixel(0, 0), bg, "tile {tile_size}: corner");
+    }
+}
