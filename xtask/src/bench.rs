@@ -102,6 +102,7 @@ fn sphere_scene(rings: u32, segments: u32, distance: f32, shading: ShadingMode) 
             cull_back_faces: true,
         }],
         settings: settings(shading),
+        fog: None,
     }
 }
 

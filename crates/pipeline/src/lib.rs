@@ -21,6 +21,7 @@
 
 pub mod bin;
 pub mod clip;
+pub mod fog;
 pub mod image;
 mod render;
 pub mod setup;

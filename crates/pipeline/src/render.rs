@@ -9,6 +9,7 @@ use zline_shading::{LightingModel, PreparedLights, PreparedMaterial, ShadingMode
 
 use crate::bin::{bin_primitives, PrimitiveChunk, PrimitiveRef, TileGrid};
 use crate::clip::ClipVolume;
+use crate::fog::FogPass;
 use crate::image::{quantize_rgba, Image};
 use crate::setup::{setup_triangle, SetupContext, Viewport};
 use crate::tile::{ShadeContext, TileTarget};
@@ -113,6 +114,7 @@ impl Renderer {
         image.pixels.resize(width as usize * height as usize, 0);
         let band_len = width as usize * grid.tile_size as usize;
         let bins = &self.bins;
+        let fog = scene.fog.map(|f| FogPass::new(f, clip_from_eye, width, height));
         let background = quantize_rgba(scene.background.extend(1.0));
         stats.fragments = image
             .pixels
@@ -131,6 +133,9 @@ impl Renderer {
                     }
                     target.clear(rect, scene.background);
                     shaded += target.opaque_pass(chunks, bin, &shade);
+                    if let Some(fog) = &fog {
+                        target.fog_pass(fog);
+                    }
                     target.resolve(band, width as usize);
                 }
                 shaded

@@ -21,6 +21,7 @@ use zline_raster::{for_each_block, AttributePlanes, DepthPlane, Rect, Span, LANE
 use zline_shading::{PreparedLights, PreparedMaterial, Vec3x8};
 
 use crate::bin::{PrimitiveChunk, PrimitiveRef};
+use crate::fog::FogPass;
 use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader};
 
 /// Depth initialised to the far plane (SPEC §4).
@@ -127,6 +128,29 @@ impl TileTarget {
                             out[c as usize] = p;
                         }
                     }
+                }
+            }
+        }
+    }
+
+    /// Fogs every drawn sample of the tile (see [`crate::fog`]).
+    pub fn fog_pass(&mut self, pass: &FogPass) {
+        let fog = Vec3x8::splat(pass.color());
+        let [red, green, blue] = &mut self.rgb;
+        for row in 0..self.rect.height() as usize {
+            let y = self.rect.y0 + row as i32;
+            for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
+                let i = row * self.stride + (x - self.origin) as usize;
+                let z = load(&self.depth, i);
+                let drawn = z.cmp_lt(f32x8::splat(DEPTH_CLEAR));
+                if drawn.none() {
+                    continue;
+                }
+                let f = pass.factors(x, y, z);
+                let g = f32x8::ONE - f;
+                for (plane, c) in [(&mut *red, fog.x), (&mut *green, fog.y), (&mut *blue, fog.z)] {
+                    let old = load(plane, i);
+                    store(plane, i, drawn.blend(old * f + c * g, old));
                 }
             }
         }

@@ -78,6 +78,7 @@ pub fn demo_scene() -> Scene {
             shading: ShadingMode::Phong,
             interpolation: Interpolation::PerspectiveCorrect,
         },
+        fog: None,
     }
 }
 

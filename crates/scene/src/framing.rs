@@ -61,6 +61,7 @@ pub fn scene_for_model(meshes: Vec<Mesh>, settings: RenderSettings) -> Scene {
         lights: default_lights(),
         objects,
         settings,
+        fog: None,
     }
 }
 

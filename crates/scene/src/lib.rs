@@ -32,4 +32,6 @@ pub use model::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings,
 pub use obj::{load_obj, load_obj_with_warnings};
 pub use primitives::{cube, plane, torus, uv_sphere};
 pub use scene_file::{load_scene, MAX_IMAGE_SIDE, MAX_PRIMITIVE_DIVISIONS};
-pub use zline_shading::{Attenuation, Light, LightingModel, Material, ShadingMode};
+pub use zline_shading::{
+    Attenuation, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
+};

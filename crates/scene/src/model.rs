@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
-use zline_shading::{Light, Material, ShadingMode};
+use zline_shading::{Fog, Light, Material, ShadingMode};
 
 /// A triangle mesh in object space with one material.
 ///
@@ -199,6 +199,8 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// Render settings.
     pub settings: RenderSettings,
+    /// Fog (SPEC §8), if any.
+    pub fog: Option<Fog>,
 }
 
 #[cfg(test)]

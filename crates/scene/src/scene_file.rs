@@ -17,7 +17,7 @@ use std::sync::Arc;
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
 use toml::Spanned;
-use zline_shading::{Attenuation, Light, Material, ShadingMode};
+use zline_shading::{Attenuation, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
 
 use crate::error::SceneError;
 use crate::framing::{
@@ -71,6 +71,14 @@ pub const MAX_PRIMITIVE_DIVISIONS: u32 = 4096;
 /// direction = [-1, -1, -1]          # required: the way the light travels
 /// color = [0.3, 0.3, 0.4]
 ///
+/// [fog]                             # optional (SPEC §8); no table, no fog
+/// mode = "linear"                   # required: linear | exp | exp2
+/// start = 10                        # linear: f = (end − z)/(end − start); default 0
+/// end = 50                          # linear, ≥ start; default 1
+/// # density = 0.05                  # exp: f = e^(−ρz), exp2: f = e^(−(ρz)²); default 1
+/// color = [0.7, 0.75, 0.8]          # C_fog in [0, 1]; default 0.5 grey
+/// coordinate = "eye-plane"          # eye-plane (−z_eye, default) | radial (|p_eye|)
+///
 /// [[objects]]                       # at least one
 /// model = "models/suzanne.obj"      # an OBJ file, or else:
 /// # primitive = "sphere"            # rings (32), segments (64), radius (1)
@@ -118,8 +126,35 @@ struct SceneFile {
     render: Option<RenderDef>,
     camera: Option<S<CameraDef>>,
     lights: Option<Vec<S<LightDef>>>,
+    fog: Option<S<FogDef>>,
     #[serde(default)]
     objects: Vec<S<ObjectDef>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FogDef {
+    mode: FogKind,
+    start: Option<S<f32>>,
+    end: Option<S<f32>>,
+    density: Option<S<f32>>,
+    color: Option<S<[f32; 3]>>,
+    coordinate: Option<FogCoordinateDef>,
+}
+
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum FogKind {
+    Linear,
+    Exp,
+    Exp2,
+}
+
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+enum FogCoordinateDef {
+    EyePlane,
+    Radial,
 }
 
 #[derive(Deserialize)]
@@ -283,7 +318,8 @@ impl Builder<'_> {
             Some(def) => self.camera(def, (min, max), aspect(&settings))?,
             None => framing_camera(min, max, aspect(&settings)),
         };
-        Ok(Scene { camera, background, ambient, lights, objects, settings })
+        let fog = file.fog.as_ref().map(|f| self.fog(f)).transpose()?;
+        Ok(Scene { camera, background, ambient, lights, objects, settings, fog })
     }
 
     fn settings(&self, render: Option<RenderDef>) -> Result<RenderSettings> {
@@ -370,6 +406,40 @@ impl Builder<'_> {
             return Err(self.error(def.span(), "camera", "its values give a non-finite projection"));
         }
         Ok(camera)
+    }
+
+    fn fog(&self, def: &S<FogDef>) -> Result<Fog> {
+        let f = def.get_ref();
+        let color = match &f.color {
+            Some(c) => self.vec3_in(c, "fog.color", 0.0, 1.0)?,
+            None => Vec3::splat(0.5),
+        };
+        let mode = match f.mode {
+            FogKind::Linear => {
+                self.not_allowed(&f.density, "fog", "density", "linear fog")?;
+                let start = self.optional(&f.start, "fog.start", 0.0, 0.0, f32::MAX)?;
+                let end = self.optional(&f.end, "fog.end", 1.0, 0.0, f32::MAX)?;
+                if end < start {
+                    let span = f.end.as_ref().map_or(def.span(), |e| e.span());
+                    return Err(self.error(span, "fog.end", format!("must be ≥ start ({start}), got {end}")));
+                }
+                FogMode::Linear { start, end }
+            }
+            FogKind::Exp | FogKind::Exp2 => {
+                self.not_allowed(&f.start, "fog", "start", "exponential fog")?;
+                self.not_allowed(&f.end, "fog", "end", "exponential fog")?;
+                let density = self.optional(&f.density, "fog.density", 1.0, 0.0, f32::MAX)?;
+                match f.mode {
+                    FogKind::Exp => FogMode::Exponential { density },
+                    _ => FogMode::SquaredExponential { density },
+                }
+            }
+        };
+        let coordinate = match f.coordinate {
+            Some(FogCoordinateDef::Radial) => FogCoordinate::Radial,
+            _ => FogCoordinate::EyePlane,
+        };
+        Ok(Fog { mode, color, coordinate })
     }
 
     fn light(&self, def: &S<LightDef>, key: &str) -> Result<Light> {

@@ -5,12 +5,14 @@
 //! vectors handed to [`LightingModel::shade`] must be in one space; the
 //! pipeline uses eye space, where the viewer sits at the origin.
 
+mod fog;
 mod light;
 mod material;
 mod model;
 mod prepared;
 mod simd;
 
+pub use fog::{Fog, FogCoordinate, FogMode};
 pub use light::{Attenuation, Light};
 pub use material::Material;
 pub use model::{LightingModel, LitParts};

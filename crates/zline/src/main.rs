@@ -6,8 +6,9 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use glam::Vec3;
 use zline::pipeline::{render, RenderOptions};
-use zline::scene::{Interpolation, RenderSettings, Scene, ShadingMode};
+use zline::scene::{Fog, FogCoordinate, FogMode, Interpolation, RenderSettings, Scene, ShadingMode};
 
 /// zline — a CPU renderer for the classical rendering pipeline.
 #[derive(Parser)]
@@ -51,6 +52,16 @@ struct Common {
     /// Worker threads (default: one per core).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
+    /// Fog (replaces the scene's): linear:START:END, exp:DENSITY or
+    /// exp2:DENSITY, distances in world units.
+    #[arg(long, value_name = "MODE", value_parser = parse_fog)]
+    fog: Option<FogMode>,
+    /// Fog colour as R,G,B in [0, 1] (default: the scene's, or 0.5 grey).
+    #[arg(long, value_name = "R,G,B", value_parser = parse_color)]
+    fog_color: Option<Vec3>,
+    /// Fog coordinate: distance to the eye plane or to the eye.
+    #[arg(long, value_enum)]
+    fog_coordinate: Option<FogCoord>,
     /// Tile edge in pixels; the image does not depend on it.
     #[arg(long, value_name = "PIXELS", default_value_t = RenderOptions::default().tile_size)]
     tile_size: u32,
@@ -61,6 +72,14 @@ enum Shading {
     Flat,
     Gouraud,
     Phong,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum FogCoord {
+    /// −z in eye space (the default).
+    EyePlane,
+    /// |p| in eye space.
+    Radial,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -77,6 +96,37 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     match (parse(w), parse(h)) {
         (Some(w), Some(h)) => Ok((w, h)),
         _ => Err(format!("width and height must be whole numbers in 1..=16384, got '{s}'")),
+    }
+}
+
+fn parse_fog(s: &str) -> Result<FogMode, String> {
+    let parts: Vec<&str> = s.split(':').collect();
+    let num = |v: &str| {
+        v.trim()
+            .parse::<f32>()
+            .ok()
+            .filter(|x| x.is_finite() && *x >= 0.0)
+            .ok_or_else(|| format!("'{v}' in --fog '{s}' is not a finite, non-negative number"))
+    };
+    match parts.as_slice() {
+        ["linear", start, end] => {
+            let (start, end) = (num(start)?, num(end)?);
+            if end < start {
+                return Err(format!("linear fog needs end ≥ start, got '{s}'"));
+            }
+            Ok(FogMode::Linear { start, end })
+        }
+        ["exp", d] => Ok(FogMode::Exponential { density: num(d)? }),
+        ["exp2", d] => Ok(FogMode::SquaredExponential { density: num(d)? }),
+        _ => Err(format!("expected linear:START:END, exp:DENSITY or exp2:DENSITY, got '{s}'")),
+    }
+}
+
+fn parse_color(s: &str) -> Result<Vec3, String> {
+    let c: Vec<f32> = s.split(',').filter_map(|v| v.trim().parse().ok()).collect();
+    match c.as_slice() {
+        [r, g, b] if c.iter().all(|v| (0.0..=1.0).contains(v)) => Ok(Vec3::new(*r, *g, *b)),
+        _ => Err(format!("expected R,G,B with each in [0, 1], got '{s}'")),
     }
 }
 
@@ -114,6 +164,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Demo { common } => (zline::scene::demo_scene(), common),
     };
     apply_overrides(&mut scene.settings, &common);
+    apply_fog(&mut scene, &common);
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = common.threads {
         if n == 0 {
@@ -151,6 +202,28 @@ fn load_input(input: &Path) -> Result<Scene> {
         Some("toml") => zline::scene::load_scene(input)?,
         _ => bail!("{}: unsupported input; expected an .obj model or a .toml scene file", input.display()),
     })
+}
+
+/// The CLI's fog flags over the scene's fog: `--fog` sets the mode (keeping
+/// the scene's colour and coordinate if it had fog), the others adjust an
+/// existing fog.
+fn apply_fog(scene: &mut Scene, common: &Common) {
+    if let Some(mode) = common.fog {
+        let base =
+            scene.fog.unwrap_or(Fog { mode, color: Vec3::splat(0.5), coordinate: FogCoordinate::EyePlane });
+        scene.fog = Some(Fog { mode, ..base });
+    }
+    if let Some(fog) = &mut scene.fog {
+        if let Some(c) = common.fog_color {
+            fog.color = c;
+        }
+        if let Some(c) = common.fog_coordinate {
+            fog.coordinate = match c {
+                FogCoord::EyePlane => FogCoordinate::EyePlane,
+                FogCoord::Radial => FogCoordinate::Radial,
+            };
+        }
+    }
 }
 
 fn apply_overrides(settings: &mut RenderSettings, common: &Common) {

@@ -3,6 +3,7 @@
 
 mod clipping;
 mod determinism;
+mod fog;
 mod interpolation;
 mod lit_square;
 mod support;

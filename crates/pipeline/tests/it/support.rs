@@ -50,6 +50,7 @@ pub(crate) fn scene(size: u32, ambient: Vec3, lights: Vec<Light>, objects: Vec<O
         lights,
         objects,
         settings: RenderSettings { width: size, height: size, ..RenderSettings::default() },
+        fog: None,
     }
 }
 

@@ -6,7 +6,8 @@ use std::sync::Arc;
 
 use glam::Vec3;
 use zline_scene::{
-    default_lights, load_scene, Attenuation, Interpolation, Light, Projection, ShadingMode, DEFAULT_AMBIENT,
+    default_lights, load_scene, Attenuation, FogCoordinate, FogMode, Interpolation, Light, Projection,
+    ShadingMode, DEFAULT_AMBIENT,
 };
 
 use crate::{check_message, data, temp_file};
@@ -290,4 +291,43 @@ fn model_errors_name_the_scene_and_the_model() {
 fn a_missing_scene_file_is_named() {
     let e = load_scene(&data("no_such_scene.toml")).unwrap_err().to_string();
     check_message(&e, &["no_such_scene.toml: cannot read file"]);
+}
+
+#[test]
+fn fog_is_read_as_written() {
+    let text = format!(
+        "[fog]\nmode = \"linear\"\nstart = 10\nend = 30\ncolor = [0.7, 0.75, 0.8]\ncoordinate = \"radial\"\n{OBJECT}"
+    );
+    let scene = load_scene(&temp_file("fog.toml", &text)).expect("loads");
+    let fog = scene.fog.expect("fog");
+    assert_eq!(fog.mode, FogMode::Linear { start: 10.0, end: 30.0 });
+    assert_eq!(fog.color, Vec3::new(0.7, 0.75, 0.8));
+    assert_eq!(fog.coordinate, FogCoordinate::Radial);
+    let exp2 =
+        load_scene(&temp_file("exp2.toml", &format!("[fog]\nmode = \"exp2\"\ndensity = 0.02\n{OBJECT}")))
+            .expect("loads")
+            .fog
+            .expect("fog");
+    assert_eq!(exp2.mode, FogMode::SquaredExponential { density: 0.02 });
+    assert_eq!(exp2.coordinate, FogCoordinate::EyePlane);
+    let none = load_scene(&temp_file("nofog.toml", OBJECT)).expect("loads");
+    assert_eq!(none.fog, None);
+}
+
+#[test]
+fn bad_fog_is_rejected() {
+    let fog = |body: &str| format!("[fog]\n{body}\n{OBJECT}");
+    check_scene_error(
+        "order.toml",
+        &fog("mode = \"linear\"\nstart = 5\nend = 2"),
+        &["line 4", "fog.end: must be ≥ start"],
+    );
+    check_scene_error(
+        "dens.toml",
+        &fog("mode = \"linear\"\ndensity = 1"),
+        &["fog.density: does not apply to linear fog"],
+    );
+    check_scene_error("neg.toml", &fog("mode = \"exp\"\ndensity = -1"), &["fog.density"]);
+    check_scene_error("mode.toml", &fog("mode = \"fuzzy\""), &["unknown variant `fuzzy`"]);
+    check_scene_error("col.toml", &fog("mode = \"exp\"\ncolor = [2, 0, 0]"), &["fog.color"]);
 }

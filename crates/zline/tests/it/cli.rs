@@ -73,3 +73,19 @@ fn unwritable_output_is_a_clean_error() {
     let out = zline(&["demo", "-o", "/nonexistent-dir/x.png", "--size", "8x8"]);
     check_clean_error(&out, &["/nonexistent-dir/x.png"]);
 }
+
+#[test]
+fn fog_flags_change_the_image_and_bad_ones_are_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let (plain, foggy) = (dir.path().join("plain.png"), dir.path().join("fog.png"));
+    let size = ["--size", "160x90"];
+    check_png(&zline(&[&["demo", "-o", plain.to_str().unwrap()][..], &size].concat()), &plain, (160, 90));
+    let fog = ["--fog", "exp2:0.1", "--fog-color", "1,1,1", "--fog-coordinate", "radial"];
+    let out = zline(&[&["demo", "-o", foggy.to_str().unwrap()][..], &size, &fog].concat());
+    let (a, b) = (check_png(&out, &foggy, (160, 90)), image::open(&plain).unwrap().to_rgb8());
+    let lighter = a.pixels().zip(b.pixels()).filter(|(f, p)| f[0] > p[0]).count();
+    assert!(lighter > 160 * 90 / 4, "white fog lightened only {lighter} pixels");
+    let out = zline(&["demo", "-o", "x.png", "--fog", "linear:9:3"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("end ≥ start"));
+}
