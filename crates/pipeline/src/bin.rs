@@ -74,13 +74,25 @@ pub struct PrimitiveRef {
     pub index: u32,
 }
 
-/// Lists in `bins`, per tile (row-major), the primitives whose bounds touch
-/// it, in draw order (chunks in order, then primitives in order). The inner
-/// vectors keep their capacity from frame to frame.
-pub fn bin_primitives(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Vec<Vec<PrimitiveRef>>) {
-    bins.resize_with(grid.len(), Vec::new);
-    bins.truncate(grid.len());
-    bins.iter_mut().for_each(Vec::clear);
+/// Per tile (row-major), the primitives whose bounds touch it, in draw order
+/// (chunks in order, then primitives in order): opaque ones in `opaque`,
+/// transparent ones (kt > 0) in `transparent`. The inner vectors keep their
+/// capacity from frame to frame.
+#[derive(Debug, Default)]
+pub struct Bins {
+    /// Opaque primitives per tile.
+    pub opaque: Vec<Vec<PrimitiveRef>>,
+    /// Transparent primitives per tile.
+    pub transparent: Vec<Vec<PrimitiveRef>>,
+}
+
+/// Fills `bins` for this frame's primitives (see [`Bins`]).
+pub fn bin_primitives(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins) {
+    for set in [&mut bins.opaque, &mut bins.transparent] {
+        set.resize_with(grid.len(), Vec::new);
+        set.truncate(grid.len());
+        set.iter_mut().for_each(Vec::clear);
+    }
     let window = grid.window();
     let ts = grid.tile_size as i32;
     for (c, chunk) in chunks.iter().enumerate() {
@@ -90,10 +102,11 @@ pub fn bin_primitives(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Vec
                 continue;
             }
             let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
+            let set = if chunk.prims[i].kt > 0.0 { &mut bins.transparent } else { &mut bins.opaque };
             for row in b.y0 / ts..=(b.y1 - 1) / ts {
                 let tiles = row as usize * grid.cols as usize;
                 for col in b.x0 / ts..=(b.x1 - 1) / ts {
-                    bins[tiles + col as usize].push(r);
+                    set[tiles + col as usize].push(r);
                 }
             }
         }

@@ -7,7 +7,7 @@ use zline_raster::Rect;
 use zline_scene::{Interpolation, Mesh, Scene};
 use zline_shading::{LightingModel, PreparedLights, PreparedMaterial, ShadingMode};
 
-use crate::bin::{bin_primitives, PrimitiveChunk, PrimitiveRef, TileGrid};
+use crate::bin::{bin_primitives, Bins, PrimitiveChunk, TileGrid};
 use crate::clip::ClipVolume;
 use crate::fog::FogPass;
 use crate::image::{quantize_rgba, Image};
@@ -66,7 +66,7 @@ pub struct Renderer {
     /// frame's primitives in draw order.
     chunks: Vec<PrimitiveChunk>,
     used: usize,
-    bins: Vec<Vec<PrimitiveRef>>,
+    bins: Bins,
 }
 
 impl Renderer {
@@ -123,18 +123,24 @@ impl Renderer {
             .map(|(row, band)| {
                 let mut target = TileTarget::default();
                 let mut shaded = 0;
+                let mut order = Vec::new();
                 for col in 0..grid.cols {
-                    let (rect, bin) =
-                        (grid.rect(col, row as u32), &bins[row * grid.cols as usize + col as usize]);
-                    if bin.is_empty() {
+                    let tile = row * grid.cols as usize + col as usize;
+                    let (rect, opaque, transparent) =
+                        (grid.rect(col, row as u32), &bins.opaque[tile], &bins.transparent[tile]);
+                    if opaque.is_empty() && transparent.is_empty() {
                         // Nothing to draw: the background's bytes, without the buffers.
                         fill_rect(band, width as usize, rect, background);
                         continue;
                     }
                     target.clear(rect, scene.background);
-                    shaded += target.opaque_pass(chunks, bin, &shade);
+                    shaded += target.opaque_pass(chunks, opaque, &shade);
                     if let Some(fog) = &fog {
                         target.fog_pass(fog);
+                    }
+                    if !transparent.is_empty() {
+                        shaded +=
+                            target.transparency_pass(chunks, transparent, &shade, fog.as_ref(), &mut order);
                     }
                     target.resolve(band, width as usize);
                 }

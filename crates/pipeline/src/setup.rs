@@ -55,6 +55,11 @@ pub struct Primitive {
     pub shader: Shader,
     /// True when attribute planes hold a/w and 1/w.
     pub perspective: bool,
+    /// Transparency kt = 1 − opacity (SPEC §9); 0 for opaque primitives.
+    pub kt: f32,
+    /// The mean NC depth of the vertices: the back-to-front sort key of the
+    /// transparency pass.
+    pub sort_depth: f32,
 }
 
 /// Window size in pixels.
@@ -187,7 +192,9 @@ fn emit(
             Shader::Phong { planes: AttributePlanes::new(&basis, v), material: ctx.material.1 }
         }
     };
-    out.push(Primitive { edges, depth, shader, perspective: ctx.perspective });
+    let kt = 1.0 - ctx.material.0.material.opacity;
+    let sort_depth = ((p[0].z + p[1].z + p[2].z) / 3.0) as f32;
+    out.push(Primitive { edges, depth, shader, perspective: ctx.perspective, kt, sort_depth });
 }
 
 /// Front faces are counter-clockwise as seen by the viewer (SPEC §2). With

@@ -47,6 +47,11 @@ pub struct TileTarget {
     depth: Vec<f32>,
     rgb: [Vec<f32>; 3],
     background: Vec3,
+    /// False while undrawn samples (depth 1) hold stale colours that
+    /// [`Self::resolve`] replaces by the background.
+    colors_valid: bool,
+    /// The transparent primitive being drawn: kt and fog.
+    blend: Option<(f32, Option<FogPass>)>,
 }
 
 impl TileTarget {
@@ -66,6 +71,7 @@ impl TileTarget {
         self.depth.clear();
         self.depth.resize(n, DEPTH_CLEAR);
         self.background = background;
+        self.colors_valid = false;
         for plane in &mut self.rgb {
             plane.resize(n, 0.0);
         }
@@ -96,9 +102,57 @@ impl TileTarget {
     ) -> u64 {
         let mut shaded = 0;
         for r in bin {
-            shaded += self.draw(&chunks[r.chunk as usize].prims[r.index as usize], ctx);
+            shaded += self.draw::<false>(&chunks[r.chunk as usize].prims[r.index as usize], ctx);
         }
         shaded
+    }
+
+    /// SPEC §9, pass 2: the transparent primitives `bin` back to front
+    /// (largest mean NC depth first; ties in draw order, so every tile sorts
+    /// alike), each depth-tested against the opaque depth without writing
+    /// it, fogged per sample, and blended as C = (1 − kt)·C_surface +
+    /// kt·C_behind. `order` is scratch space. Returns the samples blended.
+    ///
+    /// Where transparent surfaces intersect, each triangle is blended whole
+    /// in its sorted place, so the nearer part of the one sorted first ends
+    /// up behind the other: the classic artefact of sorting by triangle,
+    /// which per-sample sorting (not done here) would remove.
+    pub fn transparency_pass(
+        &mut self,
+        chunks: &[PrimitiveChunk],
+        bin: &[PrimitiveRef],
+        ctx: &ShadeContext<'_>,
+        fog: Option<&FogPass>,
+        order: &mut Vec<(f32, PrimitiveRef)>,
+    ) -> u64 {
+        self.materialize_background();
+        let prim = |r: &PrimitiveRef| &chunks[r.chunk as usize].prims[r.index as usize];
+        order.clear();
+        order.extend(bin.iter().map(|r| (prim(r).sort_depth, *r)));
+        order.sort_by(|a, b| b.0.total_cmp(&a.0)); // stable: ties keep draw order
+        let mut shaded = 0;
+        for (_, r) in order.iter() {
+            let p = prim(r);
+            self.blend = Some((p.kt, fog.copied()));
+            shaded += self.draw::<true>(p, ctx);
+        }
+        self.blend = None;
+        shaded
+    }
+
+    /// Writes the background into undrawn samples, so blending reads it as
+    /// C_behind.
+    fn materialize_background(&mut self) {
+        let bg = Vec3x8::splat(self.background);
+        let [red, green, blue] = &mut self.rgb;
+        for i in (0..self.depth.len()).step_by(LANES) {
+            let empty = load(&self.depth, i).cmp_eq(f32x8::splat(DEPTH_CLEAR));
+            for (plane, c) in [(&mut *red, bg.x), (&mut *green, bg.y), (&mut *blue, bg.z)] {
+                let old = load(plane, i);
+                store(plane, i, empty.blend(c, old));
+            }
+        }
+        self.colors_valid = true;
     }
 
     /// Quantizes the tile into `band`, the packed RGBA image rows that hold
@@ -116,7 +170,11 @@ impl TileTarget {
             let out = &mut band[row * width..(row + 1) * width];
             for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
                 let i = line + (x - self.origin) as usize;
-                let empty = load(&self.depth, i).cmp_eq(f32x8::splat(DEPTH_CLEAR));
+                let empty = if self.colors_valid {
+                    f32x8::ZERO
+                } else {
+                    load(&self.depth, i).cmp_eq(f32x8::splat(DEPTH_CLEAR))
+                };
                 let c = |plane: &[f32], b: f32x8| empty.blend(b, load(plane, i));
                 let px = pack_rgba(c(red, bg.x), c(green, bg.y), c(blue, bg.z));
                 if x >= self.rect.x0 && x + lanes <= self.rect.x1 {
@@ -156,26 +214,28 @@ impl TileTarget {
         }
     }
 
-    fn draw(&mut self, p: &Primitive, ctx: &ShadeContext<'_>) -> u64 {
+    /// Draws one primitive, opaque (`T` false: depth written, colour
+    /// replaced) or transparent (`T` true: see [`Self::transparency_pass`]).
+    fn draw<const T: bool>(&mut self, p: &Primitive, ctx: &ShadeContext<'_>) -> u64 {
         let mut n = 0;
         let clip = self.rect;
         match (p.shader, p.perspective) {
             (Shader::Flat { color }, _) => {
                 let c = Vec3x8::splat(color);
-                p.edges.scan(clip, |s| n += self.blocks(&p.depth, &AttributePlanes::NONE, s, |_| c));
+                p.edges.scan(clip, |s| n += self.blocks::<0, T>(&p.depth, &AttributePlanes::NONE, s, |_| c));
             }
             (Shader::Gouraud { planes }, true) => {
-                p.edges.scan(clip, |s| n += self.gouraud::<true>(&p.depth, &planes, s));
+                p.edges.scan(clip, |s| n += self.gouraud::<true, T>(&p.depth, &planes, s));
             }
             (Shader::Gouraud { planes }, false) => {
-                p.edges.scan(clip, |s| n += self.gouraud::<false>(&p.depth, &planes, s));
+                p.edges.scan(clip, |s| n += self.gouraud::<false, T>(&p.depth, &planes, s));
             }
             (Shader::Phong { planes, material }, persp) => {
                 let (m, l) = (&ctx.materials[material as usize], ctx.lighting);
                 if persp {
-                    p.edges.scan(clip, |s| n += self.phong::<true>(&p.depth, &planes, s, m, l));
+                    p.edges.scan(clip, |s| n += self.phong::<true, T>(&p.depth, &planes, s, m, l));
                 } else {
-                    p.edges.scan(clip, |s| n += self.phong::<false>(&p.depth, &planes, s, m, l));
+                    p.edges.scan(clip, |s| n += self.phong::<false, T>(&p.depth, &planes, s, m, l));
                 }
             }
         }
@@ -184,9 +244,10 @@ impl TileTarget {
 
     /// The block kernel: depth-tests each block of `span`, and where any
     /// lane passes, writes depth and the colours `shade` returns for the
-    /// block's attributes (in every passing lane).
+    /// block's attributes (in every passing lane). Transparent (`T`): no
+    /// depth write; the colour is fogged and blended over the stored one.
     #[inline(always)]
-    fn blocks<const N: usize>(
+    fn blocks<const N: usize, const T: bool>(
         &mut self,
         depth: &DepthPlane,
         attrs: &AttributePlanes<N>,
@@ -195,6 +256,8 @@ impl TileTarget {
     ) -> u64 {
         let row = self.index(self.origin, span.y);
         let origin = self.origin;
+        let (kt, fog) = self.blend.unwrap_or((0.0, None));
+        let (keep, behind) = (f32x8::splat(1.0 - kt), f32x8::splat(kt));
         let (zbuf, [red, green, blue]) = (&mut self.depth, &mut self.rgb);
         let mut n = 0;
         for_each_block(depth, attrs, span, |b| {
@@ -206,23 +269,32 @@ impl TileTarget {
                 return;
             }
             n += u64::from(bits.count_ones());
-            store(zbuf, i, live.blend(z, stored));
-            let c = shade(&b.attrs.map(f32x8::from));
+            let mut c = shade(&b.attrs.map(f32x8::from));
+            if T {
+                if let Some(fog) = &fog {
+                    let (f, fc) = (fog.factors(b.x, span.y, z), Vec3x8::splat(fog.color()));
+                    let g = f32x8::ONE - f;
+                    c = Vec3x8 { x: c.x * f + fc.x * g, y: c.y * f + fc.y * g, z: c.z * f + fc.z * g };
+                }
+            } else {
+                store(zbuf, i, live.blend(z, stored));
+            }
             for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
                 let old = load(plane, i);
-                store(plane, i, live.blend(v, old));
+                let new = if T { v * keep + old * behind } else { v };
+                store(plane, i, live.blend(new, old));
             }
         });
         n
     }
 
-    fn gouraud<const PERSPECTIVE: bool>(
+    fn gouraud<const PERSPECTIVE: bool, const T: bool>(
         &mut self,
         depth: &DepthPlane,
         planes: &GouraudPlanes,
         span: Span,
     ) -> u64 {
-        self.blocks(depth, planes, span, |a| {
+        self.blocks::<4, T>(depth, planes, span, |a| {
             let c = Vec3x8 { x: a[1], y: a[2], z: a[3] };
             if PERSPECTIVE {
                 Vec3x8 { x: c.x / a[0], y: c.y / a[0], z: c.z / a[0] }
@@ -234,7 +306,7 @@ impl TileTarget {
 
     /// SPEC §6 Phong: normal and eye position interpolated, the normal
     /// re-normalized per sample, the lighting model per sample.
-    fn phong<const PERSPECTIVE: bool>(
+    fn phong<const PERSPECTIVE: bool, const T: bool>(
         &mut self,
         depth: &DepthPlane,
         planes: &PhongPlanes,
@@ -242,7 +314,7 @@ impl TileTarget {
         material: &PreparedMaterial,
         lighting: &PreparedLights,
     ) -> u64 {
-        self.blocks(depth, planes, span, |a| {
+        self.blocks::<7, T>(depth, planes, span, |a| {
             let w = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
             let normal = Vec3x8 { x: a[1] * w, y: a[2] * w, z: a[3] * w }.normalize_or_zero();
             let eye = Vec3x8 { x: a[4] * w, y: a[5] * w, z: a[6] * w };

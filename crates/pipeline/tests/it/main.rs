@@ -7,3 +7,4 @@ mod fog;
 mod interpolation;
 mod lit_square;
 mod support;
+mod transparency;
