@@ -11,6 +11,7 @@ mod material;
 mod model;
 mod prepared;
 mod simd;
+mod texture;
 
 pub use fog::{Fog, FogCoordinate, FogMode};
 pub use light::{Attenuation, Light};
@@ -18,6 +19,7 @@ pub use material::Material;
 pub use model::{LightingModel, LitParts};
 pub use prepared::{PreparedLights, PreparedMaterial, Shininess, SPECULAR_CUTOFF};
 pub use simd::Vec3x8;
+pub use texture::{lod, Filter, Sampler, Texture, TextureError, Wrap, MAX_TEXTURE_SIZE};
 
 /// How a triangle's colour is spread over its samples (SPEC §6).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
