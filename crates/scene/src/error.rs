@@ -44,6 +44,24 @@ pub enum MeshError {
         /// Number of positions.
         positions: usize,
     },
+    /// The texture coordinate array does not have one entry per vertex.
+    #[error("{uvs} texture coordinates given for {positions} vertices")]
+    UvCount {
+        /// Number of texture coordinates.
+        uvs: usize,
+        /// Number of positions.
+        positions: usize,
+    },
+    /// A texture coordinate is NaN or infinite.
+    #[error("vertex {vertex} has non-finite texture coordinate ({s}, {t})")]
+    NonFiniteUv {
+        /// Index of the vertex.
+        vertex: usize,
+        /// s.
+        s: f32,
+        /// t.
+        t: f32,
+    },
 }
 
 /// An error while loading a model or scene file.

@@ -28,7 +28,7 @@ pub use framing::{
     FRAMING_FOVY_DEGREES, VIEW_DIRECTION,
 };
 pub use mesh::{face_normal, FALLBACK_NORMAL};
-pub use model::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene};
+pub use model::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene, TextureMap};
 pub use obj::{load_obj, load_obj_with_warnings};
 pub use primitives::{cube, plane, torus, uv_sphere};
 pub use scene_file::{load_scene, MAX_IMAGE_SIDE, MAX_PRIMITIVE_DIVISIONS};

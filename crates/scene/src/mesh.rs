@@ -50,7 +50,35 @@ impl Mesh {
             Some(given) => repair_normals(given, &positions, &triangles),
             None => vertex_normals(&positions, &triangles),
         };
-        Ok(Mesh { name: name.into(), positions, normals, triangles, material })
+        Ok(Mesh {
+            name: name.into(),
+            positions,
+            normals,
+            triangles,
+            material,
+            uvs: Vec::new(),
+            diffuse_map: None,
+        })
+    }
+
+    /// The same mesh with texture coordinates, one per position. Errors
+    /// when the count differs or a coordinate is not finite.
+    pub fn with_uvs(mut self, uvs: Vec<glam::Vec2>) -> Result<Mesh, MeshError> {
+        if uvs.len() != self.positions.len() {
+            return Err(MeshError::UvCount { uvs: uvs.len(), positions: self.positions.len() });
+        }
+        if let Some(vertex) = uvs.iter().position(|t| !t.is_finite()) {
+            let t = uvs[vertex];
+            return Err(MeshError::NonFiniteUv { vertex, s: t.x, t: t.y });
+        }
+        self.uvs = uvs;
+        Ok(self)
+    }
+
+    /// The same mesh with a diffuse texture.
+    pub fn with_diffuse_map(mut self, map: crate::TextureMap) -> Mesh {
+        self.diffuse_map = Some(map);
+        self
     }
 
     /// The axis-aligned bounding box (min, max) of the positions;

@@ -3,8 +3,18 @@
 
 use std::sync::Arc;
 
-use glam::{Mat4, Vec3};
-use zline_shading::{Fog, Light, Material, ShadingMode};
+use glam::{Mat4, Vec2, Vec3};
+use zline_shading::{Fog, Light, Material, Sampler, ShadingMode, Texture};
+
+/// A texture and how to sample it. A diffuse map modulates ka and kd
+/// (SPEC §7).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureMap {
+    /// The texels, shared between meshes.
+    pub texture: Arc<Texture>,
+    /// Filtering and wrapping.
+    pub sampler: Sampler,
+}
 
 /// A triangle mesh in object space with one material.
 ///
@@ -24,6 +34,11 @@ pub struct Mesh {
     pub triangles: Vec<[u32; 3]>,
     /// The mesh's material.
     pub material: Material,
+    /// Texture coordinates (s, t), one per position, or empty when the mesh
+    /// has none (SPEC §7: t = 0 at the bottom of the image).
+    pub uvs: Vec<Vec2>,
+    /// The diffuse texture, if any; used only when `uvs` is not empty.
+    pub diffuse_map: Option<TextureMap>,
 }
 
 /// How values are interpolated across a triangle in window space (SPEC §6).

@@ -131,7 +131,15 @@ fn finite_or_one(x: f32) -> f32 {
 
 /// Assembles a primitive; the arrays are valid by construction.
 fn primitive(name: &str, positions: Vec<Vec3>, normals: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Mesh {
-    Mesh { name: name.to_owned(), positions, normals, triangles, material: Material::DEFAULT }
+    Mesh {
+        name: name.to_owned(),
+        positions,
+        normals,
+        triangles,
+        material: Material::DEFAULT,
+        uvs: Vec::new(),
+        diffuse_map: None,
+    }
 }
 
 #[cfg(test)]

@@ -14,7 +14,15 @@ pub(crate) fn mesh(
     triangles: Vec<[u32; 3]>,
     material: Material,
 ) -> Arc<Mesh> {
-    Arc::new(Mesh { name: "test".into(), positions, normals, triangles, material })
+    Arc::new(Mesh {
+        name: "test".into(),
+        positions,
+        normals,
+        triangles,
+        material,
+        uvs: Vec::new(),
+        diffuse_map: None,
+    })
 }
 
 /// An axis-aligned square in the plane z = `z`, facing +z, corners at ±`half`
