@@ -63,6 +63,9 @@ pub struct PrimitiveChunk {
     pub prims: Vec<Primitive>,
     /// `prims[i].edges.bounds()`.
     pub bounds: Vec<Rect>,
+    /// Planes of the textured primitives, referenced by
+    /// [`Shader::Textured`](crate::setup::Shader::Textured).
+    pub textured: Vec<crate::setup::TexturedPlanes>,
 }
 
 /// Where a binned primitive lives: `chunks[chunk].prims[index]`.

@@ -4,7 +4,7 @@ use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
 use zline_raster::Rect;
-use zline_scene::{Interpolation, Mesh, Scene};
+use zline_scene::{Interpolation, Mesh, Scene, TextureMap};
 use zline_shading::{LightingModel, PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::bin::{bin_primitives, Bins, PrimitiveChunk, TileGrid};
@@ -83,9 +83,17 @@ impl Renderer {
         let materials: Vec<PreparedMaterial> =
             scene.objects.iter().map(|o| PreparedMaterial::new(o.material().sanitized())).collect();
         let mut stats = RenderStats::default();
+        let mut textures: Vec<TextureMap> = Vec::new();
         self.used = 0;
         for (index, object) in scene.objects.iter().enumerate() {
             stats.triangles += object.mesh.triangles.len() as u64;
+            let texture = match (&object.mesh.diffuse_map, object.mesh.uvs.is_empty()) {
+                (Some(map), false) => {
+                    textures.push(map.clone());
+                    Some(textures.len() as u32 - 1)
+                }
+                _ => None,
+            };
             let ctx = SetupContext {
                 viewport: Viewport { width, height },
                 volume: ClipVolume::new(width, height),
@@ -94,6 +102,7 @@ impl Renderer {
                 cull_back_faces: object.cull_back_faces,
                 material: (&materials[index], index as u32),
                 lighting: &lighting,
+                texture,
             };
             let transforms = ObjectTransforms::new(clip_from_eye, eye_from_world, object.world_from_object);
             self.setup_object(&object.mesh, &transforms, &ctx);
@@ -108,7 +117,7 @@ impl Renderer {
         stats.binning = start.elapsed();
 
         let start = Instant::now();
-        let shade = ShadeContext { lighting: &lighting, materials: &materials };
+        let shade = ShadeContext { lighting: &lighting, materials: &materials, textures: &textures };
         image.width = width;
         image.height = height;
         image.pixels.resize(width as usize * height as usize, 0);
@@ -155,7 +164,10 @@ impl Renderer {
     /// in mesh order.
     fn setup_object(&mut self, mesh: &Mesh, transforms: &ObjectTransforms, ctx: &SetupContext<'_>) {
         let lighting = match ctx.shading {
-            ShadingMode::Gouraud => VertexLighting::Gouraud(ctx.lighting, ctx.material.0),
+            // Textured Gouraud lights its (clipped) vertices in setup, in parts.
+            ShadingMode::Gouraud if ctx.texture.is_none() => {
+                VertexLighting::Gouraud(ctx.lighting, ctx.material.0)
+            }
             _ => VertexLighting::None,
         };
         let screen = Screen { viewport: ctx.viewport, volume: ctx.volume };
@@ -169,9 +181,10 @@ impl Renderer {
         let tris = mesh.triangles.par_chunks(TRIANGLE_CHUNK);
         self.chunks[first..self.used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
             out.prims.clear();
+            out.textured.clear();
             for t in tris {
                 if let Some(tri) = gather(vertices, t) {
-                    setup_triangle(tri, ctx, &mut out.prims);
+                    setup_triangle(tri, ctx, out);
                 }
             }
             out.bounds.clear();

@@ -11,7 +11,9 @@
 
 use glam::Vec3;
 use zline_raster::{AttributePlanes, DepthPlane, EdgeTable, FixedPoint, PlaneBasis};
-use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode};
+use zline_shading::{LitParts, PreparedLights, PreparedMaterial, ShadingMode};
+
+use crate::bin::PrimitiveChunk;
 
 use crate::clip::{clip_polygon, ClipVolume, MAX_CLIPPED};
 use crate::vertex::ClipVertex;
@@ -34,6 +36,13 @@ pub enum Shader {
     Gouraud {
         /// Colour planes.
         planes: GouraudPlanes,
+    },
+    /// A textured primitive: its planes live in the chunk's
+    /// [`PrimitiveChunk::textured`] (kept apart so untextured primitives
+    /// stay small).
+    Textured {
+        /// Index into the chunk's textured planes.
+        index: u32,
     },
     /// Lighting per sample.
     Phong {
@@ -62,6 +71,41 @@ pub struct Primitive {
     pub sort_depth: f32,
 }
 
+/// Attributes of a textured primitive: [1/w, s, t, then three pairs of
+/// three] — ambient+diffuse and specular parts (Gouraud) or normal and eye
+/// position (Phong); each over w when perspective-correct.
+pub type TexturedAttributes = AttributePlanes<9>;
+
+/// How a textured primitive gets its lit parts (SPEC §7: the texel
+/// modulates ka and kd, not ks: c = texel ⊙ (ambient+diffuse) + specular).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TexturedKind {
+    /// Parts lit once at the centroid.
+    Flat {
+        /// Ambient + diffuse part.
+        ambient_diffuse: Vec3,
+        /// Specular part.
+        specular: Vec3,
+    },
+    /// Parts lit at the vertices and interpolated separately.
+    Gouraud,
+    /// Parts lit per sample.
+    Phong,
+}
+
+/// The planes and references of one textured primitive.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TexturedPlanes {
+    /// How the lit parts come about.
+    pub kind: TexturedKind,
+    /// The attributes.
+    pub planes: TexturedAttributes,
+    /// Index into the frame's texture table.
+    pub texture: u32,
+    /// Index into the frame's material table.
+    pub material: u32,
+}
+
 /// Window size in pixels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Viewport {
@@ -88,17 +132,20 @@ pub struct SetupContext<'a> {
     pub material: (&'a PreparedMaterial, u32),
     /// The eye-space lighting model (flat shading evaluates it here).
     pub lighting: &'a PreparedLights,
+    /// The object's diffuse texture (index into the frame's table), when it
+    /// has one and texture coordinates.
+    pub texture: Option<u32>,
 }
 
 /// Sets up one triangle (vertices in the mesh's order) and appends 0 or more
 /// primitives to `out` (more than one only when clipping made a polygon).
-pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut Vec<Primitive>) {
+pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut PrimitiveChunk) {
     if tri[0].view_code & tri[1].view_code & tri[2].view_code != 0 {
         return; // entirely outside one plane of the view volume (NaN vertices included)
     }
     let flat = match ctx.shading {
-        ShadingMode::Flat => flat_color(&tri, ctx),
-        _ => Vec3::ZERO,
+        ShadingMode::Flat => flat_parts(&tri, ctx),
+        _ => LitParts::default(),
     };
     let code = tri[0].clip_code | tri[1].clip_code | tri[2].clip_code;
     if code == 0 {
@@ -150,11 +197,11 @@ impl Projected {
 /// SPEC §6 flat shading: the lighting model at the centroid of the original
 /// triangle with its face normal (computed in f64 so huge coordinates do not
 /// overflow).
-fn flat_color(tri: &[&ClipVertex; 3], ctx: &SetupContext<'_>) -> Vec3 {
+fn flat_parts(tri: &[&ClipVertex; 3], ctx: &SetupContext<'_>) -> LitParts {
     let p = tri.map(|v| v.eye.as_dvec3());
     let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero().as_vec3();
     let centroid = ((p[0] + p[1] + p[2]) / 3.0).as_vec3();
-    ctx.lighting.shade(ctx.material.0, centroid, normal, Vec3::ZERO)
+    ctx.lighting.shade_parts(ctx.material.0, centroid, normal, Vec3::ZERO)
 }
 
 /// Projects, snaps, culls and builds the planes of one clipped triangle.
@@ -162,9 +209,9 @@ fn flat_color(tri: &[&ClipVertex; 3], ctx: &SetupContext<'_>) -> Vec3 {
 fn emit(
     tri: [&ClipVertex; 3],
     p: [Projected; 3],
-    flat: Vec3,
+    flat: LitParts,
     ctx: &SetupContext<'_>,
-    out: &mut Vec<Primitive>,
+    out: &mut PrimitiveChunk,
 ) {
     let fixed = p.map(|v| v.fixed);
     if ctx.cull_back_faces && !is_front_facing(&fixed) {
@@ -175,26 +222,75 @@ fn emit(
     };
     let depth = DepthPlane::new(&basis, p.map(|v| v.z));
     let q = if ctx.perspective { p.map(|v| v.inv_w) } else { [1.0; 3] };
-    let shader = match ctx.shading {
+    let shader = match ctx.texture {
+        Some(texture) => textured(tri, q, flat, &basis, texture, ctx, out),
+        None => untextured(tri, q, flat.color(), &basis, ctx),
+    };
+    let kt = 1.0 - ctx.material.0.material.opacity;
+    let sort_depth = ((p[0].z + p[1].z + p[2].z) / 3.0) as f32;
+    out.prims.push(Primitive { edges, depth, shader, perspective: ctx.perspective, kt, sort_depth });
+}
+
+/// The shader of an untextured primitive: only the attributes its mode needs.
+#[inline]
+fn untextured(
+    tri: [&ClipVertex; 3],
+    q: [f32; 3],
+    flat: Vec3,
+    basis: &PlaneBasis,
+    ctx: &SetupContext<'_>,
+) -> Shader {
+    match ctx.shading {
         ShadingMode::Flat => Shader::Flat { color: flat },
         ShadingMode::Gouraud => {
             let v = std::array::from_fn(|k| {
                 let c = tri[k].color * q[k];
                 [q[k], c.x, c.y, c.z]
             });
-            Shader::Gouraud { planes: AttributePlanes::new(&basis, v) }
+            Shader::Gouraud { planes: AttributePlanes::new(basis, v) }
         }
         ShadingMode::Phong => {
             let v = std::array::from_fn(|k| {
                 let (n, e) = (tri[k].normal * q[k], tri[k].eye * q[k]);
                 [q[k], n.x, n.y, n.z, e.x, e.y, e.z]
             });
-            Shader::Phong { planes: AttributePlanes::new(&basis, v), material: ctx.material.1 }
+            Shader::Phong { planes: AttributePlanes::new(basis, v), material: ctx.material.1 }
         }
+    }
+}
+
+/// The shader of a textured primitive: texture coordinates plus the parts
+/// its mode interpolates, stored in the chunk's side table.
+fn textured(
+    tri: [&ClipVertex; 3],
+    q: [f32; 3],
+    flat: LitParts,
+    basis: &PlaneBasis,
+    texture: u32,
+    ctx: &SetupContext<'_>,
+    out: &mut PrimitiveChunk,
+) -> Shader {
+    let (kind, pairs): (TexturedKind, [[Vec3; 2]; 3]) = match ctx.shading {
+        ShadingMode::Flat => (
+            TexturedKind::Flat { ambient_diffuse: flat.ambient_diffuse, specular: flat.specular },
+            [[Vec3::ZERO; 2]; 3],
+        ),
+        ShadingMode::Gouraud => (
+            TexturedKind::Gouraud,
+            tri.map(|v| {
+                let parts = ctx.lighting.shade_parts(ctx.material.0, v.eye, v.normal, Vec3::ZERO);
+                [parts.ambient_diffuse, parts.specular]
+            }),
+        ),
+        ShadingMode::Phong => (TexturedKind::Phong, tri.map(|v| [v.normal, v.eye])),
     };
-    let kt = 1.0 - ctx.material.0.material.opacity;
-    let sort_depth = ((p[0].z + p[1].z + p[2].z) / 3.0) as f32;
-    out.push(Primitive { edges, depth, shader, perspective: ctx.perspective, kt, sort_depth });
+    let values = std::array::from_fn(|k| {
+        let (uv, a, b) = (tri[k].uv * q[k], pairs[k][0] * q[k], pairs[k][1] * q[k]);
+        [q[k], uv.x, uv.y, a.x, a.y, a.z, b.x, b.y, b.z]
+    });
+    let planes = AttributePlanes::new(basis, values);
+    out.textured.push(TexturedPlanes { kind, planes, texture, material: ctx.material.1 });
+    Shader::Textured { index: (out.textured.len() - 1) as u32 }
 }
 
 /// Front faces are counter-clockwise as seen by the viewer (SPEC §2). With

@@ -18,11 +18,12 @@
 use glam::Vec3;
 use wide::{f32x8, i32x8, CmpEq, CmpLt};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, Rect, Span, LANES};
-use zline_shading::{PreparedLights, PreparedMaterial, Vec3x8};
+use zline_scene::TextureMap;
+use zline_shading::{lod, Filter, PreparedLights, PreparedMaterial, Vec3x8};
 
 use crate::bin::{PrimitiveChunk, PrimitiveRef};
 use crate::fog::FogPass;
-use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader};
+use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader, TexturedKind, TexturedPlanes};
 
 /// Depth initialised to the far plane (SPEC §4).
 pub const DEPTH_CLEAR: f32 = 1.0;
@@ -34,6 +35,8 @@ pub struct ShadeContext<'a> {
     pub lighting: &'a PreparedLights,
     /// The frame's materials, indexed by [`Shader::Phong::material`].
     pub materials: &'a [PreparedMaterial],
+    /// The frame's textures, indexed by [`TexturedPlanes::texture`].
+    pub textures: &'a [TextureMap],
 }
 
 /// A tile's depth buffer and colour planes, one value per sample, covering
@@ -102,7 +105,8 @@ impl TileTarget {
     ) -> u64 {
         let mut shaded = 0;
         for r in bin {
-            shaded += self.draw::<false>(&chunks[r.chunk as usize].prims[r.index as usize], ctx);
+            let chunk = &chunks[r.chunk as usize];
+            shaded += self.draw::<false>(&chunk.prims[r.index as usize], chunk, ctx);
         }
         shaded
     }
@@ -127,6 +131,7 @@ impl TileTarget {
     ) -> u64 {
         self.materialize_background();
         let prim = |r: &PrimitiveRef| &chunks[r.chunk as usize].prims[r.index as usize];
+        let chunk = |r: &PrimitiveRef| &chunks[r.chunk as usize];
         order.clear();
         order.extend(bin.iter().map(|r| (prim(r).sort_depth, *r)));
         order.sort_by(|a, b| b.0.total_cmp(&a.0)); // stable: ties keep draw order
@@ -134,7 +139,7 @@ impl TileTarget {
         for (_, r) in order.iter() {
             let p = prim(r);
             self.blend = Some((p.kt, fog.copied()));
-            shaded += self.draw::<true>(p, ctx);
+            shaded += self.draw::<true>(p, chunk(r), ctx);
         }
         self.blend = None;
         shaded
@@ -216,7 +221,7 @@ impl TileTarget {
 
     /// Draws one primitive, opaque (`T` false: depth written, colour
     /// replaced) or transparent (`T` true: see [`Self::transparency_pass`]).
-    fn draw<const T: bool>(&mut self, p: &Primitive, ctx: &ShadeContext<'_>) -> u64 {
+    fn draw<const T: bool>(&mut self, p: &Primitive, chunk: &PrimitiveChunk, ctx: &ShadeContext<'_>) -> u64 {
         let mut n = 0;
         let clip = self.rect;
         match (p.shader, p.perspective) {
@@ -229,6 +234,17 @@ impl TileTarget {
             }
             (Shader::Gouraud { planes }, false) => {
                 p.edges.scan(clip, |s| n += self.gouraud::<false, T>(&p.depth, &planes, s));
+            }
+            (Shader::Textured { index }, persp) => {
+                let t = &chunk.textured[index as usize];
+                let (map, m) = (&ctx.textures[t.texture as usize], &ctx.materials[t.material as usize]);
+                if persp {
+                    p.edges
+                        .scan(clip, |s| n += self.textured::<true, T>(&p.depth, t, map, m, ctx.lighting, s));
+                } else {
+                    p.edges
+                        .scan(clip, |s| n += self.textured::<false, T>(&p.depth, t, map, m, ctx.lighting, s));
+                }
             }
             (Shader::Phong { planes, material }, persp) => {
                 let (m, l) = (&ctx.materials[material as usize], ctx.lighting);
@@ -319,6 +335,64 @@ impl TileTarget {
             let normal = Vec3x8 { x: a[1] * w, y: a[2] * w, z: a[3] * w }.normalize_or_zero();
             let eye = Vec3x8 { x: a[4] * w, y: a[5] * w, z: a[6] * w };
             lighting.shade_x8(material, eye, normal)
+        })
+    }
+
+    /// SPEC §7: texture coordinates interpolated (perspective-correct or
+    /// not), the texel sampled with the map's sampler — the level of detail
+    /// from the exact per-sample derivatives of s and t — and
+    /// c = texel ⊙ (ambient+diffuse) + specular, clamped.
+    #[allow(clippy::too_many_arguments, reason = "one kernel's inputs, passed through unchanged")]
+    fn textured<const PERSPECTIVE: bool, const T: bool>(
+        &mut self,
+        depth: &DepthPlane,
+        t: &TexturedPlanes,
+        map: &TextureMap,
+        material: &PreparedMaterial,
+        lighting: &PreparedLights,
+        span: Span,
+    ) -> u64 {
+        let (dx, dy) = (t.planes.dx(), t.planes.dy());
+        let (w, h) = (map.texture.width(), map.texture.height());
+        let trilinear = map.sampler.filter == Filter::Trilinear;
+        let kind = t.kind;
+        self.blocks::<9, T>(depth, &t.planes, span, |a| {
+            let inv = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
+            let (s, tt) = (a[1] * inv, a[2] * inv);
+            let lods = if trilinear {
+                // s = S/Q with S = s/w and Q = 1/w planes: ∂s/∂x = (∂S/∂x − s·∂Q/∂x)/Q.
+                let d = |ds: f32, dq: f32, v: f32x8| {
+                    if PERSPECTIVE {
+                        (f32x8::splat(ds) - v * f32x8::splat(dq)) * inv
+                    } else {
+                        f32x8::splat(ds)
+                    }
+                };
+                let (sx, tx) = (d(dx[1], dx[0], s).to_array(), d(dx[2], dx[0], tt).to_array());
+                let (sy, ty) = (d(dy[1], dy[0], s).to_array(), d(dy[2], dy[0], tt).to_array());
+                std::array::from_fn(|k| lod(sx[k], tx[k], sy[k], ty[k], w, h))
+            } else {
+                [0.0; LANES]
+            };
+            let (s, tt) = (s.to_array(), tt.to_array());
+            let texels: [glam::Vec4; LANES] =
+                std::array::from_fn(|k| map.texture.sample(&map.sampler, s[k], tt[k], lods[k]));
+            let texel = Vec3x8 {
+                x: f32x8::from(texels.map(|c| c.x)),
+                y: f32x8::from(texels.map(|c| c.y)),
+                z: f32x8::from(texels.map(|c| c.z)),
+            };
+            let pair = |i: usize| Vec3x8 { x: a[i] * inv, y: a[i + 1] * inv, z: a[i + 2] * inv };
+            let (ambient_diffuse, specular) = match kind {
+                TexturedKind::Flat { ambient_diffuse, specular } => {
+                    (Vec3x8::splat(ambient_diffuse), Vec3x8::splat(specular))
+                }
+                TexturedKind::Gouraud => (pair(3), pair(6)),
+                TexturedKind::Phong => {
+                    lighting.shade_parts_x8(material, pair(6), pair(3).normalize_or_zero())
+                }
+            };
+            texel.mul(ambient_diffuse).add(specular).clamp01()
         })
     }
 }

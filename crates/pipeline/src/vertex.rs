@@ -31,6 +31,8 @@ pub struct ClipVertex {
     pub normal: Vec3,
     /// Lit colour (Gouraud only), clamped to [0, 1].
     pub color: Vec3,
+    /// Texture coordinates (zero for meshes without them).
+    pub uv: glam::Vec2,
     /// Window position, NC depth and 1/w; meaningful when `clip_code` is 0.
     pub projected: Projected,
     /// Outcode against the view volume (see [`view_code`]).
@@ -54,6 +56,7 @@ impl ClipVertex {
             eye: self.eye.lerp(other.eye, t),
             normal: self.normal.lerp(other.normal, t),
             color: self.color.lerp(other.color, t),
+            uv: self.uv.lerp(other.uv, t),
             projected: Projected::default(),
             view_code: 0,
             clip_code: NEEDS_SETUP,
@@ -119,6 +122,11 @@ pub fn transform_mesh(
         for ((v, &p), &n) in out.iter_mut().zip(positions).zip(normals) {
             *v = transform_vertex(p, n, t, screen);
         }
+        if let Some(uvs) = mesh.uvs.get(start..start + out.len()) {
+            for (v, &uv) in out.iter_mut().zip(uvs) {
+                v.uv = uv;
+            }
+        }
         if let VertexLighting::Gouraud(lights, material) = lighting {
             light_vertices(out, lights, material);
         }
@@ -161,6 +169,7 @@ fn transform_vertex(p: Vec3, n: Vec3, t: &ObjectTransforms, s: &Screen) -> ClipV
         eye,
         normal,
         color: Vec3::ZERO,
+        uv: glam::Vec2::ZERO,
         projected: projected.unwrap_or_default(),
         view_code: view_code(clip),
         clip_code,

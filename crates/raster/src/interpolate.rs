@@ -163,6 +163,11 @@ impl<const N: usize> AttributePlanes<N> {
         self.dx
     }
 
+    /// ∂v/∂y per attribute.
+    pub fn dy(&self) -> [f32; N] {
+        self.dy
+    }
+
     /// The bound on |v − v_exact| for attribute `i` of the sample at (x, y)
     /// (see the module doc): the anchor's evaluation rounds terms as large as
     /// the offsets times the gradients, and the step of k ≤ 15 columns

@@ -41,8 +41,23 @@ impl Vec3x8 {
         Vec3x8 { x: self.x * s, y: self.y * s, z: self.z * s }
     }
 
+    /// Every lane clamped to [0, 1] (NaN becomes 0, as `Vec3::clamp` after
+    /// `max`).
     #[inline]
-    fn add(self, o: Vec3x8) -> Vec3x8 {
+    pub fn clamp01(self) -> Vec3x8 {
+        let clamp = |c: f32x8| c.max(f32x8::ZERO).min(f32x8::ONE);
+        Vec3x8 { x: clamp(self.x), y: clamp(self.y), z: clamp(self.z) }
+    }
+
+    /// Lane-wise product.
+    #[inline]
+    pub fn mul(self, o: Vec3x8) -> Vec3x8 {
+        Vec3x8 { x: self.x * o.x, y: self.y * o.y, z: self.z * o.z }
+    }
+
+    /// Lane-wise sum.
+    #[inline]
+    pub fn add(self, o: Vec3x8) -> Vec3x8 {
         Vec3x8 { x: self.x + o.x, y: self.y + o.y, z: self.z + o.z }
     }
 
@@ -54,11 +69,6 @@ impl Vec3x8 {
     #[inline]
     fn div(self, s: f32x8) -> Vec3x8 {
         Vec3x8 { x: self.x / s, y: self.y / s, z: self.z / s }
-    }
-
-    #[inline]
-    fn mul(self, o: Vec3x8) -> Vec3x8 {
-        Vec3x8 { x: self.x * o.x, y: self.y * o.y, z: self.z * o.z }
     }
 
     /// glam's `normalize_or_zero`: v / |v|, or 0 where 1/|v| is not a
@@ -104,6 +114,14 @@ impl PreparedLights {
     /// `point` with unit `normal`, the eye at the origin.
     #[inline]
     pub fn shade_x8(&self, m: &PreparedMaterial, point: Vec3x8, normal: Vec3x8) -> Vec3x8 {
+        let (ambient_diffuse, specular) = self.shade_parts_x8(m, point, normal);
+        ambient_diffuse.add(specular).clamp01()
+    }
+
+    /// [`PreparedLights::shade_parts`] for eight samples: the unclamped
+    /// ambient+diffuse and specular parts, for texturing (SPEC §7).
+    #[inline]
+    pub fn shade_parts_x8(&self, m: &PreparedMaterial, point: Vec3x8, normal: Vec3x8) -> (Vec3x8, Vec3x8) {
         let view = Vec3x8::default().sub(point).normalize_or_zero();
         let mut sum = SumsX8::default();
         for d in self.directional_lights() {
@@ -124,9 +142,7 @@ impl PreparedLights {
         let mat = &m.material;
         let ambient_diffuse =
             Vec3x8::splat(mat.ka * self.ambient()).add(Vec3x8::splat(mat.kd).mul(sum.diffuse));
-        let color = ambient_diffuse.add(Vec3x8::splat(mat.ks).mul(sum.specular));
-        let clamp = |c: f32x8| c.max(f32x8::ZERO).min(f32x8::ONE);
-        Vec3x8 { x: clamp(color.x), y: clamp(color.y), z: clamp(color.z) }
+        (ambient_diffuse, Vec3x8::splat(mat.ks).mul(sum.specular))
     }
 }
 

@@ -7,4 +7,5 @@ mod fog;
 mod interpolation;
 mod lit_square;
 mod support;
+mod texture;
 mod transparency;

@@ -1,0 +1,124 @@
+//! Texture mapping in the pipeline (SPEC §7): texels land where their
+//! coordinates say, modulate ambient and diffuse but not specular, and the
+//! perspective-correct and affine mappings put a receding boundary where the
+//! formulas put it.
+
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
+use zline_scene::{Interpolation, Mesh, TextureMap};
+use zline_shading::{Filter, Light, Material, Sampler, ShadingMode, Texture, Wrap};
+
+use crate::support::{draw, object, scene};
+
+/// A mesh with texture coordinates and a texture.
+fn textured(positions: Vec<Vec3>, uvs: Vec<Vec2>, texture: Texture, material: Material) -> Arc<Mesh> {
+    let n = positions.len();
+    let triangles = vec![[0, 1, 2], [0, 2, 3]];
+    let sampler = Sampler { filter: Filter::Nearest, wrap_s: Wrap::ClampToEdge, wrap_t: Wrap::ClampToEdge };
+    let mesh = Mesh::new("textured", positions, Some(vec![Vec3::Z; n]), triangles, material)
+        .and_then(|m| m.with_uvs(uvs))
+        .expect("valid mesh")
+        .with_diffuse_map(TextureMap { texture: Arc::new(texture), sampler });
+    Arc::new(mesh)
+}
+
+/// The unit square's corners at depth z, with (s, t) = (0, 0) bottom left.
+fn square(half: f32, z: f32) -> (Vec<Vec3>, Vec<Vec2>) {
+    let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+    let p = corners.map(|(x, y)| Vec3::new(x * half, y * half, z)).to_vec();
+    let uv = corners.map(|(x, y)| Vec2::new((x + 1.0) / 2.0, (y + 1.0) / 2.0)).to_vec();
+    (p, uv)
+}
+
+fn unlit() -> Material {
+    Material { ka: Vec3::ONE, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0 }
+}
+
+/// Rows top to bottom: red, green / blue, white.
+fn checker() -> Texture {
+    let px = [[255, 0, 0, 255], [0, 255, 0, 255], [0, 0, 255, 255], [255, 255, 255, 255]];
+    Texture::from_rgba8(2, 2, &px.concat()).expect("valid texture")
+}
+
+#[test]
+fn texels_land_in_their_quadrants_in_every_shading_mode() {
+    for mode in ShadingMode::ALL {
+        let (p, uv) = square(1.0, -2.0);
+        let mut s =
+            scene(64, Vec3::ONE, vec![], vec![object(textured(p, uv, checker(), unlit()), Some(mode))]);
+        s.background = Vec3::ZERO;
+        let image = draw(&s);
+        // The square spans window pixels 16..48; quadrant centres at 24 and 40.
+        assert_eq!(image.pixel(24, 24), [255, 0, 0], "{mode:?}: top left is the image's top-left texel");
+        assert_eq!(image.pixel(40, 24), [0, 255, 0], "{mode:?}: top right");
+        assert_eq!(image.pixel(24, 40), [0, 0, 255], "{mode:?}: bottom left");
+        assert_eq!(image.pixel(40, 40), [255, 255, 255], "{mode:?}: bottom right");
+        assert_eq!(image.pixel(4, 4), [0, 0, 0], "{mode:?}: background");
+    }
+}
+
+#[test]
+fn the_texel_modulates_ambient_and_diffuse_but_not_specular() {
+    // Flat: a directional light head-on, N·L = 1, and shininess 0 so the
+    // specular term is ks·Il·(N·H)^0 = 0.25 wherever the eye is:
+    // ad = ka·Ia + kd·Il = 0.1 + 0.5, spec = 0.25.
+    // c = texel ⊙ 0.6 + 0.25 for texel (0.2, 0.4, 0.8) → (0.37, 0.49, 0.73).
+    let texel = [51, 102, 204, 255]; // 0.2, 0.4, 0.8
+    let texture = Texture::from_rgba8(1, 1, &texel).expect("valid");
+    let m = Material { ka: Vec3::ONE, kd: Vec3::splat(0.5), ks: Vec3::splat(0.25), ns: 0.0, opacity: 1.0 };
+    let (p, uv) = square(1.0, -2.0);
+    let light = Light::Directional { direction: Vec3::NEG_Z, color: Vec3::ONE };
+    let s = scene(
+        64,
+        Vec3::splat(0.1),
+        vec![light],
+        vec![object(textured(p, uv, texture, m), Some(ShadingMode::Flat))],
+    );
+    // floor(0.37·255 + 0.5) = 94, floor(0.49·255 + 0.5) = 125, floor(0.73·255 + 0.5) = 186.
+    assert_eq!(draw(&s).pixel(32, 30), [94, 125, 186]);
+}
+
+/// The first row (from the top, in column 32) whose colour is the texture's
+/// upper (white) half, on a floor receding from z = −1 to z = −5.
+fn boundary_row(interpolation: Interpolation) -> u32 {
+    let px = [[255, 255, 255, 255], [0, 0, 0, 255]]; // top row white, bottom row black
+    let texture = Texture::from_rgba8(1, 2, &px.concat()).expect("valid");
+    let p = vec![
+        Vec3::new(-1.0, -1.0, -1.0),
+        Vec3::new(1.0, -1.0, -1.0),
+        Vec3::new(1.0, -1.0, -5.0),
+        Vec3::new(-1.0, -1.0, -5.0),
+    ];
+    let uv = vec![Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(1.0, 1.0), Vec2::new(0.0, 1.0)];
+    let mut o = object(textured(p, uv, texture, unlit()), Some(ShadingMode::Flat));
+    o.cull_back_faces = false;
+    let mut s = scene(101, Vec3::ONE, vec![], vec![o]);
+    s.settings.interpolation = interpolation;
+    let image = draw(&s);
+    (0..101)
+        .find(|&y| image.pixel(50, y) == [255, 255, 255])
+        .map_or(0, |top| (top..101).find(|&y| image.pixel(50, y) == [0, 0, 0]).unwrap_or(0))
+}
+
+#[test]
+fn perspective_correct_and_affine_boundaries_fall_where_the_formulas_say() {
+    // The floor y = −1 from z = −1 to −5; t = 0.5 is at z = −3 in eye space,
+    // which projects to y_nc = −1/3: window y (1 + 1/3)/2 · 101 = 67.33, so
+    // the first black row is 67 (sample centre 67.5 lies below it). Affine
+    // mapping puts t = 0.5 halfway between the projected ends y_nc = −1 and
+    // −0.2, at y_nc = −0.6: y = (1 + 0.6)/2 · 101 = 80.8, first black row 81
+    // (row 80's centre 80.5 is above it).
+    assert_eq!(boundary_row(Interpolation::PerspectiveCorrect), 67);
+    assert_eq!(boundary_row(Interpolation::ScreenLinear), 81);
+}
+
+#[test]
+fn a_mesh_without_texture_coordinates_is_drawn_untextured() {
+    let (p, _) = square(1.0, -2.0);
+    let mesh = Mesh::new("plain", p, None, vec![[0, 1, 2], [0, 2, 3]], unlit()).expect("valid");
+    let mesh =
+        mesh.with_diffuse_map(TextureMap { texture: Arc::new(checker()), sampler: Sampler::default() });
+    let s = scene(64, Vec3::ONE, vec![], vec![object(Arc::new(mesh), None)]);
+    assert_eq!(draw(&s).pixel(32, 32), [255, 255, 255]);
+}
