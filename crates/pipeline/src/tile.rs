@@ -392,7 +392,7 @@ impl TileTarget {
                     lighting.shade_parts_x8(material, pair(6), pair(3).normalize_or_zero())
                 }
             };
-            texel.mul(ambient_diffuse).add(specular).clamp01()
+            (texel * ambient_diffuse + specular).clamp01()
         })
     }
 }

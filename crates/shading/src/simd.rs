@@ -9,6 +9,8 @@
 //! which lane it occupies. A unit test checks lane results against the
 //! scalar path bit for bit.
 
+use std::ops::{Add, Mul};
+
 use wide::{f32x8, CmpGt, CmpLe};
 
 use crate::prepared::{pow_by_squaring, PreparedLights, PreparedMaterial, Shininess};
@@ -49,18 +51,6 @@ impl Vec3x8 {
         Vec3x8 { x: clamp(self.x), y: clamp(self.y), z: clamp(self.z) }
     }
 
-    /// Lane-wise product.
-    #[inline]
-    pub fn mul(self, o: Vec3x8) -> Vec3x8 {
-        Vec3x8 { x: self.x * o.x, y: self.y * o.y, z: self.z * o.z }
-    }
-
-    /// Lane-wise sum.
-    #[inline]
-    pub fn add(self, o: Vec3x8) -> Vec3x8 {
-        Vec3x8 { x: self.x + o.x, y: self.y + o.y, z: self.z + o.z }
-    }
-
     #[inline]
     fn sub(self, o: Vec3x8) -> Vec3x8 {
         Vec3x8 { x: self.x - o.x, y: self.y - o.y, z: self.z - o.z }
@@ -95,6 +85,26 @@ impl Vec3x8 {
     #[inline]
     pub fn lane(&self, i: usize) -> glam::Vec3 {
         glam::Vec3::new(self.x.as_array_ref()[i], self.y.as_array_ref()[i], self.z.as_array_ref()[i])
+    }
+}
+
+impl Add for Vec3x8 {
+    type Output = Vec3x8;
+
+    /// Lane-wise sum.
+    #[inline]
+    fn add(self, o: Vec3x8) -> Vec3x8 {
+        Vec3x8 { x: self.x + o.x, y: self.y + o.y, z: self.z + o.z }
+    }
+}
+
+impl Mul for Vec3x8 {
+    type Output = Vec3x8;
+
+    /// Lane-wise product.
+    #[inline]
+    fn mul(self, o: Vec3x8) -> Vec3x8 {
+        Vec3x8 { x: self.x * o.x, y: self.y * o.y, z: self.z * o.z }
     }
 }
 
