@@ -12,12 +12,16 @@
 //! is larger, so that the eye never rounds onto the target. Every matrix
 //! the camera yields is finite; if even f64 cannot frame the box (sizes
 //! near f32::MAX), the camera frames the unit sphere at the origin instead.
+//!
+//! [`scene_for_gltf`] does the same for a glTF file, keeping the file's own
+//! camera and lights when it has them.
 
 use std::sync::Arc;
 
 use glam::{DVec3, Mat4, Vec3};
 use zline_shading::Light;
 
+use crate::gltf::GltfScene;
 use crate::mesh::bounds_of;
 use crate::model::{Camera, Mesh, Object, Projection, RenderSettings, Scene};
 
@@ -63,6 +67,38 @@ pub fn scene_for_model(meshes: Vec<Mesh>, settings: RenderSettings) -> Scene {
         settings,
         fog: None,
     }
+}
+
+/// The scene for a bare glTF file: its objects where its nodes put them,
+/// its own camera if it has one (else [`framing_camera`] over the objects'
+/// world bounding box), its own lights if it has any (else
+/// [`default_lights`], as for a bare OBJ model), and the framing
+/// background and ambient light (glTF has neither).
+pub fn scene_for_gltf(gltf: GltfScene, settings: RenderSettings) -> Scene {
+    let aspect = aspect(&settings);
+    let camera = gltf.camera.filter(|c| camera_is_finite(c, aspect)).unwrap_or_else(|| {
+        let (min, max) = world_bounds(&gltf.objects).unwrap_or((Vec3::ZERO, Vec3::ZERO));
+        framing_camera(min, max, aspect)
+    });
+    let lights = if gltf.lights.is_empty() { default_lights() } else { gltf.lights };
+    Scene {
+        camera,
+        background: DEFAULT_BACKGROUND,
+        ambient: DEFAULT_AMBIENT,
+        lights,
+        objects: gltf.objects,
+        settings,
+        fog: None,
+    }
+}
+
+/// The world-space bounding box of some objects' vertices.
+pub(crate) fn world_bounds(objects: &[Object]) -> Option<(Vec3, Vec3)> {
+    bounds_of(
+        objects
+            .iter()
+            .flat_map(|o| o.mesh.positions.iter().map(|&p| o.world_from_object.transform_point3(p))),
+    )
 }
 
 /// Culling on for closed, opaque meshes (SPEC §2).

@@ -23,18 +23,31 @@
 //! missing or broken MTL file, or an unknown `usemtl` name, is not an error:
 //! the meshes get [`Material::DEFAULT`] and a warning is reported —
 //! returned by [`load_obj_with_warnings`], printed to stderr by
-//! [`load_obj`]. Texture maps are not read.
+//! [`load_obj`].
+//!
+//! Textures (SPEC §7): texture coordinates come from `vt` (OBJ's t already
+//! runs up, as the spec wants) and are kept when every vertex of the mesh
+//! has one. `map_Kd` names the diffuse texture, a PNG or JPEG file relative
+//! to the MTL file, read with the default sampler (trilinear, repeat) or
+//! clamp-to-edge with `-clamp on`; other `map_Kd` options are ignored with
+//! a warning. Each image file is decoded once per load and shared. The
+//! fallbacks, each with a warning: a texture file that is missing or
+//! unreadable, or in a format other than PNG and JPEG, and a mesh with a
+//! `map_Kd` but no texture coordinates, are drawn untextured with the
+//! material's Kd. A PNG or JPEG that does not decode is an error naming the
+//! image file.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
-use glam::Vec3;
-use zline_shading::Material;
+use glam::{Vec2, Vec3};
+use zline_shading::{Material, Sampler, Wrap};
 
 use crate::error::SceneError;
-use crate::model::Mesh;
+use crate::model::{Mesh, TextureMap};
+use crate::texture_file::TextureCache;
 
 /// Loads an OBJ file, printing warnings (such as a missing MTL file) to
 /// stderr as `warning: ...` lines.
@@ -57,6 +70,9 @@ pub fn load_obj_with_warnings(path: &Path) -> Result<(Vec<Mesh>, Vec<String>), S
 fn parse_obj(path: &Path, text: &str) -> Result<(Vec<Mesh>, Vec<String>), SceneError> {
     check_obj_text(path, text)?;
     let warnings = RefCell::new(Vec::new());
+    // The MTL file each material came from, in tobj's order (it appends
+    // each library's materials as it reads `mtllib`).
+    let material_files = RefCell::new(Vec::new());
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
     #[allow(clippy::needless_update, reason = "tobj's `merging`/`reordering` features add fields")]
     let options = tobj::LoadOptions {
@@ -67,16 +83,119 @@ fn parse_obj(path: &Path, text: &str) -> Result<(Vec<Mesh>, Vec<String>), SceneE
         ..Default::default()
     };
     let loaded = tobj::load_obj_buf(&mut Cursor::new(text.as_bytes()), &options, |mtl| {
-        load_mtl(&dir.join(mtl), &mut warnings.borrow_mut())
+        let mtl_path = dir.join(mtl);
+        let result = load_mtl(&mtl_path, &mut warnings.borrow_mut());
+        if let Ok((materials, _)) = &result {
+            material_files.borrow_mut().extend(std::iter::repeat_n(mtl_path, materials.len()));
+        }
+        result
     });
     let (models, materials) = loaded.map_err(|e| SceneError::File {
         path: path.to_path_buf(),
         message: format!("cannot load OBJ: {e}"),
     })?;
-    let materials: Vec<Material> = materials.unwrap_or_default().iter().map(material_from_mtl).collect();
     let mut warnings = warnings.into_inner();
+    let material_files = material_files.into_inner();
+    let materials: Vec<ObjMaterial> = materials
+        .unwrap_or_default()
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            ObjMaterial::from_mtl(m, material_files.get(i).unwrap_or(&path.to_path_buf()), &mut warnings)
+        })
+        .collect();
     let meshes = meshes_from_models(path, models, &materials, &mut warnings)?;
     Ok((meshes, warnings))
+}
+
+/// An MTL material: the lighting coefficients and the diffuse map's file,
+/// read when a mesh uses it.
+struct ObjMaterial {
+    material: Material,
+    diffuse_map: Option<MapStatement>,
+}
+
+impl ObjMaterial {
+    /// `mtl` is the MTL file the material came from: texture files are
+    /// relative to it.
+    fn from_mtl(m: &tobj::Material, mtl: &Path, warnings: &mut Vec<String>) -> ObjMaterial {
+        let diffuse_map = m.diffuse_texture.as_deref().and_then(|value| {
+            let map = parse_map_statement(value, mtl, warnings, &m.name);
+            if map.is_none() {
+                warnings.push(format!(
+                    "{}: material '{}': map_Kd {} names no file; drawn untextured",
+                    mtl.display(),
+                    m.name,
+                    quote(value)
+                ));
+            }
+            map
+        });
+        ObjMaterial { material: material_from_mtl(m), diffuse_map }
+    }
+}
+
+/// A texture statement of an MTL file (`map_Kd [options] file`): the file,
+/// relative to the MTL file, and the sampler its options ask for.
+#[derive(Debug, PartialEq)]
+struct MapStatement {
+    file: PathBuf,
+    sampler: Sampler,
+}
+
+/// Parses `[options] file` of a `map_Kd` statement. `-clamp on` selects
+/// clamp-to-edge; every other option (`-o`, `-s`, `-t`, `-mm`, `-bm`,
+/// `-blendu`, …) is skipped with its arguments and a warning. The rest of
+/// the line, spaces included, is the file name; `None` when it is empty.
+/// `mtl` is the MTL file, for messages and as the base of the file name.
+fn parse_map_statement(
+    value: &str,
+    mtl: &Path,
+    warnings: &mut Vec<String>,
+    material: &str,
+) -> Option<MapStatement> {
+    let mut sampler = Sampler::default();
+    let mut rest = value.trim();
+    while rest.starts_with('-') {
+        let option;
+        (option, rest) = next_word(rest);
+        let arity = match option {
+            "-o" | "-s" | "-t" => 3,
+            "-mm" => 2,
+            _ => 1,
+        };
+        let mut args = Vec::new();
+        while args.len() < arity && !rest.is_empty() {
+            let (word, after) = next_word(rest);
+            // Numeric options take 1 to `arity` numbers; others one word.
+            if arity > 1 && word.parse::<f32>().is_err() {
+                break;
+            }
+            args.push(word);
+            rest = after;
+        }
+        if option == "-clamp" && args.len() == 1 {
+            let wrap = if args[0] == "on" { Wrap::ClampToEdge } else { Wrap::Repeat };
+            sampler.wrap_s = wrap;
+            sampler.wrap_t = wrap;
+        } else {
+            warnings.push(format!(
+                "{}: material '{material}': map_Kd option '{} {}' is not supported; ignored",
+                mtl.display(),
+                truncate(option),
+                truncate(&args.join(" "))
+            ));
+        }
+    }
+    let file = rest;
+    let dir = mtl.parent().unwrap_or(Path::new(""));
+    (!file.is_empty()).then(|| MapStatement { file: dir.join(file), sampler })
+}
+
+/// The first word of a trimmed string and the trimmed rest.
+fn next_word(s: &str) -> (&str, &str) {
+    let end = s.find(char::is_whitespace).unwrap_or(s.len());
+    (&s[..end], s[end..].trim_start())
 }
 
 /// Reads a text file; bytes that are not UTF-8 (Latin-1 comments, say)
@@ -89,24 +208,27 @@ pub(crate) fn read_text(path: &Path) -> Result<String, SceneError> {
 fn meshes_from_models(
     path: &Path,
     models: Vec<tobj::Model>,
-    materials: &[Material],
+    materials: &[ObjMaterial],
     warnings: &mut Vec<String>,
 ) -> Result<Vec<Mesh>, SceneError> {
     let stem = path.file_stem().map_or_else(|| "model".to_owned(), |s| s.to_string_lossy().into_owned());
+    let mut textures = TextureCache::default();
     let mut meshes = Vec::with_capacity(models.len());
     for model in models.into_iter().filter(|m| m.mesh.indices.len() >= 3) {
         let name = if model.name.is_empty() { stem.clone() } else { model.name };
         let material = match model.mesh.material_id {
-            Some(id) if id < materials.len() => materials[id],
-            Some(_) => Material::DEFAULT,
+            Some(id) => materials.get(id),
             None => {
                 if !materials.is_empty() {
                     warnings.push(format!("{}: mesh '{name}' has no known material", path.display()));
                 }
-                Material::DEFAULT
+                None
             }
         };
-        meshes.push(mesh_from_tobj(path, name, model.mesh, material)?);
+        let mesh =
+            mesh_from_tobj(path, name, model.mesh, material.map_or(Material::DEFAULT, |m| m.material))?;
+        let map = material.and_then(|m| m.diffuse_map.as_ref());
+        meshes.push(attach_diffuse_map(path, mesh, map, &mut textures, warnings)?);
     }
     if meshes.is_empty() {
         return Err(SceneError::NoTriangles { path: path.to_path_buf() });
@@ -114,18 +236,47 @@ fn meshes_from_models(
     Ok(meshes)
 }
 
+/// The mesh with its material's diffuse map, when it has one, the mesh
+/// has texture coordinates and the image can be read (see the module doc
+/// for the fallbacks).
+fn attach_diffuse_map(
+    path: &Path,
+    mesh: Mesh,
+    map: Option<&MapStatement>,
+    textures: &mut TextureCache,
+    warnings: &mut Vec<String>,
+) -> Result<Mesh, SceneError> {
+    let Some(map) = map else { return Ok(mesh) };
+    if mesh.uvs.is_empty() {
+        warnings.push(format!(
+            "{}: mesh '{}' has a diffuse map but no texture coordinates (vt); drawn untextured",
+            path.display(),
+            mesh.name
+        ));
+        return Ok(mesh);
+    }
+    Ok(match textures.file(&map.file, warnings)? {
+        Some(texture) => mesh.with_diffuse_map(TextureMap { texture, sampler: map.sampler }),
+        None => mesh,
+    })
+}
+
 fn mesh_from_tobj(path: &Path, name: String, m: tobj::Mesh, material: Material) -> Result<Mesh, SceneError> {
     let vec3s = |v: &[f32]| v.chunks_exact(3).map(Vec3::from_slice).collect::<Vec<_>>();
     let positions = vec3s(&m.positions);
-    // tobj leaves normals out for vertices whose face gave none; use the
-    // file's normals only when every vertex has one.
+    // tobj leaves normals and texture coordinates out for vertices whose
+    // face gave none; use the file's only when every vertex has one.
     let normals = (m.normals.len() == m.positions.len()).then(|| vec3s(&m.normals));
+    let has_uvs = !m.texcoords.is_empty() && m.texcoords.len() / 2 == positions.len();
+    let uvs: Vec<Vec2> =
+        if has_uvs { m.texcoords.chunks_exact(2).map(Vec2::from_slice).collect() } else { Vec::new() };
     let triangles = m.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
-    Mesh::new(name.clone(), positions, normals, triangles, material).map_err(|source| SceneError::Mesh {
-        path: path.to_path_buf(),
-        mesh: name,
-        source,
-    })
+    let mesh_error = |source| SceneError::Mesh { path: path.to_path_buf(), mesh: name.clone(), source };
+    let mesh = Mesh::new(name.clone(), positions, normals, triangles, material).map_err(mesh_error)?;
+    if uvs.is_empty() {
+        return Ok(mesh);
+    }
+    mesh.with_uvs(uvs).map_err(mesh_error)
 }
 
 /// Converts a tobj material (see the module doc for the defaults).
@@ -453,6 +604,20 @@ mod tests {
         assert_eq!(check_mtl_text("newmtl a\n\nKd 0.5 0.5\n").unwrap_err().0, 3);
         assert!(check_mtl_text("Ns high").unwrap_err().1.contains("cannot parse number in 'Ns high'"));
         assert!(check_mtl_text("Kd spectral x.rfl").is_err());
+    }
+
+    #[test]
+    fn map_statements_keep_spaces_in_file_names_and_read_clamp() {
+        let mut warnings = Vec::new();
+        let mtl = Path::new("models/a.mtl");
+        let map = parse_map_statement("-clamp on -mm 0 1 my  texture.png", mtl, &mut warnings, "m").unwrap();
+        assert_eq!(map.file, Path::new("models/my  texture.png"), "the name as written");
+        assert_eq!(map.sampler.wrap_s, Wrap::ClampToEdge);
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        assert!(warnings[0].contains("models/a.mtl: material 'm': map_Kd option '-mm 0 1'"), "{warnings:?}");
+        let map = parse_map_statement("-clamp off t.jpg", mtl, &mut warnings, "m").unwrap();
+        assert_eq!(map, MapStatement { file: "models/t.jpg".into(), sampler: Sampler::default() });
+        assert_eq!(parse_map_statement("-blendu on", mtl, &mut warnings, "m"), None);
     }
 
     #[test]

@@ -199,8 +199,15 @@ fn load_input(input: &Path) -> Result<Scene> {
             let meshes = zline::scene::load_obj(input)?;
             zline::scene::scene_for_model(meshes, RenderSettings::default())
         }
+        Some("gltf" | "glb") => {
+            let gltf = zline::scene::load_gltf(input)?;
+            zline::scene::scene_for_gltf(gltf, RenderSettings::default())
+        }
         Some("toml") => zline::scene::load_scene(input)?,
-        _ => bail!("{}: unsupported input; expected an .obj model or a .toml scene file", input.display()),
+        _ => bail!(
+            "{}: unsupported input; expected an .obj, .gltf or .glb model or a .toml scene file",
+            input.display()
+        ),
     })
 }
 

@@ -1,9 +1,11 @@
 //! Integration tests of zline-scene: loaders against fixture files in
 //! `tests/data/`, scene files written to a temporary directory, and the
-//! repository's `examples/` and `assets/`.
+//! repository's `examples/` and `assets/` (OBJ and glTF models).
 
 mod examples;
+mod gltf;
 mod obj;
+mod obj_textures;
 mod scene_file;
 
 use std::path::{Path, PathBuf};

@@ -1,0 +1,915 @@
+//! glTF 2.0 loading: a `.gltf` (external or `data:` buffers and images) or
+//! `.glb` file → a [`GltfScene`]: objects placed by the default scene's
+//! node hierarchy, its first camera and its punctual lights.
+//!
+//! Contract: [`load_gltf_with_warnings`] returns at least one object with at
+//! least one triangle, or a [`SceneError`] naming the file and the problem
+//! (bad JSON or GLB, a missing or short buffer, an accessor whose data lies
+//! outside its buffer or has the wrong type, an invalid mesh). Features
+//! zline does not model produce one-line warnings starting with the file,
+//! never failures; [`load_gltf`] prints them to stderr.
+//!
+//! The JSON is parsed and validated by the `gltf` crate. Resources are read
+//! here rather than by `gltf::import`, which fails as a whole on the first
+//! image it cannot read and panics on some malformed input (a URI whose
+//! percent-escapes are not UTF-8, accessor ranges that overflow): buffers
+//! are required (a missing one is an error naming it), images follow the
+//! OBJ loader's rule (a missing image file is a warning and the mesh is
+//! drawn untextured with its base colour; a PNG or JPEG that does not
+//! decode is an error naming the image), and every accessor is checked
+//! against its buffer before it is read.
+//!
+//! **Nodes.** The default scene (else the first scene, else every root
+//! node) is walked depth first, accumulating `world_from_node` from each
+//! node's matrix or TRS. Each mesh primitive of mode TRIANGLES, indexed or
+//! not, becomes a [`Mesh`] placed by an [`Object`] with the node's world
+//! matrix; a mesh used by several nodes is shared. glTF's front faces are
+//! counter-clockwise only under a transform with a positive determinant;
+//! under a mirroring one the primitive's triangles are reversed (in a
+//! separate copy) so that culling and the front faces stay right.
+//! Attributes: POSITION, NORMAL (missing → computed by [`Mesh::new`]) and
+//! the base colour texture's TEXCOORD set, with t = 1 − v (glTF's v runs
+//! down the image, SPEC §7's t runs up).
+//!
+//! **Materials.** glTF describes metallic–roughness PBR; zline has the
+//! classical model of SPEC §5, so the mapping is an approximation:
+//! - kd = ka = baseColorFactor.rgb (modulated by baseColorTexture);
+//! - ks = mix(0.04, baseColor, metallic) · (1 − roughness): 0.04 is the
+//!   reflectance of common dielectrics at normal incidence, metals reflect
+//!   their own colour; an unnormalized Blinn–Phong lobe peaks at ks
+//!   whatever its width, so the factor (1 − roughness) dims broad lobes
+//!   that would otherwise reflect far more light than the rough surface;
+//! - ns = 2/α² − 2 with α = roughness² (glTF's perceptual roughness), that
+//!   is 2/roughness⁴ − 2, clamped to [1, 1024]: the Blinn–Phong exponent
+//!   whose lobe matches a Beckmann/GGX lobe of width α (Walter et al.
+//!   2007); the clamp keeps a mirror-smooth surface from an infinite
+//!   exponent;
+//! - opacity = baseColorFactor.a for alphaMode BLEND, 1 otherwise (MASK
+//!   warns: the cutoff is not supported yet; texture alpha is not used);
+//! - back faces are culled unless the material is doubleSided, and only
+//!   on closed opaque meshes (the rule of bare OBJ models).
+//!
+//! Texture samplers: NEAREST → nearest, LINEAR → bilinear,
+//! *_MIPMAP_LINEAR and LINEAR_MIPMAP_NEAREST → trilinear (the nearest match
+//! zline has), NEAREST_MIPMAP_NEAREST → nearest; without a min filter the
+//! mag filter decides (NEAREST → nearest, else the default trilinear).
+//! REPEAT → repeat, CLAMP_TO_EDGE → clamp to edge, MIRRORED_REPEAT →
+//! repeat with a warning. Texels are used as stored (no sRGB decode,
+//! SPEC §7).
+//!
+//! **Cameras.** The first node with a camera, in walk order, gives the
+//! camera: eye = the node's origin, looking down its −z with its +y up.
+//! Perspective yfov/znear/zfar → [`Projection::Perspective`] (the
+//! aspectRatio is the image's; a missing zfar, an infinite projection, is
+//! replaced by a far plane just beyond the farthest corner of the scene's
+//! bounding box); orthographic ymag → height 2·ymag (xmag: the image's
+//! aspect).
+//!
+//! **Lights** (KHR_lights_punctual), colour = color × intensity:
+//! point → [`Light::Point`] at the node's origin with attenuation
+//! a0 = a1 = 0, a2 = 1, the inverse-square law glTF prescribes (SPEC §5's
+//! clamp to 1 applies within unit distance); `range` is ignored (a smooth
+//! cut-off is not in the model) with a warning. Directional →
+//! [`Light::Directional`] along the node's −z in world space. Spot → a
+//! point light, with a warning that the cone is ignored.
+//!
+//! **Warned and ignored:** COLOR_0, emission (emissiveFactor, -Texture and
+//! KHR_materials_emissive_strength), normal, occlusion and
+//! metallic–roughness textures, alpha MASK, MIRRORED_REPEAT, primitive
+//! modes other than TRIANGLES, skins (drawn in the bind pose), morph
+//! targets (drawn without), animations (drawn at rest), extensions other
+//! than the two above, light ranges and spot cones, a node reached twice
+//! (the node graph must be a tree). An `extensionsRequired` entry that the
+//! `gltf` crate does not know is an error: the file says it cannot be drawn
+//! without it.
+
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::{Mat4, Vec2, Vec3};
+use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::Mode;
+use gltf::texture::{MagFilter, MinFilter, WrappingMode};
+use zline_shading::{Attenuation, Filter, Light, Material, Sampler, Texture, Wrap};
+
+use crate::error::SceneError;
+use crate::framing::default_culling;
+use crate::model::{Camera, Mesh, Object, Projection, TextureMap};
+use crate::texture_file::{decode_texture, DecodeError, TextureCache};
+
+/// Extensions the loader reads (others are warned about).
+const SUPPORTED_EXTENSIONS: &[&str] = &["KHR_lights_punctual", "KHR_materials_emissive_strength"];
+
+/// Largest ns the metallic–roughness mapping yields (see the module doc).
+pub const MAX_GLTF_SHININESS: f32 = 1024.0;
+
+/// The far plane of a camera without zfar lies this factor beyond the
+/// farthest corner of the scene's bounding box.
+const FITTED_FAR_MARGIN: f32 = 1.05;
+
+/// What a glTF file holds, in zline's model (see the module doc).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfScene {
+    /// Every mesh primitive placed by a node, in walk order.
+    pub objects: Vec<Object>,
+    /// The first camera in the node hierarchy, if any.
+    pub camera: Option<Camera>,
+    /// The KHR_lights_punctual lights, in world space.
+    pub lights: Vec<Light>,
+}
+
+/// Loads a glTF or GLB file, printing warnings (unsupported features, a
+/// missing image) to stderr as `warning: ...` lines.
+pub fn load_gltf(path: &Path) -> Result<GltfScene, SceneError> {
+    let (scene, warnings) = load_gltf_with_warnings(path)?;
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(scene)
+}
+
+/// Loads a glTF or GLB file and returns the scene with the warnings, each
+/// a one-line message starting with the file it is about.
+pub fn load_gltf_with_warnings(path: &Path) -> Result<(GltfScene, Vec<String>), SceneError> {
+    let bytes = std::fs::read(path).map_err(|source| SceneError::Io { path: path.to_path_buf(), source })?;
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(&bytes).map_err(|e| SceneError::File {
+        path: path.to_path_buf(),
+        message: format!("cannot read glTF: {e}"),
+    })?;
+    let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
+    let buffers = read_buffers(path, &base, &document, blob)?;
+    let mut loader = Loader {
+        path,
+        base,
+        buffers,
+        textures: TextureCache::default(),
+        images: HashMap::new(),
+        meshes: HashMap::new(),
+        warned_materials: HashSet::new(),
+        warnings: Vec::new(),
+        scene: GltfScene { objects: Vec::new(), camera: None, lights: Vec::new() },
+        camera_far_to_fit: false,
+    };
+    loader.warn_about_document(&document);
+    loader.walk(&document)?;
+    loader.finish()
+}
+
+/// Reads every buffer: the GLB's BIN chunk, a `data:` URI or a file
+/// relative to the glTF file. A buffer that cannot be read, or is shorter
+/// than its byteLength, is an error naming it.
+fn read_buffers(
+    path: &Path,
+    base: &Path,
+    document: &gltf::Document,
+    mut blob: Option<Vec<u8>>,
+) -> Result<Vec<Vec<u8>>, SceneError> {
+    let mut buffers = Vec::new();
+    for buffer in document.buffers() {
+        let error = |what: String| SceneError::File {
+            path: path.to_path_buf(),
+            message: format!("buffer {}: {what}", buffer.index()),
+        };
+        let data = match buffer.source() {
+            gltf::buffer::Source::Bin => {
+                blob.take().ok_or_else(|| error("the GLB has no BIN chunk".into()))?
+            }
+            gltf::buffer::Source::Uri(uri) => read_uri(base, uri).map_err(error)?,
+        };
+        if data.len() < buffer.length() {
+            return Err(error(format!("holds {} bytes, byteLength says {}", data.len(), buffer.length())));
+        }
+        buffers.push(data);
+    }
+    Ok(buffers)
+}
+
+/// The bytes a buffer or image URI names, or what is wrong.
+fn read_uri(base: &Path, uri: &str) -> Result<Vec<u8>, String> {
+    match uri_target(base, uri)? {
+        UriTarget::Data => decode_data_uri(uri),
+        UriTarget::File(file) => {
+            std::fs::read(&file).map_err(|e| format!("cannot read '{}': {e}", file.display()))
+        }
+    }
+}
+
+/// Where a URI points.
+enum UriTarget {
+    /// A `data:` URI: the bytes are in it.
+    Data,
+    /// A file (a relative reference, percent-decoded, joined to the base).
+    File(PathBuf),
+}
+
+fn uri_target(base: &Path, uri: &str) -> Result<UriTarget, String> {
+    if uri.starts_with("data:") {
+        return Ok(UriTarget::Data);
+    }
+    if uri.contains(':') {
+        return Err(format!("unsupported URI '{}' (only relative file names and data: URIs)", short(uri)));
+    }
+    let decoded = percent_decode(uri).ok_or_else(|| format!("malformed URI '{}'", short(uri)))?;
+    Ok(UriTarget::File(base.join(decoded)))
+}
+
+/// The bytes of a base64 `data:` URI, decoded by the `gltf` crate.
+fn decode_data_uri(uri: &str) -> Result<Vec<u8>, String> {
+    if !uri.contains(";base64,") {
+        return Err("only base64 data: URIs are supported".into());
+    }
+    // With no base directory the gltf crate reads nothing but the URI.
+    let data = gltf::buffer::Data::from_source(gltf::buffer::Source::Uri(uri), None)
+        .map_err(|e| format!("cannot decode data: URI: {e}"))?;
+    Ok(data.0)
+}
+
+/// Decodes `%XX` escapes; `None` when an escape is malformed or the result
+/// is not UTF-8.
+fn percent_decode(uri: &str) -> Option<String> {
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+/// At most 60 characters of a string, for messages (data: URIs are long).
+fn short(s: &str) -> String {
+    let mut out: String = s.chars().take(60).flat_map(char::escape_debug).collect();
+    if s.chars().count() > 60 {
+        out.push('…');
+    }
+    out
+}
+
+/// A primitive turned into a mesh, shared by every node that draws it.
+#[derive(Clone)]
+struct LoadedPrimitive {
+    mesh: Arc<Mesh>,
+    cull_back_faces: bool,
+}
+
+/// The state of one load.
+struct Loader<'a> {
+    path: &'a Path,
+    base: PathBuf,
+    buffers: Vec<Vec<u8>>,
+    textures: TextureCache,
+    /// Decoded images by index; `None` when the image is unusable (warned).
+    images: HashMap<usize, Option<Arc<Texture>>>,
+    /// Meshes by (mesh, primitive, mirrored); `None` for skipped primitives.
+    meshes: HashMap<(usize, usize, bool), Option<LoadedPrimitive>>,
+    warned_materials: HashSet<Option<usize>>,
+    warnings: Vec<String>,
+    scene: GltfScene,
+    /// The camera had no zfar: fit it once the geometry is known.
+    camera_far_to_fit: bool,
+}
+
+impl Loader<'_> {
+    fn warn(&mut self, message: String) {
+        let message = format!("{}: {message}", self.path.display());
+        if !self.warnings.contains(&message) {
+            self.warnings.push(message);
+        }
+    }
+
+    fn error(&self, message: String) -> SceneError {
+        SceneError::File { path: self.path.to_path_buf(), message }
+    }
+
+    /// Warnings about the file as a whole: extensions and animations.
+    fn warn_about_document(&mut self, document: &gltf::Document) {
+        for ext in document.extensions_used().filter(|e| !SUPPORTED_EXTENSIONS.contains(e)) {
+            self.warn(format!("extension '{ext}' is not supported; ignored"));
+        }
+        let animations = document.animations().count();
+        if animations > 0 {
+            self.warn(format!("{animations} animation(s) ignored; the scene is drawn at rest"));
+        }
+    }
+
+    /// Walks the scene's nodes depth first (see the module doc).
+    fn walk(&mut self, document: &gltf::Document) -> Result<(), SceneError> {
+        let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
+            Some(scene) => scene.nodes().collect(),
+            None => {
+                let children: HashSet<usize> =
+                    document.nodes().flat_map(|n| n.children().map(|c| c.index())).collect();
+                let roots: Vec<_> = document.nodes().filter(|n| !children.contains(&n.index())).collect();
+                if !roots.is_empty() {
+                    self.warn("no scene; drawing every root node".into());
+                }
+                roots
+            }
+        };
+        let mut visited = HashSet::new();
+        let mut stack: Vec<(gltf::Node, Mat4)> =
+            roots.into_iter().rev().map(|n| (n, Mat4::IDENTITY)).collect();
+        while let Some((node, parent)) = stack.pop() {
+            if !visited.insert(node.index()) {
+                self.warn(format!(
+                    "node {} is reached twice (the nodes must form a tree); skipped",
+                    node.index()
+                ));
+                continue;
+            }
+            let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+            if !world.is_finite() {
+                self.warn(format!(
+                    "node {} has a non-finite transform; skipped with its children",
+                    node.index()
+                ));
+                continue;
+            }
+            self.visit(&node, world)?;
+            stack.extend(node.children().map(|c| (c, world)).collect::<Vec<_>>().into_iter().rev());
+        }
+        Ok(())
+    }
+
+    /// One node: its mesh, camera and light.
+    fn visit(&mut self, node: &gltf::Node, world: Mat4) -> Result<(), SceneError> {
+        if node.skin().is_some() {
+            self.warn("skins are not supported; skinned meshes are drawn in their bind pose".into());
+        }
+        if let Some(mesh) = node.mesh() {
+            let mirrored = world.determinant() < 0.0;
+            for primitive in mesh.primitives() {
+                if let Some(loaded) = self.primitive(&mesh, &primitive, mirrored)? {
+                    self.scene.objects.push(Object {
+                        mesh: loaded.mesh,
+                        world_from_object: world,
+                        material: None,
+                        shading: None,
+                        cull_back_faces: loaded.cull_back_faces,
+                    });
+                }
+            }
+        }
+        if let Some(camera) = node.camera() {
+            if self.scene.camera.is_none() {
+                self.camera(&camera, world);
+            }
+        }
+        if let Some(light) = node.light() {
+            self.light(&light, world);
+        }
+        Ok(())
+    }
+
+    /// The mesh of a primitive, built on first use.
+    fn primitive(
+        &mut self,
+        mesh: &gltf::Mesh,
+        primitive: &gltf::Primitive,
+        mirrored: bool,
+    ) -> Result<Option<LoadedPrimitive>, SceneError> {
+        let key = (mesh.index(), primitive.index(), mirrored);
+        if let Some(loaded) = self.meshes.get(&key) {
+            return Ok(loaded.clone());
+        }
+        let loaded = match self.meshes.get(&(mesh.index(), primitive.index(), !mirrored)) {
+            Some(other) => {
+                other.clone().map(|o| LoadedPrimitive { mesh: Arc::new(reversed((*o.mesh).clone())), ..o })
+            }
+            None => self.build_primitive(mesh, primitive)?.map(|(m, cull)| {
+                let m = if mirrored { reversed(m) } else { m };
+                LoadedPrimitive { mesh: Arc::new(m), cull_back_faces: cull }
+            }),
+        };
+        self.meshes.insert(key, loaded.clone());
+        Ok(loaded)
+    }
+
+    /// Reads a primitive into a mesh and its culling flag; `None` (warned)
+    /// when it cannot be drawn as triangles.
+    fn build_primitive(
+        &mut self,
+        mesh: &gltf::Mesh,
+        primitive: &gltf::Primitive,
+    ) -> Result<Option<(Mesh, bool)>, SceneError> {
+        let name = primitive_name(mesh, primitive);
+        if primitive.mode() != Mode::Triangles {
+            self.warn(format!(
+                "mesh '{name}': primitive mode {:?} is not supported; skipped",
+                primitive.mode()
+            ));
+            return Ok(None);
+        }
+        if primitive.morph_targets().len() > 0 {
+            self.warn(format!("mesh '{name}': morph targets are not supported; drawn without them"));
+        }
+        if primitive.get(&gltf::Semantic::Colors(0)).is_some() {
+            self.warn(format!("mesh '{name}': vertex colours (COLOR_0) are not supported; ignored"));
+        }
+        let Some(positions) = self.read_positions(primitive, &name)? else {
+            self.warn(format!("mesh '{name}': primitive has no POSITION; skipped"));
+            return Ok(None);
+        };
+        let normals = self.read_normals(primitive, &name, positions.len())?;
+        let triangles = self.read_triangles(primitive, &name, positions.len())?;
+        if triangles.is_empty() {
+            return Ok(None);
+        }
+        let material = primitive.material();
+        let base_color = material.pbr_metallic_roughness().base_color_texture();
+        let uv_set = base_color.as_ref().map_or(0, |info| info.tex_coord());
+        let uvs = self.read_uvs(primitive, &name, uv_set)?;
+        let mesh_error =
+            |source| SceneError::Mesh { path: self.path.to_path_buf(), mesh: name.clone(), source };
+        let mut built = Mesh::new(name.clone(), positions, normals, triangles, material_from_gltf(&material))
+            .map_err(mesh_error)?;
+        if let Some(uvs) = uvs {
+            built = built.with_uvs(uvs).map_err(mesh_error)?;
+        }
+        self.warn_about_material(&material);
+        if let Some(info) = base_color {
+            built = self.attach_base_color(built, &info, uv_set)?;
+        }
+        let cull = !material.double_sided() && default_culling(&built, built.material.opacity);
+        Ok(Some((built, cull)))
+    }
+
+    fn read_positions(
+        &self,
+        primitive: &gltf::Primitive,
+        name: &str,
+    ) -> Result<Option<Vec<Vec3>>, SceneError> {
+        let Some(accessor) = primitive.get(&gltf::Semantic::Positions) else { return Ok(None) };
+        self.check_accessor(&accessor, name, "POSITION", &[(Dimensions::Vec3, DataType::F32)])?;
+        let read = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice)).read_positions();
+        let positions: Vec<Vec3> = read.map(|it| it.map(Vec3::from).collect()).unwrap_or_default();
+        self.check_count(&accessor, name, "POSITION", positions.len())?;
+        Ok(Some(positions))
+    }
+
+    /// The normals, when the primitive has one per vertex.
+    fn read_normals(
+        &self,
+        primitive: &gltf::Primitive,
+        name: &str,
+        vertices: usize,
+    ) -> Result<Option<Vec<Vec3>>, SceneError> {
+        let Some(accessor) = primitive.get(&gltf::Semantic::Normals) else { return Ok(None) };
+        self.check_accessor(&accessor, name, "NORMAL", &[(Dimensions::Vec3, DataType::F32)])?;
+        let read = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice)).read_normals();
+        let normals: Vec<Vec3> = read.map(|it| it.map(Vec3::from).collect()).unwrap_or_default();
+        self.check_count(&accessor, name, "NORMAL", normals.len())?;
+        Ok((normals.len() == vertices).then_some(normals))
+    }
+
+    /// Texture coordinates of a set, flipped to t = 1 − v.
+    fn read_uvs(
+        &self,
+        primitive: &gltf::Primitive,
+        name: &str,
+        set: u32,
+    ) -> Result<Option<Vec<Vec2>>, SceneError> {
+        let Some(accessor) = primitive.get(&gltf::Semantic::TexCoords(set)) else { return Ok(None) };
+        let what = format!("TEXCOORD_{set}");
+        let types = [DataType::F32, DataType::U8, DataType::U16].map(|t| (Dimensions::Vec2, t));
+        self.check_accessor(&accessor, name, &what, &types)?;
+        let read = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice)).read_tex_coords(set);
+        let uvs: Vec<Vec2> =
+            read.map(|r| r.into_f32().map(|[s, v]| Vec2::new(s, 1.0 - v)).collect()).unwrap_or_default();
+        self.check_count(&accessor, name, &what, uvs.len())?;
+        Ok(Some(uvs))
+    }
+
+    /// Triangles from the indices, or from consecutive vertices for a
+    /// non-indexed primitive; a trailing incomplete triangle is dropped.
+    fn read_triangles(
+        &self,
+        primitive: &gltf::Primitive,
+        name: &str,
+        vertices: usize,
+    ) -> Result<Vec<[u32; 3]>, SceneError> {
+        let indices: Vec<u32> = match primitive.indices() {
+            Some(accessor) => {
+                let types = [DataType::U8, DataType::U16, DataType::U32].map(|t| (Dimensions::Scalar, t));
+                self.check_accessor(&accessor, name, "indices", &types)?;
+                let reader = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice));
+                let indices: Vec<u32> =
+                    reader.read_indices().map(|r| r.into_u32().collect()).unwrap_or_default();
+                self.check_count(&accessor, name, "indices", indices.len())?;
+                indices
+            }
+            None => {
+                let count = u32::try_from(vertices)
+                    .map_err(|_| self.error(format!("mesh '{name}': {vertices} vertices are too many")))?;
+                (0..count).collect()
+            }
+        };
+        Ok(indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect())
+    }
+
+    /// Checks an accessor's type and that its data lies inside its buffer,
+    /// so that reading it cannot fail or panic.
+    fn check_accessor(
+        &self,
+        accessor: &gltf::Accessor,
+        mesh: &str,
+        what: &str,
+        types: &[(Dimensions, DataType)],
+    ) -> Result<(), SceneError> {
+        let fail =
+            |why: String| self.error(format!("mesh '{mesh}': {what} accessor {}: {why}", accessor.index()));
+        let kind = (accessor.dimensions(), accessor.data_type());
+        if !types.contains(&kind) {
+            return Err(fail(format!("type {:?} of {:?} is not allowed here", kind.0, kind.1)));
+        }
+        if accessor.count() == 0 {
+            return Err(fail("count is 0".into()));
+        }
+        let size = accessor.size();
+        if let Some(view) = accessor.view() {
+            self.check_range(&view, accessor.offset(), accessor.count(), size).map_err(&fail)?;
+        }
+        if let Some(sparse) = accessor.sparse() {
+            if sparse.count() == 0 {
+                return Err(fail("sparse count is 0".into()));
+            }
+            let (indices, values) = (sparse.indices(), sparse.values());
+            let index_size = indices.index_type().size();
+            self.check_range(&indices.view(), indices.offset(), sparse.count(), index_size).map_err(&fail)?;
+            self.check_range(&values.view(), values.offset(), sparse.count(), size).map_err(&fail)?;
+        }
+        Ok(())
+    }
+
+    /// `count` elements of `size` bytes from `offset` fit in the view, and
+    /// the view in its buffer.
+    fn check_range(
+        &self,
+        view: &gltf::buffer::View,
+        offset: usize,
+        count: usize,
+        size: usize,
+    ) -> Result<(), String> {
+        let stride = view.stride().unwrap_or(size);
+        if stride < size {
+            return Err(format!("byteStride {stride} is smaller than an element ({size} bytes)"));
+        }
+        let end = (count - 1)
+            .checked_mul(stride)
+            .and_then(|n| n.checked_add(offset))
+            .and_then(|n| n.checked_add(size));
+        if end.is_none_or(|end| end > view.length()) {
+            return Err(format!("{count} elements do not fit in buffer view {}", view.index()));
+        }
+        let buffer_len = self.buffers.get(view.buffer().index()).map_or(0, Vec::len);
+        if view.offset().checked_add(view.length()).is_none_or(|end| end > buffer_len) {
+            return Err(format!("buffer view {} reaches beyond its buffer", view.index()));
+        }
+        Ok(())
+    }
+
+    fn check_count(
+        &self,
+        accessor: &gltf::Accessor,
+        mesh: &str,
+        what: &str,
+        read: usize,
+    ) -> Result<(), SceneError> {
+        if read == accessor.count() {
+            return Ok(());
+        }
+        let index = accessor.index();
+        Err(self.error(format!(
+            "mesh '{mesh}': {what} accessor {index}: read {read} of {} elements",
+            accessor.count()
+        )))
+    }
+
+    /// Warns once per material about what the mapping leaves out.
+    fn warn_about_material(&mut self, material: &gltf::Material) {
+        if !self.warned_materials.insert(material.index()) {
+            return;
+        }
+        let name = material_name(material);
+        let pbr = material.pbr_metallic_roughness();
+        let mut ignored = Vec::new();
+        if material.emissive_factor() != [0.0; 3] || material.emissive_texture().is_some() {
+            ignored.push("emission");
+        }
+        if material.normal_texture().is_some() {
+            ignored.push("normal texture");
+        }
+        if material.occlusion_texture().is_some() {
+            ignored.push("occlusion texture");
+        }
+        if pbr.metallic_roughness_texture().is_some() {
+            ignored.push("metallic-roughness texture");
+        }
+        if !ignored.is_empty() {
+            self.warn(format!("material '{name}': {} not supported; ignored", ignored.join(", ")));
+        }
+        if material.alpha_mode() == gltf::material::AlphaMode::Mask {
+            self.warn(format!("material '{name}': alphaMode MASK (cutoff) is not supported; drawn opaque"));
+        }
+    }
+
+    /// The mesh with its base colour texture, when the mesh has the
+    /// coordinates and the image can be used (warnings otherwise).
+    fn attach_base_color(
+        &mut self,
+        mesh: Mesh,
+        info: &gltf::texture::Info,
+        set: u32,
+    ) -> Result<Mesh, SceneError> {
+        if mesh.uvs.is_empty() {
+            let name = &mesh.name;
+            self.warn(format!("mesh '{name}': base colour texture but no TEXCOORD_{set}; drawn untextured"));
+            return Ok(mesh);
+        }
+        let texture = info.texture();
+        let Some(image) = self.image(&texture.source())? else { return Ok(mesh) };
+        let sampler = self.sampler(&texture.sampler());
+        Ok(mesh.with_diffuse_map(TextureMap { texture: image, sampler }))
+    }
+
+    /// The decoded image, on first use (see the module doc).
+    fn image(&mut self, image: &gltf::image::Image) -> Result<Option<Arc<Texture>>, SceneError> {
+        if let Some(loaded) = self.images.get(&image.index()) {
+            return Ok(loaded.clone());
+        }
+        let index = image.index();
+        let (bytes, hint) = match image.source() {
+            gltf::image::Source::View { view, mime_type } => {
+                let bytes = view.offset().checked_add(view.length()).and_then(|end| {
+                    self.buffers.get(view.buffer().index())?.get(view.offset()..end).map(<[u8]>::to_vec)
+                });
+                let bytes = bytes.ok_or_else(|| {
+                    self.error(format!("image {index}: buffer view reaches beyond its buffer"))
+                })?;
+                (bytes, image::ImageFormat::from_mime_type(mime_type))
+            }
+            gltf::image::Source::Uri { uri, mime_type } => {
+                match uri_target(&self.base, uri).map_err(|e| self.error(format!("image {index}: {e}")))? {
+                    UriTarget::File(file) => {
+                        let loaded = self.textures.file(&file, &mut self.warnings)?;
+                        self.images.insert(index, loaded.clone());
+                        return Ok(loaded);
+                    }
+                    UriTarget::Data => {
+                        let bytes =
+                            decode_data_uri(uri).map_err(|e| self.error(format!("image {index}: {e}")))?;
+                        (bytes, mime_type.and_then(image::ImageFormat::from_mime_type))
+                    }
+                }
+            }
+        };
+        let loaded = match decode_texture(&bytes, hint) {
+            Ok(texture) => Some(Arc::new(texture)),
+            Err(DecodeError::Unsupported(why)) => {
+                self.warn(format!("image {index} (embedded): {why}; meshes using it are drawn untextured"));
+                None
+            }
+            Err(DecodeError::Corrupt(why)) => {
+                return Err(self.error(format!("image {index} (embedded): {why}")))
+            }
+        };
+        self.images.insert(index, loaded.clone());
+        Ok(loaded)
+    }
+
+    /// The sampler mapping of the module doc, warning about mirrored
+    /// repeat.
+    fn sampler(&mut self, sampler: &gltf::texture::Sampler) -> Sampler {
+        let (mapped, mirrored) = sampler_from_gltf(sampler);
+        if mirrored {
+            self.warn("texture wrap MIRRORED_REPEAT is not supported; using REPEAT".into());
+        }
+        mapped
+    }
+
+    /// Takes the node's camera as the scene's (see the module doc).
+    fn camera(&mut self, camera: &gltf::Camera, world: Mat4) {
+        let eye = world.transform_point3(Vec3::ZERO);
+        let forward = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
+        let up = world.transform_vector3(Vec3::Y).normalize_or_zero();
+        let projection = match camera.projection() {
+            gltf::camera::Projection::Perspective(p) => {
+                self.camera_far_to_fit = p.zfar().is_none();
+                let (near, far) = (p.znear(), p.zfar().unwrap_or(p.znear() * 2.0));
+                Projection::Perspective { fovy_degrees: p.yfov().to_degrees(), near, far }
+            }
+            gltf::camera::Projection::Orthographic(o) => {
+                Projection::Orthographic { height: 2.0 * o.ymag(), near: o.znear(), far: o.zfar() }
+            }
+        };
+        let usable = forward != Vec3::ZERO && up != Vec3::ZERO && forward.cross(up) != Vec3::ZERO;
+        if !usable || !projection_is_valid(&projection) {
+            self.warn(format!("camera {} is unusable ({projection:?}); ignored", camera.index()));
+            self.camera_far_to_fit = false;
+            return;
+        }
+        self.scene.camera = Some(Camera { eye, target: eye + forward, up, projection });
+    }
+
+    /// Adds a KHR_lights_punctual light (see the module doc).
+    fn light(&mut self, light: &gltf::khr_lights_punctual::Light, world: Mat4) {
+        use gltf::khr_lights_punctual::Kind;
+        let color = Vec3::from(light.color()) * light.intensity();
+        let index = light.index();
+        if !color.is_finite() || color.min_element() < 0.0 {
+            self.warn(format!("light {index} has an unusable colour × intensity {color}; ignored"));
+            return;
+        }
+        if light.range().is_some() {
+            self.warn(format!("light {index}: range is not supported; the light reaches everywhere"));
+        }
+        let inverse_square = Attenuation { a0: 0.0, a1: 0.0, a2: 1.0 };
+        let position = world.transform_point3(Vec3::ZERO);
+        let added = match light.kind() {
+            Kind::Directional => {
+                let direction = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
+                (direction != Vec3::ZERO).then_some(Light::Directional { direction, color })
+            }
+            Kind::Point => Some(Light::Point { position, color, attenuation: inverse_square }),
+            Kind::Spot { .. } => {
+                self.warn(format!("light {index}: spot cone is not supported; drawn as a point light"));
+                Some(Light::Point { position, color, attenuation: inverse_square })
+            }
+        };
+        match added {
+            Some(l) => self.scene.lights.push(l),
+            None => self.warn(format!("light {index} has a degenerate direction; ignored")),
+        }
+    }
+
+    /// Fits the camera's far plane if needed and returns the result.
+    fn finish(mut self) -> Result<(GltfScene, Vec<String>), SceneError> {
+        if self.scene.objects.is_empty() {
+            return Err(SceneError::NoTriangles { path: self.path.to_path_buf() });
+        }
+        if let (true, Some(camera)) = (self.camera_far_to_fit, self.scene.camera.as_mut()) {
+            fit_far_plane(camera, &self.scene.objects);
+        }
+        Ok((self.scene, self.warnings))
+    }
+}
+
+/// The far plane of an infinite perspective camera: beyond the farthest
+/// corner of the objects' world bounding box, and beyond the near plane.
+fn fit_far_plane(camera: &mut Camera, objects: &[Object]) {
+    let Projection::Perspective { near, far, .. } = &mut camera.projection else { return };
+    let corners = objects.iter().flat_map(|o| {
+        let (min, max) = o.mesh.bounds();
+        (0..8).map(move |i| {
+            let corner = Vec3::select(glam::BVec3::new(i & 1 != 0, i & 2 != 0, i & 4 != 0), max, min);
+            o.world_from_object.transform_point3(corner)
+        })
+    });
+    let farthest = corners.map(|c| c.distance(camera.eye)).fold(0.0f32, f32::max);
+    *far = (farthest * FITTED_FAR_MARGIN).max(*near * 2.0);
+}
+
+fn projection_is_valid(projection: &Projection) -> bool {
+    let ok = |x: f32| x.is_finite() && x > 0.0;
+    match *projection {
+        Projection::Perspective { fovy_degrees, near, far } => {
+            ok(fovy_degrees) && fovy_degrees < 180.0 && ok(near) && far.is_finite() && far > near
+        }
+        Projection::Orthographic { height, near, far } => {
+            ok(height) && near.is_finite() && near >= 0.0 && far.is_finite() && far > near
+        }
+    }
+}
+
+/// The sampler mapping of the module doc, and whether a MIRRORED_REPEAT
+/// was replaced by REPEAT.
+fn sampler_from_gltf(sampler: &gltf::texture::Sampler) -> (Sampler, bool) {
+    let filter = match (sampler.min_filter(), sampler.mag_filter()) {
+        (Some(MinFilter::Nearest | MinFilter::NearestMipmapNearest), _) => Filter::Nearest,
+        (Some(MinFilter::Linear), _) => Filter::Bilinear,
+        (Some(_), _) => Filter::Trilinear,
+        (None, Some(MagFilter::Nearest)) => Filter::Nearest,
+        (None, _) => Filter::Trilinear,
+    };
+    let wrap = |mode: WrappingMode| match mode {
+        WrappingMode::Repeat | WrappingMode::MirroredRepeat => Wrap::Repeat,
+        WrappingMode::ClampToEdge => Wrap::ClampToEdge,
+    };
+    let mirrored = [sampler.wrap_s(), sampler.wrap_t()].contains(&WrappingMode::MirroredRepeat);
+    (Sampler { filter, wrap_s: wrap(sampler.wrap_s()), wrap_t: wrap(sampler.wrap_t()) }, mirrored)
+}
+
+/// The metallic–roughness mapping of the module doc.
+fn material_from_gltf(material: &gltf::Material) -> Material {
+    let pbr = material.pbr_metallic_roughness();
+    let [r, g, b, a] = pbr.base_color_factor();
+    let base = Vec3::new(r, g, b);
+    let metallic = pbr.metallic_factor().clamp(0.0, 1.0);
+    let roughness = pbr.roughness_factor().clamp(0.0, 1.0);
+    let ks = Vec3::splat(0.04).lerp(base, metallic) * (1.0 - roughness);
+    let ns = (2.0 / roughness.powi(4) - 2.0).clamp(1.0, MAX_GLTF_SHININESS);
+    let opacity = if material.alpha_mode() == gltf::material::AlphaMode::Blend { a } else { 1.0 };
+    Material { ka: base, kd: base, ks, ns, opacity }.sanitized()
+}
+
+/// The same mesh with every triangle's winding reversed.
+fn reversed(mut mesh: Mesh) -> Mesh {
+    for t in &mut mesh.triangles {
+        t.swap(1, 2);
+    }
+    mesh
+}
+
+fn primitive_name(mesh: &gltf::Mesh, primitive: &gltf::Primitive) -> String {
+    let base = mesh.name().map_or_else(|| format!("mesh {}", mesh.index()), str::to_owned);
+    if mesh.primitives().len() > 1 {
+        format!("{base}/{}", primitive.index())
+    } else {
+        base
+    }
+}
+
+fn material_name(material: &gltf::Material) -> String {
+    match (material.name(), material.index()) {
+        (Some(name), _) => name.to_owned(),
+        (None, Some(i)) => format!("material {i}"),
+        (None, None) => "default".to_owned(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percent_escapes_decode_or_fail_cleanly() {
+        assert_eq!(percent_decode("a%20b.png").as_deref(), Some("a b.png"));
+        assert_eq!(percent_decode("plain.bin").as_deref(), Some("plain.bin"));
+        assert_eq!(percent_decode("bad%2"), None);
+        assert_eq!(percent_decode("bad%zz"), None);
+        assert_eq!(percent_decode("%FF"), None, "not UTF-8");
+    }
+
+    /// A document with only the given JSON members (and `asset`).
+    fn document(members: &str) -> gltf::Document {
+        let json = format!(r#"{{"asset": {{"version": "2.0"}}, {members}}}"#);
+        gltf::Gltf::from_slice(json.as_bytes()).unwrap().document
+    }
+
+    #[test]
+    fn metallic_roughness_maps_to_ks_and_ns() {
+        let doc = document(
+            r#""materials": [
+                {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 1, 0.4], "metallicFactor": 1, "roughnessFactor": 0.5},
+                 "alphaMode": "BLEND"},
+                {"pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0}, "alphaMode": "MASK"},
+                {}
+            ]"#,
+        );
+        let m: Vec<Material> = doc.materials().map(|m| material_from_gltf(&m)).collect();
+        assert_eq!((m[0].kd, m[0].ka), (Vec3::new(0.5, 0.25, 1.0), Vec3::new(0.5, 0.25, 1.0)));
+        assert_eq!(m[0].ks, Vec3::new(0.25, 0.125, 0.5), "metal: its own colour, halved by roughness 0.5");
+        assert_eq!((m[0].ns, m[0].opacity), (30.0, 0.4), "2/0.5⁴ − 2 = 30; BLEND keeps alpha");
+        assert_eq!(m[1].ks, Vec3::splat(0.04), "smooth dielectric");
+        assert_eq!((m[1].ns, m[1].opacity), (MAX_GLTF_SHININESS, 1.0), "MASK draws opaque");
+        // The glTF default material: white, metallic 1, roughness 1.
+        assert_eq!((m[2].kd, m[2].ks, m[2].ns), (Vec3::ONE, Vec3::ZERO, 1.0));
+    }
+
+    #[test]
+    fn samplers_map_to_the_nearest_filter_and_wrap() {
+        let doc = document(
+            r#""samplers": [
+                {"magFilter": 9728, "minFilter": 9728, "wrapS": 33071, "wrapT": 10497},
+                {"minFilter": 9729},
+                {"minFilter": 9987},
+                {"minFilter": 9986},
+                {"minFilter": 9985},
+                {"minFilter": 9984, "wrapS": 33648},
+                {"magFilter": 9728},
+                {}
+            ]"#,
+        );
+        let mapped: Vec<(Sampler, bool)> = doc.samplers().map(|s| sampler_from_gltf(&s)).collect();
+        let filters: Vec<Filter> = mapped.iter().map(|(s, _)| s.filter).collect();
+        use Filter::*;
+        assert_eq!(
+            filters,
+            [Nearest, Bilinear, Trilinear, Trilinear, Trilinear, Nearest, Nearest, Trilinear]
+        );
+        assert_eq!((mapped[0].0.wrap_s, mapped[0].0.wrap_t), (Wrap::ClampToEdge, Wrap::Repeat));
+        assert_eq!(
+            mapped[5],
+            (Sampler { filter: Nearest, wrap_s: Wrap::Repeat, wrap_t: Wrap::Repeat }, true)
+        );
+        assert!(mapped.iter().filter(|m| m.1).count() == 1);
+    }
+}

@@ -1,0 +1,135 @@
+//! Texture images: PNG and JPEG bytes (a file next to an MTL or glTF file,
+//! or bytes embedded in a glTF file) → [`Texture`]s, each file decoded once
+//! per load.
+//!
+//! Contract: [`TextureCache::file`] returns the texture of an image file,
+//! `Ok(None)` with one warning when the file cannot be read or holds a
+//! format zline does not read (the caller then draws the mesh untextured,
+//! the documented fallback of both loaders), and a [`SceneError`] naming the
+//! image file when it is a PNG or JPEG that does not decode — a corrupt
+//! texture is an error, not something to paper over. [`decode_texture`] does
+//! the decoding for bytes that are not a file of their own.
+//!
+//! The format is recognised from the bytes' signature, or else from the
+//! file extension; the pixels become RGBA8, rows top to bottom, used as
+//! stored (no sRGB decode, SPEC §7). Images wider or taller than
+//! [`MAX_TEXTURE_SIZE`] are refused by the decoder's limits before any
+//! pixel is allocated.
+
+use std::collections::HashMap;
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use image::{ImageFormat, ImageReader, Limits};
+use zline_shading::{Texture, MAX_TEXTURE_SIZE};
+
+use crate::error::SceneError;
+
+/// Why bytes did not become a texture.
+#[derive(Debug)]
+pub(crate) enum DecodeError {
+    /// A format zline does not read (BMP, TGA, …): the caller warns.
+    Unsupported(String),
+    /// A PNG or JPEG (or unrecognisable bytes) that does not decode.
+    Corrupt(String),
+}
+
+/// Decodes PNG or JPEG bytes; `hint` is the format a file name or MIME
+/// type suggests, used when the bytes carry no known signature.
+pub(crate) fn decode_texture(bytes: &[u8], hint: Option<ImageFormat>) -> Result<Texture, DecodeError> {
+    let format = image::guess_format(bytes).ok().or(hint);
+    match format {
+        Some(ImageFormat::Png | ImageFormat::Jpeg) => {}
+        Some(other) => {
+            let name = other.extensions_str().first().copied().unwrap_or("unknown");
+            return Err(DecodeError::Unsupported(format!(
+                "'{name}' images are not supported (PNG and JPEG are)"
+            )));
+        }
+        None => return Err(DecodeError::Corrupt("not a PNG or JPEG image".into())),
+    }
+    let mut reader = ImageReader::new(Cursor::new(bytes));
+    reader.set_format(format.unwrap_or(ImageFormat::Png));
+    let mut limits = Limits::default();
+    limits.max_image_width = Some(MAX_TEXTURE_SIZE);
+    limits.max_image_height = Some(MAX_TEXTURE_SIZE);
+    reader.limits(limits);
+    let rgba =
+        reader.decode().map_err(|e| DecodeError::Corrupt(format!("cannot decode image: {e}")))?.into_rgba8();
+    Texture::from_rgba8(rgba.width(), rgba.height(), rgba.as_raw())
+        .map_err(|e| DecodeError::Corrupt(format!("unusable image: {e}")))
+}
+
+/// Image files decoded so far in one load, by path, so that a texture
+/// shared by many materials is decoded and stored once.
+#[derive(Default)]
+pub(crate) struct TextureCache {
+    files: HashMap<PathBuf, Option<Arc<Texture>>>,
+}
+
+impl TextureCache {
+    /// The texture in the image file at `path` (see the module doc):
+    /// `Ok(None)` and a warning, given once per file, when it cannot be
+    /// used but drawing can go on without it.
+    pub(crate) fn file(
+        &mut self,
+        path: &Path,
+        warnings: &mut Vec<String>,
+    ) -> Result<Option<Arc<Texture>>, SceneError> {
+        if let Some(loaded) = self.files.get(path) {
+            return Ok(loaded.clone());
+        }
+        let loaded = load_file(path, warnings)?.map(Arc::new);
+        self.files.insert(path.to_path_buf(), loaded.clone());
+        Ok(loaded)
+    }
+}
+
+fn load_file(path: &Path, warnings: &mut Vec<String>) -> Result<Option<Texture>, SceneError> {
+    let fallback = "meshes using it are drawn untextured";
+    let bytes = match std::fs::read(path) {
+        Ok(bytes) => bytes,
+        Err(e) => {
+            warnings.push(format!("{}: cannot read texture: {e}; {fallback}", path.display()));
+            return Ok(None);
+        }
+    };
+    match decode_texture(&bytes, ImageFormat::from_path(path).ok()) {
+        Ok(texture) => Ok(Some(texture)),
+        Err(DecodeError::Unsupported(why)) => {
+            warnings.push(format!("{}: {why}; {fallback}", path.display()));
+            Ok(None)
+        }
+        Err(DecodeError::Corrupt(message)) => Err(SceneError::File { path: path.to_path_buf(), message }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 2 × 1 PNG: red then green.
+    fn tiny_png() -> Vec<u8> {
+        let image = image::RgbaImage::from_raw(2, 1, vec![255, 0, 0, 255, 0, 255, 0, 255]).unwrap();
+        let mut bytes = Vec::new();
+        image.write_to(&mut Cursor::new(&mut bytes), ImageFormat::Png).unwrap();
+        bytes
+    }
+
+    #[test]
+    fn png_bytes_decode_to_rgba() {
+        let texture = decode_texture(&tiny_png(), None).unwrap();
+        assert_eq!((texture.width(), texture.height()), (2, 1));
+    }
+
+    #[test]
+    fn garbage_is_corrupt_and_other_formats_unsupported() {
+        assert!(matches!(decode_texture(b"hello", Some(ImageFormat::Png)), Err(DecodeError::Corrupt(_))));
+        assert!(matches!(decode_texture(b"hello", None), Err(DecodeError::Corrupt(_))));
+        let truncated = &tiny_png()[..40];
+        assert!(matches!(decode_texture(truncated, None), Err(DecodeError::Corrupt(_))));
+        // "BM" is the BMP signature.
+        assert!(matches!(decode_texture(b"BM\0\0\0\0", None), Err(DecodeError::Unsupported(_))));
+    }
+}
