@@ -1,0 +1,104 @@
+//! glTF resources: buffers and images from the GLB chunk, `data:` URIs or
+//! files next to the glTF file, read here so that one bad resource gives one
+//! clear error or warning (see the parent module).
+
+#![allow(unused_imports, reason = "the parent's imports are shared wholesale")]
+
+use super::*;
+
+/// Reads every buffer: the GLB's BIN chunk, a `data:` URI or a file
+/// relative to the glTF file. A buffer that cannot be read, or is shorter
+/// than its byteLength, is an error naming it.
+pub(super) fn read_buffers(
+    path: &Path,
+    base: &Path,
+    document: &gltf::Document,
+    mut blob: Option<Vec<u8>>,
+) -> Result<Vec<Vec<u8>>, SceneError> {
+    let mut buffers = Vec::new();
+    for buffer in document.buffers() {
+        let error = |what: String| SceneError::File {
+            path: path.to_path_buf(),
+            message: format!("buffer {}: {what}", buffer.index()),
+        };
+        let data = match buffer.source() {
+            gltf::buffer::Source::Bin => {
+                blob.take().ok_or_else(|| error("the GLB has no BIN chunk".into()))?
+            }
+            gltf::buffer::Source::Uri(uri) => read_uri(base, uri).map_err(error)?,
+        };
+        if data.len() < buffer.length() {
+            return Err(error(format!("holds {} bytes, byteLength says {}", data.len(), buffer.length())));
+        }
+        buffers.push(data);
+    }
+    Ok(buffers)
+}
+
+/// The bytes a buffer or image URI names, or what is wrong.
+pub(super) fn read_uri(base: &Path, uri: &str) -> Result<Vec<u8>, String> {
+    match uri_target(base, uri)? {
+        UriTarget::Data => decode_data_uri(uri),
+        UriTarget::File(file) => {
+            std::fs::read(&file).map_err(|e| format!("cannot read '{}': {e}", file.display()))
+        }
+    }
+}
+
+/// Where a URI points.
+pub(super) enum UriTarget {
+    /// A `data:` URI: the bytes are in it.
+    Data,
+    /// A file (a relative reference, percent-decoded, joined to the base).
+    File(PathBuf),
+}
+
+pub(super) fn uri_target(base: &Path, uri: &str) -> Result<UriTarget, String> {
+    if uri.starts_with("data:") {
+        return Ok(UriTarget::Data);
+    }
+    if uri.contains(':') {
+        return Err(format!("unsupported URI '{}' (only relative file names and data: URIs)", short(uri)));
+    }
+    let decoded = percent_decode(uri).ok_or_else(|| format!("malformed URI '{}'", short(uri)))?;
+    Ok(UriTarget::File(base.join(decoded)))
+}
+
+/// The bytes of a base64 `data:` URI, decoded by the `gltf` crate.
+pub(super) fn decode_data_uri(uri: &str) -> Result<Vec<u8>, String> {
+    if !uri.contains(";base64,") {
+        return Err("only base64 data: URIs are supported".into());
+    }
+    // With no base directory the gltf crate reads nothing but the URI.
+    let data = gltf::buffer::Data::from_source(gltf::buffer::Source::Uri(uri), None)
+        .map_err(|e| format!("cannot decode data: URI: {e}"))?;
+    Ok(data.0)
+}
+
+/// Decodes `%XX` escapes; `None` when an escape is malformed or the result
+/// is not UTF-8.
+pub(super) fn percent_decode(uri: &str) -> Option<String> {
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+/// At most 60 characters of a string, for messages (data: URIs are long).
+pub(super) fn short(s: &str) -> String {
+    let mut out: String = s.chars().take(60).flat_map(char::escape_debug).collect();
+    if s.chars().count() > 60 {
+        out.push('…');
+    }
+    out
+}
