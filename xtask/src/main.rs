@@ -6,6 +6,7 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 mod bench;
+mod docs;
 
 /// Developer tasks for zline.
 #[derive(Parser)]
@@ -37,6 +38,13 @@ enum Task {
         #[arg(long, default_value_t = zline::pipeline::RenderOptions::default().tile_size)]
         tile_size: u32,
     },
+    /// Render the texture-mapping pictures of the docs (checkerboard floor:
+    /// perspective-correct vs affine, nearest vs trilinear).
+    DocsImages {
+        /// Output folder.
+        #[arg(long, default_value = "docs/images")]
+        out: PathBuf,
+    },
 }
 
 fn main() -> Result<()> {
@@ -45,5 +53,6 @@ fn main() -> Result<()> {
             let options = zline::pipeline::RenderOptions { tile_size };
             bench::run(frames, &threads, &assets, filter.as_deref(), &options)
         }
+        Task::DocsImages { out } => docs::run(&out),
     }
 }

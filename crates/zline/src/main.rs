@@ -20,10 +20,11 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render an OBJ model or a TOML scene file to a PNG.
+    /// Render an OBJ or glTF model, or a TOML scene file, to a PNG.
     Render {
-        /// An `.obj` model (framed automatically, with a key and a fill
-        /// light) or a `.toml` scene file.
+        /// An `.obj`, `.gltf` or `.glb` model (framed automatically unless a
+        /// glTF file brings its own camera; a key and a fill light unless it
+        /// brings lights) or a `.toml` scene file.
         input: PathBuf,
         #[command(flatten)]
         common: Common,
