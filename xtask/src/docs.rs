@@ -24,7 +24,7 @@ fn checker() -> Result<Texture> {
     let mut rgba = Vec::with_capacity((side * side * 4) as usize);
     for y in 0..side {
         for x in 0..side {
-            let v = if (x / CELL + y / CELL) % 2 == 0 { 235 } else { 20 };
+            let v = if (x / CELL + y / CELL).is_multiple_of(2) { 235 } else { 20 };
             rgba.extend([v, v, v, 255]);
         }
     }
