@@ -5,14 +5,19 @@
 //! to right) so the three modes of SPEC §6 can be compared, a cube and a
 //! torus behind them, a warm and a cool attenuated point light and a dim
 //! directional light. The spheres are shiny (ns = 60), so Phong shows a
-//! round highlight, Gouraud a smeared one and Flat a bright facet.
+//! round highlight, Gouraud a smeared one and Flat a bright facet. The
+//! ground carries a procedural checkerboard texture (trilinear, repeating),
+//! a glass sphere in front is drawn by the transparency pass, and a light
+//! linear fog in the background colour fades the distance (SPEC §7–9).
 
 use std::sync::Arc;
 
-use glam::{Mat4, Quat, Vec3};
-use zline_shading::{Attenuation, Light, Material, ShadingMode};
+use glam::{Mat4, Quat, Vec2, Vec3};
+use zline_shading::{
+    Attenuation, Fog, FogCoordinate, FogMode, Light, Material, Sampler, ShadingMode, Texture,
+};
 
-use crate::model::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene};
+use crate::model::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene, TextureMap};
 use crate::primitives::{cube, plane, torus, uv_sphere};
 
 /// The demo scene (see the module doc).
@@ -20,11 +25,12 @@ pub fn demo_scene() -> Scene {
     let sphere = Arc::new(uv_sphere(8, 12, 0.8));
     let sphere_material = Material::plastic(Vec3::new(0.85, 0.25, 0.2), 0.7, 60.0);
     let mut objects = vec![object(
-        plane(24.0, 24),
+        checkered(plane(24.0, 24)),
         Mat4::IDENTITY,
-        Material::plastic(Vec3::new(0.55, 0.55, 0.5), 0.1, 8.0),
+        Material::plastic(Vec3::new(0.75, 0.72, 0.65), 0.1, 8.0),
         None,
     )];
+
     for (x, mode) in [(-2.1, ShadingMode::Flat), (0.0, ShadingMode::Gouraud), (2.1, ShadingMode::Phong)] {
         objects.push(Object {
             mesh: Arc::clone(&sphere),
@@ -49,6 +55,15 @@ pub fn demo_scene() -> Scene {
         Material::plastic(Vec3::new(0.9, 0.7, 0.2), 0.8, 80.0),
         None,
     ));
+    // Last, so the spheres' shading modes stay the only overrides in order.
+    let glass = Material { opacity: 0.35, ..Material::plastic(Vec3::new(0.55, 0.8, 0.95), 0.9, 90.0) };
+    objects.push(Object {
+        mesh: Arc::new(uv_sphere(24, 48, 0.55)),
+        world_from_object: Mat4::from_translation(Vec3::new(1.05, 0.55, 1.6)),
+        material: Some(glass),
+        shading: None,
+        cull_back_faces: false,
+    });
     Scene {
         camera: Camera {
             eye: Vec3::new(0.0, 2.8, 7.5),
@@ -56,7 +71,7 @@ pub fn demo_scene() -> Scene {
             up: Vec3::Y,
             projection: Projection::Perspective { fovy_degrees: 40.0, near: 1.0, far: 40.0 },
         },
-        background: Vec3::new(0.06, 0.07, 0.1),
+        background: BACKGROUND,
         ambient: Vec3::splat(0.12),
         lights: vec![
             Light::Point {
@@ -78,8 +93,33 @@ pub fn demo_scene() -> Scene {
             shading: ShadingMode::Phong,
             interpolation: Interpolation::PerspectiveCorrect,
         },
-        fog: None,
+        fog: Some(Fog {
+            mode: FogMode::Linear { start: 9.0, end: 26.0 },
+            color: BACKGROUND,
+            coordinate: FogCoordinate::EyePlane,
+        }),
     }
+}
+
+/// The demo's background, also its fog colour.
+const BACKGROUND: Vec3 = Vec3::new(0.06, 0.07, 0.1);
+
+/// The ground with texture coordinates (one unit per checker cell) and a
+/// procedural 64 × 64 checkerboard of 8 × 8-texel cells.
+fn checkered(ground: Mesh) -> Mesh {
+    let uvs = ground.positions.iter().map(|p| Vec2::new(p.x / 8.0, -p.z / 8.0)).collect();
+    let side = 64u32;
+    let rgba: Vec<u8> = (0..side * side)
+        .flat_map(|i| {
+            let (x, y) = (i % side, i / side);
+            let v = if (x / 8 + y / 8).is_multiple_of(2) { 255 } else { 150 };
+            [v, v, v, 255]
+        })
+        .collect();
+    let texture =
+        Texture::from_rgba8(side, side, &rgba).expect("a 64 × 64 texture of 64·64·4 bytes is valid");
+    let ground = ground.with_uvs(uvs).expect("one finite coordinate per vertex");
+    ground.with_diffuse_map(TextureMap { texture: Arc::new(texture), sampler: Sampler::default() })
 }
 
 fn object(mesh: Mesh, world_from_object: Mat4, material: Material, shading: Option<ShadingMode>) -> Object {
@@ -96,6 +136,12 @@ mod tests {
         let scene = demo_scene();
         let modes: Vec<_> = scene.objects.iter().filter_map(|o| o.shading).collect();
         assert_eq!(modes, ShadingMode::ALL);
+        assert!(scene.objects.iter().any(|o| o.material().opacity < 1.0), "a transparent object");
+        assert!(
+            scene.objects.iter().any(|o| o.mesh.diffuse_map.is_some() && !o.mesh.uvs.is_empty()),
+            "a texture"
+        );
+        assert!(scene.fog.is_some());
         let aspect = scene.settings.width as f32 / scene.settings.height as f32;
         let clip_from_world = scene.camera.clip_from_eye(aspect) * scene.camera.eye_from_world();
         for o in &scene.objects[1..] {
