@@ -106,6 +106,41 @@ fn sphere_scene(rings: u32, segments: u32, distance: f32, shading: ShadingMode) 
     }
 }
 
+/// The checkerboard floor at 1920×1080 with fog, optionally with two
+/// overlapping 2k spheres (the front one transparent) standing on it.
+fn textured_plane(spheres: bool) -> Result<Scene> {
+    use zline::scene::{Fog, FogCoordinate, FogMode, Interpolation, Material};
+    use zline::shading::Filter;
+    let floor = crate::docs::floor(Arc::new(crate::docs::checker()?), Filter::Trilinear, -400.0, 200.0)?;
+    let mut scene = crate::docs::scene(floor, Interpolation::PerspectiveCorrect);
+    scene.settings.width = WIDTH;
+    scene.settings.height = HEIGHT;
+    scene.fog = Some(Fog {
+        mode: FogMode::Linear { start: 5.0, end: 60.0 },
+        color: scene.background,
+        coordinate: FogCoordinate::EyePlane,
+    });
+    if spheres {
+        scene.lights = default_lights();
+        scene.ambient = DEFAULT_AMBIENT;
+        let sphere = Arc::new(uv_sphere(32, 32, 0.45));
+        for (x, opacity) in [(-0.25, 1.0), (0.25, 0.5)] {
+            let z = if opacity < 1.0 { -2.6 } else { -3.2 };
+            scene.objects.push(Object {
+                mesh: sphere.clone(),
+                world_from_object: Mat4::from_translation(Vec3::new(x, -0.55, z)),
+                material: Some(Material {
+                    opacity,
+                    ..Material::plastic(Vec3::new(0.8, 0.3, 0.2), 0.5, 32.0)
+                }),
+                shading: Some(ShadingMode::Phong),
+                cull_back_faces: opacity >= 1.0,
+            });
+        }
+    }
+    Ok(scene)
+}
+
 fn cases(assets: &Path) -> Result<Vec<Case>> {
     let mut out = Vec::new();
     let bunny = assets.join("obj/bunny/bunny.obj");
@@ -125,6 +160,11 @@ fn cases(assets: &Path) -> Result<Vec<Case>> {
             build: Box::new(move || Ok(sphere_scene(32, 32, 2.6, mode))),
         });
     }
+    // SPEC §7–9 scenes: the docs' checkerboard floor to the horizon with
+    // trilinear filtering and linear fog; two overlapping spheres, the front
+    // one transparent, over that floor.
+    out.push(Case { name: "plane textured + fog".into(), build: Box::new(|| textured_plane(false)) });
+    out.push(Case { name: "transparent spheres".into(), build: Box::new(|| textured_plane(true)) });
     // 500 × 1000 ≈ 1M triangles.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
         out.push(Case {

@@ -19,7 +19,7 @@ const CELL: u32 = 8;
 const CELLS: u32 = 8;
 
 /// A black-and-white checkerboard, CELLS × CELLS cells of CELL texels.
-fn checker() -> Result<Texture> {
+pub(crate) fn checker() -> Result<Texture> {
     let side = CELL * CELLS;
     let mut rgba = Vec::with_capacity((side * side * 4) as usize);
     for y in 0..side {
@@ -33,7 +33,7 @@ fn checker() -> Result<Texture> {
 
 /// One quad (two triangles) at y = −1 from z = −0.5 to z = `far`, 2·`half`
 /// wide, one checker cell per world unit.
-fn floor(texture: Arc<Texture>, filter: Filter, far: f32, half: f32) -> Result<Mesh> {
+pub(crate) fn floor(texture: Arc<Texture>, filter: Filter, far: f32, half: f32) -> Result<Mesh> {
     let near = -0.5f32;
     let positions = vec![
         Vec3::new(-half, -1.0, near),
@@ -49,7 +49,7 @@ fn floor(texture: Arc<Texture>, filter: Filter, far: f32, half: f32) -> Result<M
     Ok(mesh.with_diffuse_map(TextureMap { texture, sampler }))
 }
 
-fn scene(mesh: Mesh, interpolation: Interpolation) -> Scene {
+pub(crate) fn scene(mesh: Mesh, interpolation: Interpolation) -> Scene {
     Scene {
         camera: Camera {
             eye: Vec3::new(0.0, 0.0, 0.0),

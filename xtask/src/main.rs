@@ -6,6 +6,7 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 mod bench;
+mod contact;
 mod docs;
 
 /// Developer tasks for zline.
@@ -45,6 +46,20 @@ enum Task {
         #[arg(long, default_value = "docs/images")]
         out: PathBuf,
     },
+    /// Render every model of the asset folder (obj/*/*.obj, and per glTF
+    /// model its glTF variant, else glTF-Binary) into one grid PNG with each
+    /// model's name under its cell, and print the time per model.
+    ContactSheet {
+        /// The shared asset folder holding obj/ and gltf/.
+        #[arg(long, default_value = "../shared/assets")]
+        assets: PathBuf,
+        /// Output PNG file.
+        #[arg(long, default_value = "docs/images/contact-sheet.png")]
+        out: PathBuf,
+        /// Size of each cell's picture, WxH.
+        #[arg(long, default_value = "320x240", value_parser = contact::parse_cell)]
+        cell: (u32, u32),
+    },
 }
 
 fn main() -> Result<()> {
@@ -54,5 +69,6 @@ fn main() -> Result<()> {
             bench::run(frames, &threads, &assets, filter.as_deref(), &options)
         }
         Task::DocsImages { out } => docs::run(&out),
+        Task::ContactSheet { assets, out, cell } => contact::run(&assets, &out, cell),
     }
 }

@@ -318,9 +318,15 @@ impl Wrap {
 /// texture, x86-64-v3); without it they cost the same.
 #[inline]
 fn repeat(i: i32, size: u32) -> u32 {
-    // A negative i becomes a huge u32 and takes the division.
+    // A negative i becomes a huge u32 and takes the slow path.
     if (i as u32) < size {
         i as u32
+    } else if size.is_power_of_two() {
+        // Two's complement: the low bits are i mod size, negatives included.
+        // A floor repeating far from the origin lands here on every sample:
+        // the textured-floor benchmark went from 98 to 86 ms per frame
+        // (single thread, one run each) without the division.
+        (i as u32) & (size - 1)
     } else {
         i.rem_euclid(size as i32) as u32
     }
