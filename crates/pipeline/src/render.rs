@@ -89,7 +89,11 @@ impl Renderer {
             stats.triangles += object.mesh.triangles.len() as u64;
             let texture = match (&object.mesh.diffuse_map, object.mesh.uvs.is_empty()) {
                 (Some(map), false) => {
-                    textures.push(map.clone());
+                    let mut map = map.clone();
+                    if let Some(filter) = s.texture_filter {
+                        map.sampler.filter = filter;
+                    }
+                    textures.push(map);
                     Some(textures.len() as u32 - 1)
                 }
                 _ => None,

@@ -92,6 +92,7 @@ pub fn demo_scene() -> Scene {
             height: 540,
             shading: ShadingMode::Phong,
             interpolation: Interpolation::PerspectiveCorrect,
+            texture_filter: None,
         },
         fog: Some(Fog {
             mode: FogMode::Linear { start: 9.0, end: 26.0 },

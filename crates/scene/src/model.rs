@@ -186,6 +186,8 @@ pub struct RenderSettings {
     pub shading: ShadingMode,
     /// Interpolation of attributes.
     pub interpolation: Interpolation,
+    /// Replaces every texture's filter when set (`--filter`).
+    pub texture_filter: Option<zline_shading::Filter>,
 }
 
 impl Default for RenderSettings {
@@ -195,6 +197,7 @@ impl Default for RenderSettings {
             height: 600,
             shading: ShadingMode::Phong,
             interpolation: Interpolation::PerspectiveCorrect,
+            texture_filter: None,
         }
     }
 }

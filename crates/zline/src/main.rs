@@ -9,6 +9,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
 use zline::pipeline::{render, RenderOptions};
 use zline::scene::{Fog, FogCoordinate, FogMode, Interpolation, RenderSettings, Scene, ShadingMode};
+use zline::shading::Filter;
 
 /// zline — a CPU renderer for the classical rendering pipeline.
 #[derive(Parser)]
@@ -53,6 +54,9 @@ struct Common {
     /// Worker threads (default: one per core).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
+    /// Texture filtering for every texture (default: each texture's own).
+    #[arg(long, value_enum)]
+    filter: Option<TexFilter>,
     /// Fog (replaces the scene's): linear:START:END, exp:DENSITY or
     /// exp2:DENSITY, distances in world units.
     #[arg(long, value_name = "MODE", value_parser = parse_fog)]
@@ -73,6 +77,16 @@ enum Shading {
     Flat,
     Gouraud,
     Phong,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum TexFilter {
+    /// The nearest texel.
+    Nearest,
+    /// Bilinear on the full-size texture.
+    Bilinear,
+    /// Bilinear on the two nearest mip levels, blended.
+    Trilinear,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -245,6 +259,13 @@ fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
             Shading::Gouraud => ShadingMode::Gouraud,
             Shading::Phong => ShadingMode::Phong,
         };
+    }
+    if let Some(f) = common.filter {
+        settings.texture_filter = Some(match f {
+            TexFilter::Nearest => Filter::Nearest,
+            TexFilter::Bilinear => Filter::Bilinear,
+            TexFilter::Trilinear => Filter::Trilinear,
+        });
     }
     if let Some(i) = common.interpolation {
         settings.interpolation = match i {

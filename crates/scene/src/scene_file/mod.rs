@@ -17,7 +17,7 @@ use std::sync::Arc;
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
 use toml::Spanned;
-use zline_shading::{Attenuation, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
+use zline_shading::{Attenuation, Filter, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
 
 use crate::error::SceneError;
 use crate::framing::{
@@ -50,6 +50,7 @@ pub const MAX_PRIMITIVE_DIVISIONS: u32 = 4096;
 /// height = 600
 /// shading = "phong"                 # flat | gouraud | phong (default)
 /// interpolation = "perspective"     # perspective (default) | linear
+/// filter = "trilinear"              # nearest | bilinear | trilinear: replaces every texture's own
 ///
 /// [camera]                          # omitted: the scene is framed
 /// eye = [0, 1, 5]                   # required
@@ -164,6 +165,15 @@ struct RenderDef {
     height: Option<S<u32>>,
     shading: Option<ShadingDef>,
     interpolation: Option<InterpolationDef>,
+    filter: Option<FilterDef>,
+}
+
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum FilterDef {
+    Nearest,
+    Bilinear,
+    Trilinear,
 }
 
 #[derive(Clone, Copy, Deserialize)]
@@ -340,6 +350,11 @@ impl Builder<'_> {
                 InterpolationDef::Linear => Interpolation::ScreenLinear,
             };
         }
+        settings.texture_filter = render.filter.map(|f| match f {
+            FilterDef::Nearest => Filter::Nearest,
+            FilterDef::Bilinear => Filter::Bilinear,
+            FilterDef::Trilinear => Filter::Trilinear,
+        });
         Ok(settings)
     }
 

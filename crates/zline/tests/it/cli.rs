@@ -89,3 +89,25 @@ fn fog_flags_change_the_image_and_bad_ones_are_reported() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("end ≥ start"));
 }
+
+#[test]
+fn the_filter_flag_changes_textured_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let (near, tri) = (dir.path().join("nearest.png"), dir.path().join("trilinear.png"));
+    let spot = repo().join("assets/obj/spot/spot.obj");
+    let run = |png: &std::path::Path, filter: &str| {
+        zline(&[
+            "render",
+            spot.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+            "--size",
+            "64x48",
+            "--filter",
+            filter,
+        ])
+    };
+    check_png(&run(&near, "nearest"), &near, (64, 48));
+    check_png(&run(&tri, "trilinear"), &tri, (64, 48));
+    assert_ne!(std::fs::read(&near).unwrap(), std::fs::read(&tri).unwrap(), "filtering made no difference");
+}
