@@ -67,7 +67,13 @@ pub(crate) fn scene(mesh: Mesh, interpolation: Interpolation) -> Scene {
             shading: Some(ShadingMode::Flat),
             cull_back_faces: false,
         }],
-        settings: RenderSettings { width: 480, height: 270, shading: ShadingMode::Flat, interpolation },
+        settings: RenderSettings {
+            width: 480,
+            height: 270,
+            shading: ShadingMode::Flat,
+            interpolation,
+            texture_filter: None,
+        },
         fog: None,
     }
 }
