@@ -291,11 +291,14 @@ fn chars_that_fit(width: u32, scale: u32) -> usize {
     (width / (GLYPH_ADVANCE * scale)) as usize
 }
 
-/// `text` cut to `width` pixels, ending in ".." when cut.
+/// `text` cut to `width` pixels, ending in ".." when cut (and there is
+/// room for more than the dots).
 fn ellipsize(text: &str, width: u32, scale: u32) -> String {
     let fit = chars_that_fit(width, scale);
     if text.chars().count() <= fit {
         text.to_string()
+    } else if fit < 3 {
+        text.chars().take(fit).collect()
     } else {
         let mut cut: String = text.chars().take(fit.saturating_sub(2)).collect();
         cut.push_str("..");

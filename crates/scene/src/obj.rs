@@ -187,9 +187,11 @@ fn parse_map_statement(
             ));
         }
     }
-    let file = rest;
+    // MTL files written on Windows use `\` as the separator (`.\tex.jpg`);
+    // a backslash is never part of a portable file name, so read it as `/`.
+    let file = rest.replace('\\', "/");
     let dir = mtl.parent().unwrap_or(Path::new(""));
-    (!file.is_empty()).then(|| MapStatement { file: dir.join(file), sampler })
+    (!file.is_empty()).then(|| MapStatement { file: dir.join(&file), sampler })
 }
 
 /// The first word of a trimmed string and the trimmed rest.
@@ -618,6 +620,8 @@ mod tests {
         let map = parse_map_statement("-clamp off t.jpg", mtl, &mut warnings, "m").unwrap();
         assert_eq!(map, MapStatement { file: "models/t.jpg".into(), sampler: Sampler::default() });
         assert_eq!(parse_map_statement("-blendu on", mtl, &mut warnings, "m"), None);
+        let windows = parse_map_statement(".\\textures\\Spider Tex.jpg", mtl, &mut warnings, "m").unwrap();
+        assert_eq!(windows.file, Path::new("models/textures/Spider Tex.jpg"), "backslashes are separators");
     }
 
     #[test]
