@@ -63,6 +63,10 @@ pub struct PrimitiveChunk {
     pub prims: Vec<Primitive>,
     /// `prims[i].edges.bounds()`.
     pub bounds: Vec<Rect>,
+    /// True when the chunk's primitives are transparent. A chunk holds one
+    /// object's triangles, so this is the object's opacity < 1; binning reads
+    /// it instead of touching every primitive.
+    pub transparent: bool,
     /// Planes of the textured primitives, referenced by
     /// [`Shader::Textured`](crate::setup::Shader::Textured).
     pub textured: Vec<crate::setup::TexturedPlanes>,
@@ -105,7 +109,7 @@ pub fn bin_primitives(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bin
                 continue;
             }
             let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
-            let set = if chunk.prims[i].kt > 0.0 { &mut bins.transparent } else { &mut bins.opaque };
+            let set = if chunk.transparent { &mut bins.transparent } else { &mut bins.opaque };
             for row in b.y0 / ts..=(b.y1 - 1) / ts {
                 let tiles = row as usize * grid.cols as usize;
                 for col in b.x0 / ts..=(b.x1 - 1) / ts {

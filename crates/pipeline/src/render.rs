@@ -186,6 +186,7 @@ impl Renderer {
         self.chunks[first..self.used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
             out.prims.clear();
             out.textured.clear();
+            out.transparent = ctx.material.0.material.opacity < 1.0;
             for t in tris {
                 if let Some(tri) = gather(vertices, t) {
                     setup_triangle(tri, ctx, out);
