@@ -4,7 +4,7 @@ use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
 use zline_raster::Rect;
-use zline_scene::{Interpolation, Mesh, Scene, TextureMap};
+use zline_scene::{Interpolation, Mesh, Projection, Scene, TextureMap};
 use zline_shading::{LightingModel, PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::bin::{bin_primitives, Bins, PrimitiveChunk, TileGrid};
@@ -107,6 +107,7 @@ impl Renderer {
                 material: (&materials[index], index as u32),
                 lighting: &lighting,
                 texture,
+                orthographic: matches!(scene.camera.projection, Projection::Orthographic { .. }),
             };
             let transforms = ObjectTransforms::new(clip_from_eye, eye_from_world, object.world_from_object);
             self.setup_object(&object.mesh, &transforms, &ctx);

@@ -135,6 +135,9 @@ pub struct SetupContext<'a> {
     /// The object's diffuse texture (index into the frame's table), when it
     /// has one and texture coordinates.
     pub texture: Option<u32>,
+    /// True for an orthographic projection (the viewer looks along −z
+    /// everywhere), false for a perspective one (the viewer is at the origin).
+    pub orthographic: bool,
 }
 
 /// Sets up one triangle (vertices in the mesh's order) and appends 0 or more
@@ -143,6 +146,18 @@ pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut P
     if tri[0].view_code & tri[1].view_code & tri[2].view_code != 0 {
         return; // entirely outside one plane of the view volume (NaN vertices included)
     }
+    // Two-sided lighting: a triangle seen from behind (possible only when
+    // culling is off) is lit with its normals turned towards the viewer, as
+    // OpenGL's two-sided lighting model and glTF's doubleSided do; with
+    // one-sided lighting the far side of an open mesh would be lit as if
+    // the viewer stood behind it.
+    let flipped: [ClipVertex; 3];
+    let tri = if !ctx.cull_back_faces && seen_from_behind(&tri, ctx.orthographic) {
+        flipped = tri.map(|v| turned(v, ctx));
+        [&flipped[0], &flipped[1], &flipped[2]]
+    } else {
+        tri
+    };
     let flat = match ctx.shading {
         ShadingMode::Flat => flat_parts(&tri, ctx),
         _ => LitParts::default(),
@@ -199,9 +214,32 @@ impl Projected {
 /// overflow).
 fn flat_parts(tri: &[&ClipVertex; 3], ctx: &SetupContext<'_>) -> LitParts {
     let p = tri.map(|v| v.eye.as_dvec3());
-    let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero().as_vec3();
+    let mut normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero().as_vec3();
+    if !ctx.cull_back_faces && seen_from_behind(tri, ctx.orthographic) {
+        normal = -normal;
+    }
     let centroid = ((p[0] + p[1] + p[2]) / 3.0).as_vec3();
     ctx.lighting.shade_parts(ctx.material.0, centroid, normal, Vec3::ZERO)
+}
+
+/// True when the triangle's front (counter-clockwise) side faces away from
+/// the viewer, decided in eye space on the original triangle.
+fn seen_from_behind(tri: &[&ClipVertex; 3], orthographic: bool) -> bool {
+    let p = tri.map(|v| v.eye.as_dvec3());
+    let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+    let to_viewer = if orthographic { glam::DVec3::Z } else { -p[0] };
+    normal.dot(to_viewer) < 0.0
+}
+
+/// A vertex with its normal turned around, and its Gouraud colour relit
+/// with that normal (untextured Gouraud lights vertices in the vertex stage).
+fn turned(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
+    let normal = -v.normal;
+    let color = match (ctx.shading, ctx.texture) {
+        (ShadingMode::Gouraud, None) => ctx.lighting.shade(ctx.material.0, v.eye, normal, Vec3::ZERO),
+        _ => v.color,
+    };
+    ClipVertex { normal, color, ..*v }
 }
 
 /// Projects, snaps, culls and builds the planes of one clipped triangle.

@@ -142,3 +142,35 @@ fn undrawn_samples_get_the_background_in_tiles_with_and_without_geometry() {
         assert_eq!(image.pixel(0, 0), bg, "tile {tile_size}: corner");
     }
 }
+
+#[test]
+fn a_square_seen_from_behind_is_lit_like_its_front_when_culling_is_off() {
+    // The same square twice: wound counter-clockwise with normals towards
+    // the viewer, and clockwise with normals away (its back faces us). With
+    // culling off, two-sided lighting turns the back's normals around, so
+    // both light alike; one-sided lighting would leave the back at ka·Ia.
+    let light =
+        Light::Point { position: Vec3::new(0.3, 0.8, 0.5), color: Vec3::ONE, attenuation: Attenuation::NONE };
+    let m = Material::plastic(Vec3::new(0.7, 0.4, 0.2), 0.5, 16.0);
+    for mode in ShadingMode::ALL {
+        let front = square(0.0, 0.0, 1.0, -2.0, m);
+        let back = crate::support::mesh(
+            front.positions.clone(),
+            vec![-Vec3::Z; 4],
+            front.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect(),
+            m,
+        );
+        let draw_one = |mesh| {
+            let mut o = object(mesh, Some(mode));
+            o.cull_back_faces = false;
+            draw(&scene(65, Vec3::splat(0.1), vec![light], vec![o]))
+        };
+        let (a, b) = (draw_one(front), draw_one(back));
+        for (x, y) in [(32, 32), (24, 40), (40, 22)] {
+            let (p, q) = (a.pixel(x, y), b.pixel(x, y));
+            let diff = p.iter().zip(q).map(|(u, v)| u.abs_diff(v)).max().unwrap_or(0);
+            assert!(diff <= 1, "{mode:?} at ({x}, {y}): front {p:?}, back {q:?}");
+            assert!(p[0] > 60, "{mode:?}: the square is lit ({p:?})");
+        }
+    }
+}
