@@ -108,6 +108,7 @@ impl Renderer {
                 lighting: &lighting,
                 texture,
                 orthographic: matches!(scene.camera.projection, Projection::Orthographic { .. }),
+                blend_texture_alpha: texture.is_some_and(|t| textures[t as usize].alpha_blend),
             };
             let transforms = ObjectTransforms::new(clip_from_eye, eye_from_world, object.world_from_object);
             self.setup_object(&object.mesh, &transforms, &ctx);
@@ -187,7 +188,7 @@ impl Renderer {
         self.chunks[first..self.used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
             out.prims.clear();
             out.textured.clear();
-            out.transparent = ctx.material.0.material.opacity < 1.0;
+            out.transparent = ctx.material.0.material.opacity < 1.0 || ctx.blend_texture_alpha;
             for t in tris {
                 if let Some(tri) = gather(vertices, t) {
                     setup_triangle(tri, ctx, out);

@@ -135,6 +135,9 @@ pub struct SetupContext<'a> {
     /// The object's diffuse texture (index into the frame's table), when it
     /// has one and texture coordinates.
     pub texture: Option<u32>,
+    /// True when the texture's alpha blends (the object is transparent even
+    /// at opacity 1).
+    pub blend_texture_alpha: bool,
     /// True for an orthographic projection (the viewer looks along −z
     /// everywhere), false for a perspective one (the viewer is at the origin).
     pub orthographic: bool,

@@ -53,7 +53,7 @@ pub struct TileTarget {
     /// False while undrawn samples (depth 1) hold stale colours that
     /// [`Self::resolve`] replaces by the background.
     colors_valid: bool,
-    /// The transparent primitive being drawn: kt and fog.
+    /// The transparent primitive being drawn: its opacity and the fog.
     blend: Option<(f32, Option<FogPass>)>,
 }
 
@@ -138,7 +138,7 @@ impl TileTarget {
         let mut shaded = 0;
         for (_, r) in order.iter() {
             let p = prim(r);
-            self.blend = Some((p.kt, fog.copied()));
+            self.blend = Some((1.0 - p.kt, fog.copied()));
             shaded += self.draw::<true>(p, chunk(r), ctx);
         }
         self.blend = None;
@@ -227,7 +227,9 @@ impl TileTarget {
         match (p.shader, p.perspective) {
             (Shader::Flat { color }, _) => {
                 let c = Vec3x8::splat(color);
-                p.edges.scan(clip, |s| n += self.blocks::<0, T>(&p.depth, &AttributePlanes::NONE, s, |_| c));
+                p.edges.scan(clip, |s| {
+                    n += self.blocks::<0, T>(&p.depth, &AttributePlanes::NONE, s, |_| (c, f32x8::ONE))
+                });
             }
             (Shader::Gouraud { planes }, true) => {
                 p.edges.scan(clip, |s| n += self.gouraud::<true, T>(&p.depth, &planes, s));
@@ -268,12 +270,12 @@ impl TileTarget {
         depth: &DepthPlane,
         attrs: &AttributePlanes<N>,
         span: Span,
-        mut shade: impl FnMut(&[f32x8; N]) -> Vec3x8,
+        mut shade: impl FnMut(&[f32x8; N]) -> (Vec3x8, f32x8),
     ) -> u64 {
         let row = self.index(self.origin, span.y);
         let origin = self.origin;
-        let (kt, fog) = self.blend.unwrap_or((0.0, None));
-        let (keep, behind) = (f32x8::splat(1.0 - kt), f32x8::splat(kt));
+        let (opacity, fog) = self.blend.unwrap_or((1.0, None));
+        let opacity = f32x8::splat(opacity);
         let (zbuf, [red, green, blue]) = (&mut self.depth, &mut self.rgb);
         let mut n = 0;
         for_each_block(depth, attrs, span, |b| {
@@ -285,7 +287,11 @@ impl TileTarget {
                 return;
             }
             n += u64::from(bits.count_ones());
-            let mut c = shade(&b.attrs.map(f32x8::from));
+            let (mut c, alpha) = shade(&b.attrs.map(f32x8::from));
+            // C = (1 − kt)·C_surface + kt·C_behind with 1 − kt = opacity·alpha
+            // (alpha is 1 but for textures whose alpha blends).
+            let keep = opacity * alpha;
+            let behind = f32x8::ONE - keep;
             if T {
                 if let Some(fog) = &fog {
                     let (f, fc) = (fog.factors(b.x, span.y, z), Vec3x8::splat(fog.color()));
@@ -312,11 +318,8 @@ impl TileTarget {
     ) -> u64 {
         self.blocks::<4, T>(depth, planes, span, |a| {
             let c = Vec3x8 { x: a[1], y: a[2], z: a[3] };
-            if PERSPECTIVE {
-                Vec3x8 { x: c.x / a[0], y: c.y / a[0], z: c.z / a[0] }
-            } else {
-                c
-            }
+            let c = if PERSPECTIVE { Vec3x8 { x: c.x / a[0], y: c.y / a[0], z: c.z / a[0] } } else { c };
+            (c, f32x8::ONE)
         })
     }
 
@@ -334,7 +337,7 @@ impl TileTarget {
             let w = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
             let normal = Vec3x8 { x: a[1] * w, y: a[2] * w, z: a[3] * w }.normalize_or_zero();
             let eye = Vec3x8 { x: a[4] * w, y: a[5] * w, z: a[6] * w };
-            lighting.shade_x8(material, eye, normal)
+            (lighting.shade_x8(material, eye, normal), f32x8::ONE)
         })
     }
 
@@ -355,6 +358,7 @@ impl TileTarget {
         let (dx, dy) = (t.planes.dx(), t.planes.dy());
         let (w, h) = (map.texture.width(), map.texture.height());
         let trilinear = map.sampler.filter == Filter::Trilinear;
+        let blend_alpha = T && map.alpha_blend;
         let kind = t.kind;
         self.blocks::<9, T>(depth, &t.planes, span, |a| {
             let inv = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
@@ -392,7 +396,8 @@ impl TileTarget {
                     lighting.shade_parts_x8(material, pair(6), pair(3).normalize_or_zero())
                 }
             };
-            (texel * ambient_diffuse + specular).clamp01()
+            let alpha = if blend_alpha { f32x8::from(texels.map(|c| c.w)) } else { f32x8::ONE };
+            ((texel * ambient_diffuse + specular).clamp01(), alpha)
         })
     }
 }

@@ -120,7 +120,11 @@ fn checkered(ground: Mesh) -> Mesh {
     let texture =
         Texture::from_rgba8(side, side, &rgba).expect("a 64 × 64 texture of 64·64·4 bytes is valid");
     let ground = ground.with_uvs(uvs).expect("one finite coordinate per vertex");
-    ground.with_diffuse_map(TextureMap { texture: Arc::new(texture), sampler: Sampler::default() })
+    ground.with_diffuse_map(TextureMap {
+        texture: Arc::new(texture),
+        sampler: Sampler::default(),
+        alpha_blend: false,
+    })
 }
 
 fn object(mesh: Mesh, world_from_object: Mat4, material: Material, shading: Option<ShadingMode>) -> Object {

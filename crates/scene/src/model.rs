@@ -14,6 +14,9 @@ pub struct TextureMap {
     pub texture: Arc<Texture>,
     /// Filtering and wrapping.
     pub sampler: Sampler,
+    /// True when the texel's alpha multiplies the material's opacity (glTF
+    /// alpha mode BLEND); the mesh is then drawn in the transparency pass.
+    pub alpha_blend: bool,
 }
 
 /// A triangle mesh in object space with one material.

@@ -258,7 +258,9 @@ fn attach_diffuse_map(
         return Ok(mesh);
     }
     Ok(match textures.file(&map.file, warnings)? {
-        Some(texture) => mesh.with_diffuse_map(TextureMap { texture, sampler: map.sampler }),
+        Some(texture) => {
+            mesh.with_diffuse_map(TextureMap { texture, sampler: map.sampler, alpha_blend: false })
+        }
         None => mesh,
     })
 }

@@ -19,7 +19,7 @@ fn textured(positions: Vec<Vec3>, uvs: Vec<Vec2>, texture: Texture, material: Ma
     let mesh = Mesh::new("textured", positions, Some(vec![Vec3::Z; n]), triangles, material)
         .and_then(|m| m.with_uvs(uvs))
         .expect("valid mesh")
-        .with_diffuse_map(TextureMap { texture: Arc::new(texture), sampler });
+        .with_diffuse_map(TextureMap { texture: Arc::new(texture), sampler, alpha_blend: false });
     Arc::new(mesh)
 }
 
@@ -117,8 +117,33 @@ fn perspective_correct_and_affine_boundaries_fall_where_the_formulas_say() {
 fn a_mesh_without_texture_coordinates_is_drawn_untextured() {
     let (p, _) = square(1.0, -2.0);
     let mesh = Mesh::new("plain", p, None, vec![[0, 1, 2], [0, 2, 3]], unlit()).expect("valid");
-    let mesh =
-        mesh.with_diffuse_map(TextureMap { texture: Arc::new(checker()), sampler: Sampler::default() });
+    let mesh = mesh.with_diffuse_map(TextureMap {
+        texture: Arc::new(checker()),
+        sampler: Sampler::default(),
+        alpha_blend: false,
+    });
     let s = scene(64, Vec3::ONE, vec![], vec![object(Arc::new(mesh), None)]);
     assert_eq!(draw(&s).pixel(32, 32), [255, 255, 255]);
+}
+
+#[test]
+fn texel_alpha_blends_when_the_map_says_so() {
+    // A white texel at alpha 102/255 = 0.4 over an opaque red square (unlit):
+    // C = 0.4·white + 0.6·red = (1, 0.4, 0.4) → (255, 102, 102). Without
+    // alpha blending the texel is opaque white.
+    let texel = [255, 255, 255, 102];
+    let red = Material { ka: Vec3::new(1.0, 0.0, 0.0), ..unlit() };
+    for (alpha_blend, want) in [(true, [255, 102, 102]), (false, [255, 255, 255])] {
+        let (p, uv) = square(1.0, -2.0);
+        let mut mesh = (*textured(p, uv, Texture::from_rgba8(1, 1, &texel).expect("valid"), unlit())).clone();
+        if let Some(map) = &mut mesh.diffuse_map {
+            map.alpha_blend = alpha_blend;
+        }
+        let (q, _) = square(1.5, -3.0);
+        let under = Mesh::new("under", q, None, vec![[0, 1, 2], [0, 2, 3]], red).expect("valid");
+        let mut top = object(Arc::new(mesh), Some(ShadingMode::Flat));
+        top.cull_back_faces = false;
+        let s = scene(64, Vec3::ONE, vec![], vec![top, object(Arc::new(under), None)]);
+        assert_eq!(draw(&s).pixel(32, 32), want, "alpha_blend {alpha_blend}");
+    }
 }

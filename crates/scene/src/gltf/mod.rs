@@ -345,7 +345,8 @@ impl Loader<'_> {
         }
         self.warn_about_material(&material);
         if let Some(info) = base_color {
-            built = self.attach_base_color(built, &info, uv_set)?;
+            let blend = material.alpha_mode() == gltf::material::AlphaMode::Blend;
+            built = self.attach_base_color(built, &info, uv_set, blend)?;
         }
         let cull = !material.double_sided() && default_culling(&built, built.material.opacity);
         Ok(Some((built, cull)))
@@ -537,6 +538,7 @@ impl Loader<'_> {
         mesh: Mesh,
         info: &gltf::texture::Info,
         set: u32,
+        alpha_blend: bool,
     ) -> Result<Mesh, SceneError> {
         if mesh.uvs.is_empty() {
             let name = &mesh.name;
@@ -546,7 +548,7 @@ impl Loader<'_> {
         let texture = info.texture();
         let Some(image) = self.image(&texture.source())? else { return Ok(mesh) };
         let sampler = self.sampler(&texture.sampler());
-        Ok(mesh.with_diffuse_map(TextureMap { texture: image, sampler }))
+        Ok(mesh.with_diffuse_map(TextureMap { texture: image, sampler, alpha_blend }))
     }
 
     /// The decoded image, on first use (see the module doc).
