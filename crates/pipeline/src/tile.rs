@@ -16,7 +16,7 @@
 //! lighting and a screen-linear one no divide.
 
 use glam::Vec3;
-use wide::{f32x8, i32x8, CmpEq, CmpLt};
+use wide::{f32x8, i32x8, CmpEq, CmpGe, CmpLt};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, Rect, Span, LANES};
 use zline_scene::TextureMap;
 use zline_shading::{lod, Filter, PreparedLights, PreparedMaterial, Vec3x8};
@@ -55,6 +55,8 @@ pub struct TileTarget {
     colors_valid: bool,
     /// The transparent primitive being drawn: its opacity and the fog.
     blend: Option<(f32, Option<FogPass>)>,
+    /// The alpha cutoff of the textured primitive being drawn (glTF MASK).
+    cutoff: Option<f32>,
 }
 
 impl TileTarget {
@@ -240,6 +242,7 @@ impl TileTarget {
             (Shader::Textured { index }, persp) => {
                 let t = &chunk.textured[index as usize];
                 let (map, m) = (&ctx.textures[t.texture as usize], &ctx.materials[t.material as usize]);
+                self.cutoff = map.alpha_cutoff;
                 if persp {
                     p.edges
                         .scan(clip, |s| n += self.textured::<true, T>(&p.depth, t, map, m, ctx.lighting, s));
@@ -247,6 +250,7 @@ impl TileTarget {
                     p.edges
                         .scan(clip, |s| n += self.textured::<false, T>(&p.depth, t, map, m, ctx.lighting, s));
                 }
+                self.cutoff = None;
             }
             (Shader::Phong { planes, material }, persp) => {
                 let (m, l) = (&ctx.materials[material as usize], ctx.lighting);
@@ -275,19 +279,29 @@ impl TileTarget {
         let row = self.index(self.origin, span.y);
         let origin = self.origin;
         let (opacity, fog) = self.blend.unwrap_or((1.0, None));
+        let cutoff = self.cutoff;
         let opacity = f32x8::splat(opacity);
         let (zbuf, [red, green, blue]) = (&mut self.depth, &mut self.rgb);
         let mut n = 0;
         for_each_block(depth, attrs, span, |b| {
             let i = row + (b.x - origin) as usize;
             let (z, stored) = (f32x8::from(b.z), load(zbuf, i));
-            let live = lane_mask(b.mask) & z.cmp_lt(stored);
+            let mut live = lane_mask(b.mask) & z.cmp_lt(stored);
+            if live.none() {
+                return;
+            }
+            let (mut c, alpha) = shade(&b.attrs.map(f32x8::from));
+            if let Some(cut) = cutoff {
+                // MASK: a sample below the cutoff is discarded before it can
+                // write depth.
+                live &= alpha.cmp_ge(f32x8::splat(cut));
+            }
             let bits = live.move_mask();
             if bits == 0 {
                 return;
             }
             n += u64::from(bits.count_ones());
-            let (mut c, alpha) = shade(&b.attrs.map(f32x8::from));
+            let alpha = if cutoff.is_some() { f32x8::ONE } else { alpha };
             // C = (1 − kt)·C_surface + kt·C_behind with 1 − kt = opacity·alpha
             // (alpha is 1 but for textures whose alpha blends).
             let keep = opacity * alpha;
@@ -358,7 +372,7 @@ impl TileTarget {
         let (dx, dy) = (t.planes.dx(), t.planes.dy());
         let (w, h) = (map.texture.width(), map.texture.height());
         let trilinear = map.sampler.filter == Filter::Trilinear;
-        let blend_alpha = T && map.alpha_blend;
+        let blend_alpha = (T && map.alpha_blend) || map.alpha_cutoff.is_some();
         let kind = t.kind;
         self.blocks::<9, T>(depth, &t.planes, span, |a| {
             let inv = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };

@@ -124,6 +124,7 @@ fn checkered(ground: Mesh) -> Mesh {
         texture: Arc::new(texture),
         sampler: Sampler::default(),
         alpha_blend: false,
+        alpha_cutoff: None,
     })
 }
 

@@ -17,6 +17,9 @@ pub struct TextureMap {
     /// True when the texel's alpha multiplies the material's opacity (glTF
     /// alpha mode BLEND); the mesh is then drawn in the transparency pass.
     pub alpha_blend: bool,
+    /// glTF alpha mode MASK: samples whose texel alpha is below this cutoff
+    /// are discarded (before the depth test writes anything).
+    pub alpha_cutoff: Option<f32>,
 }
 
 /// A triangle mesh in object space with one material.

@@ -258,9 +258,12 @@ fn attach_diffuse_map(
         return Ok(mesh);
     }
     Ok(match textures.file(&map.file, warnings)? {
-        Some(texture) => {
-            mesh.with_diffuse_map(TextureMap { texture, sampler: map.sampler, alpha_blend: false })
-        }
+        Some(texture) => mesh.with_diffuse_map(TextureMap {
+            texture,
+            sampler: map.sampler,
+            alpha_blend: false,
+            alpha_cutoff: None,
+        }),
         None => mesh,
     })
 }

@@ -19,7 +19,12 @@ fn textured(positions: Vec<Vec3>, uvs: Vec<Vec2>, texture: Texture, material: Ma
     let mesh = Mesh::new("textured", positions, Some(vec![Vec3::Z; n]), triangles, material)
         .and_then(|m| m.with_uvs(uvs))
         .expect("valid mesh")
-        .with_diffuse_map(TextureMap { texture: Arc::new(texture), sampler, alpha_blend: false });
+        .with_diffuse_map(TextureMap {
+            texture: Arc::new(texture),
+            sampler,
+            alpha_blend: false,
+            alpha_cutoff: None,
+        });
     Arc::new(mesh)
 }
 
@@ -121,6 +126,7 @@ fn a_mesh_without_texture_coordinates_is_drawn_untextured() {
         texture: Arc::new(checker()),
         sampler: Sampler::default(),
         alpha_blend: false,
+        alpha_cutoff: None,
     });
     let s = scene(64, Vec3::ONE, vec![], vec![object(Arc::new(mesh), None)]);
     assert_eq!(draw(&s).pixel(32, 32), [255, 255, 255]);
@@ -145,5 +151,27 @@ fn texel_alpha_blends_when_the_map_says_so() {
         top.cull_back_faces = false;
         let s = scene(64, Vec3::ONE, vec![], vec![top, object(Arc::new(under), None)]);
         assert_eq!(draw(&s).pixel(32, 32), want, "alpha_blend {alpha_blend}");
+    }
+}
+
+#[test]
+fn alpha_mask_discards_samples_below_the_cutoff_before_depth() {
+    // A white square in front of a red one; its texel alpha against a 0.5
+    // cutoff decides whether the front square exists at all.
+    let red = Material { ka: Vec3::new(1.0, 0.0, 0.0), ..unlit() };
+    for (alpha, want) in [(76u8, [255, 0, 0]), (179, [255, 255, 255])] {
+        let (p, uv) = square(1.0, -2.0);
+        let texel = [255, 255, 255, alpha];
+        let mut mesh = (*textured(p, uv, Texture::from_rgba8(1, 1, &texel).expect("valid"), unlit())).clone();
+        if let Some(map) = &mut mesh.diffuse_map {
+            map.alpha_cutoff = Some(0.5);
+        }
+        let (q, _) = square(1.5, -3.0);
+        let under = Mesh::new("under", q, None, vec![[0, 1, 2], [0, 2, 3]], red).expect("valid");
+        // The masked square is drawn first: a discarded sample must not
+        // have written depth that would hide the red square behind it.
+        let s =
+            scene(64, Vec3::ONE, vec![], vec![object(Arc::new(mesh), None), object(Arc::new(under), None)]);
+        assert_eq!(draw(&s).pixel(32, 32), want, "texel alpha {alpha}/255");
     }
 }

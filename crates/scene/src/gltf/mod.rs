@@ -345,8 +345,12 @@ impl Loader<'_> {
         }
         self.warn_about_material(&material);
         if let Some(info) = base_color {
-            let blend = material.alpha_mode() == gltf::material::AlphaMode::Blend;
-            built = self.attach_base_color(built, &info, uv_set, blend)?;
+            let alpha = match material.alpha_mode() {
+                gltf::material::AlphaMode::Blend => (true, None),
+                gltf::material::AlphaMode::Mask => (false, Some(material.alpha_cutoff().unwrap_or(0.5))),
+                gltf::material::AlphaMode::Opaque => (false, None),
+            };
+            built = self.attach_base_color(built, &info, uv_set, alpha)?;
         }
         let cull = !material.double_sided() && default_culling(&built, built.material.opacity);
         Ok(Some((built, cull)))
@@ -526,8 +530,12 @@ impl Loader<'_> {
         if !ignored.is_empty() {
             self.warn(format!("material '{name}': {} not supported; ignored", ignored.join(", ")));
         }
-        if material.alpha_mode() == gltf::material::AlphaMode::Mask {
-            self.warn(format!("material '{name}': alphaMode MASK (cutoff) is not supported; drawn opaque"));
+        if material.alpha_mode() == gltf::material::AlphaMode::Mask
+            && material.pbr_metallic_roughness().base_color_texture().is_none()
+        {
+            self.warn(format!(
+                "material '{name}': alphaMode MASK without a base colour texture is drawn opaque"
+            ));
         }
     }
 
@@ -538,7 +546,7 @@ impl Loader<'_> {
         mesh: Mesh,
         info: &gltf::texture::Info,
         set: u32,
-        alpha_blend: bool,
+        (alpha_blend, alpha_cutoff): (bool, Option<f32>),
     ) -> Result<Mesh, SceneError> {
         if mesh.uvs.is_empty() {
             let name = &mesh.name;
@@ -548,7 +556,7 @@ impl Loader<'_> {
         let texture = info.texture();
         let Some(image) = self.image(&texture.source())? else { return Ok(mesh) };
         let sampler = self.sampler(&texture.sampler());
-        Ok(mesh.with_diffuse_map(TextureMap { texture: image, sampler, alpha_blend }))
+        Ok(mesh.with_diffuse_map(TextureMap { texture: image, sampler, alpha_blend, alpha_cutoff }))
     }
 
     /// The decoded image, on first use (see the module doc).

@@ -294,7 +294,7 @@ fn unsupported_features_warn_and_still_load() {
         "skins are not supported",
         "mesh 'quad': vertex colours (COLOR_0) are not supported",
         "material 'glow': emission not supported",
-        "material 'glow': alphaMode MASK (cutoff) is not supported",
+        "material 'glow': alphaMode MASK without a base colour texture is drawn opaque",
     ];
     assert_eq!(warnings.len(), expected.len(), "{warnings:?}");
     for part in expected {
