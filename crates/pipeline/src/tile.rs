@@ -19,7 +19,7 @@ use glam::Vec3;
 use wide::{f32x8, i32x8, CmpEq, CmpGe, CmpLt};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, Rect, Span, LANES};
 use zline_scene::TextureMap;
-use zline_shading::{lod, Filter, PreparedLights, PreparedMaterial, Vec3x8};
+use zline_shading::{Filter, PreparedLights, PreparedMaterial, Vec3x8};
 
 use crate::bin::{PrimitiveChunk, PrimitiveRef};
 use crate::fog::FogPass;
@@ -386,9 +386,15 @@ impl TileTarget {
                         f32x8::splat(ds)
                     }
                 };
-                let (sx, tx) = (d(dx[1], dx[0], s).to_array(), d(dx[2], dx[0], tt).to_array());
-                let (sy, ty) = (d(dy[1], dy[0], s).to_array(), d(dy[2], dy[0], tt).to_array());
-                std::array::from_fn(|k| lod(sx[k], tx[k], sy[k], ty[k], w, h))
+                // `shading::lod` for eight lanes: ½·log2 of the larger squared
+                // footprint in texels, with `wide`'s vector log2 (one call
+                // instead of eight of libm's, which measured ~12 % of a
+                // textured frame). Zero or NaN footprints read level 0.
+                let (fw, fh) = (f32x8::splat(w as f32), f32x8::splat(h as f32));
+                let (sx, tx) = (d(dx[1], dx[0], s) * fw, d(dx[2], dx[0], tt) * fh);
+                let (sy, ty) = (d(dy[1], dy[0], s) * fw, d(dy[2], dy[0], tt) * fh);
+                let footprint = (sx * sx + tx * tx).max(sy * sy + ty * ty);
+                (f32x8::splat(0.5) * footprint.log2()).to_array()
             } else {
                 [0.0; LANES]
             };
