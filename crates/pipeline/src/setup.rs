@@ -155,14 +155,15 @@ pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut P
     // one-sided lighting the far side of an open mesh would be lit as if
     // the viewer stood behind it.
     let flipped: [ClipVertex; 3];
-    let tri = if !ctx.cull_back_faces && seen_from_behind(&tri, ctx.orthographic) {
+    let back = !ctx.cull_back_faces && seen_from_behind(&tri, ctx.orthographic);
+    let tri = if back {
         flipped = tri.map(|v| turned(v, ctx));
         [&flipped[0], &flipped[1], &flipped[2]]
     } else {
         tri
     };
     let flat = match ctx.shading {
-        ShadingMode::Flat => flat_parts(&tri, ctx),
+        ShadingMode::Flat => flat_parts(&tri, back, ctx),
         _ => LitParts::default(),
     };
     let code = tri[0].clip_code | tri[1].clip_code | tri[2].clip_code;
@@ -214,11 +215,11 @@ impl Projected {
 
 /// SPEC §6 flat shading: the lighting model at the centroid of the original
 /// triangle with its face normal (computed in f64 so huge coordinates do not
-/// overflow).
-fn flat_parts(tri: &[&ClipVertex; 3], ctx: &SetupContext<'_>) -> LitParts {
+/// overflow), turned towards the viewer when `back` (two-sided lighting).
+fn flat_parts(tri: &[&ClipVertex; 3], back: bool, ctx: &SetupContext<'_>) -> LitParts {
     let p = tri.map(|v| v.eye.as_dvec3());
     let mut normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero().as_vec3();
-    if !ctx.cull_back_faces && seen_from_behind(tri, ctx.orthographic) {
+    if back {
         normal = -normal;
     }
     let centroid = ((p[0] + p[1] + p[2]) / 3.0).as_vec3();

@@ -82,16 +82,6 @@ impl TileTarget {
         }
     }
 
-    /// The tile's pixels.
-    pub fn rect(&self) -> Rect {
-        self.rect
-    }
-
-    /// Depth at a pixel of the tile (window coordinates).
-    pub fn depth_at(&self, x: i32, y: i32) -> f32 {
-        self.depth[self.index(x, y)]
-    }
-
     #[inline]
     fn index(&self, x: i32, y: i32) -> usize {
         (y - self.rect.y0) as usize * self.stride + (x - self.origin) as usize

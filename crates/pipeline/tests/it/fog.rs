@@ -5,22 +5,11 @@ use glam::{DVec3, Vec3};
 use zline_scene::{Fog, FogCoordinate, FogMode, Projection};
 use zline_shading::Material;
 
-use crate::support::{draw, object, scene, square};
+use crate::support::{draw, object, quantize_robust, scene, square};
 
 const SIZE: u32 = 65;
 const SURFACE: [f64; 3] = [0.91, 0.33, 0.12];
 const FOG: [f64; 3] = [0.52, 0.61, 0.74];
-
-/// SPEC §10 with a margin check (see lit_square.rs).
-#[track_caller]
-fn quantize_robust(c: DVec3) -> [u8; 3] {
-    c.to_array().map(|x| {
-        let s = x.clamp(0.0, 1.0) * 255.0 + 0.5;
-        let frac = s - s.floor();
-        assert!(frac > 0.01 && frac < 0.99, "expected value {x} is too close to a rounding boundary");
-        s.floor() as u8
-    })
-}
 
 fn fogged(f: f64) -> DVec3 {
     let f = f.clamp(0.0, 1.0);

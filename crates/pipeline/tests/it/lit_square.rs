@@ -13,7 +13,7 @@
 use glam::{DVec3, Vec3};
 use zline_shading::{Attenuation, Light, Material, ShadingMode};
 
-use crate::support::{draw, object, scene, square};
+use crate::support::{draw, object, quantize_robust, scene, square};
 
 const LIGHT: [f64; 3] = [0.3, 0.8, -0.9];
 const LIGHT_COLOR: [f64; 3] = [1.0, 0.85, 0.7];
@@ -40,19 +40,6 @@ fn lighting(p: DVec3, n: DVec3) -> DVec3 {
     let n_dot_l = n.dot(l).max(0.0);
     let spec = if n_dot_l > 0.0 { n.dot(h).max(0.0).powf(NS) } else { 0.0 };
     v(KA) * v(AMBIENT) + f * v(LIGHT_COLOR) * (v(KD) * n_dot_l + v(KS) * spec)
-}
-
-/// SPEC §10, with a check that the value is not within 0.01 of a rounding
-/// boundary (so f32 arithmetic in the renderer cannot honestly land on the
-/// other side).
-#[track_caller]
-fn quantize_robust(c: DVec3) -> [u8; 3] {
-    c.to_array().map(|x| {
-        let s = x.clamp(0.0, 1.0) * 255.0 + 0.5;
-        let frac = s - s.floor();
-        assert!(frac > 0.01 && frac < 0.99, "expected value {x} is too close to a rounding boundary");
-        s.floor() as u8
-    })
 }
 
 #[track_caller]

@@ -93,3 +93,16 @@ pub(crate) fn wavy_grid(n: u32, z: f32) -> Arc<Mesh> {
     }
     mesh(positions, normals, triangles, Material::plastic(Vec3::new(0.8, 0.5, 0.3), 0.5, 24.0))
 }
+
+/// SPEC §10 for a value computed here in f64, with a check that it is not
+/// within 0.01 of a rounding boundary (so f32 arithmetic in the renderer
+/// cannot honestly land on the other side).
+#[track_caller]
+pub(crate) fn quantize_robust(c: glam::DVec3) -> [u8; 3] {
+    c.to_array().map(|x| {
+        let s = x.clamp(0.0, 1.0) * 255.0 + 0.5;
+        let frac = s - s.floor();
+        assert!(frac > 0.01 && frac < 0.99, "expected value {x} is too close to a rounding boundary");
+        s.floor() as u8
+    })
+}

@@ -7,7 +7,7 @@ use zline_pipeline::{render, RenderOptions};
 use zline_scene::{Fog, FogCoordinate, FogMode, Scene};
 use zline_shading::Material;
 
-use crate::support::{draw, object, scene, square};
+use crate::support::{draw, object, quantize_robust, scene, square};
 
 const SIZE: u32 = 33;
 const CENTRE: (u32, u32) = (16, 16);
@@ -16,17 +16,6 @@ const CENTRE: (u32, u32) = (16, 16);
 fn unlit(color: [f64; 3], opacity: f32) -> Material {
     let c = Vec3::from_array(color.map(|v| v as f32));
     Material { ka: c, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity }
-}
-
-/// SPEC §10 with a margin check (see lit_square.rs).
-#[track_caller]
-fn quantize_robust(c: DVec3) -> [u8; 3] {
-    c.to_array().map(|x| {
-        let s = x.clamp(0.0, 1.0) * 255.0 + 0.5;
-        let frac = s - s.floor();
-        assert!(frac > 0.01 && frac < 0.99, "expected value {x} is too close to a rounding boundary");
-        s.floor() as u8
-    })
 }
 
 /// Squares of half-size 0.6 at the given depths and materials, in this
