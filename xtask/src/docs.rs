@@ -73,6 +73,7 @@ pub(crate) fn scene(mesh: Mesh, interpolation: Interpolation) -> Scene {
             shading: ShadingMode::Flat,
             interpolation,
             texture_filter: None,
+            ..RenderSettings::default()
         },
         fog: None,
     }

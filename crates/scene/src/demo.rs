@@ -93,6 +93,7 @@ pub fn demo_scene() -> Scene {
             shading: ShadingMode::Phong,
             interpolation: Interpolation::PerspectiveCorrect,
             texture_filter: None,
+            ..RenderSettings::default()
         },
         fog: Some(Fog {
             mode: FogMode::Linear { start: 9.0, end: 26.0 },

@@ -37,7 +37,9 @@ pub use framing::{
 // `crate::` because `gltf` also names the glTF parsing crate.
 pub use crate::gltf::{load_gltf, load_gltf_with_warnings, GltfScene, MAX_GLTF_SHININESS};
 pub use mesh::{face_normal, FALLBACK_NORMAL};
-pub use model::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene, TextureMap};
+pub use model::{
+    Camera, DepthMode, Interpolation, Mesh, Object, Projection, RenderSettings, Scene, TextureMap,
+};
 pub use obj::{load_obj, load_obj_with_warnings};
 pub use primitives::{cube, plane, torus, uv_sphere};
 pub use scene_file::{load_scene, MAX_IMAGE_SIDE, MAX_PRIMITIVE_DIVISIONS};

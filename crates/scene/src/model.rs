@@ -194,6 +194,42 @@ pub struct RenderSettings {
     pub interpolation: Interpolation,
     /// Replaces every texture's filter when set (`--filter`).
     pub texture_filter: Option<zline_shading::Filter>,
+    /// Supersampling: `n` gives an n×n ordered grid of samples per pixel,
+    /// sample (a, b) of pixel (i, j) at (i + (a + ½)/n, j + (b + ½)/n),
+    /// box-filtered (the mean of the n² lit, fogged, blended sample
+    /// colours) before quantization. 1 samples pixel centres only.
+    pub ssaa: u32,
+    /// What the depth buffer stores.
+    pub depth: DepthMode,
+    /// The adaptive mode: when set, a tolerance in 8-bit units; per
+    /// triangle the pipeline takes the cheapest evaluation whose error it
+    /// can bound below this (see the pipeline's `adaptive` module).
+    pub adaptive_tolerance: Option<f32>,
+}
+
+/// The depth buffer's representation (SPEC §4 and its stated deviation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum DepthMode {
+    /// The seed's depth buffer: NC z in [−1, 1], cleared to 1, a fragment
+    /// passes when z < stored.
+    #[default]
+    Normalized,
+    /// Reversed-Z in floating point: stores (1 − z_win) = (w − z_clip)/(2w),
+    /// computed from eye-space depth so that it keeps full relative
+    /// precision far from the camera; cleared to 0, a fragment passes when
+    /// its value is greater than the stored one. The same order as
+    /// `Normalized` wherever both are exact.
+    ReversedFloat,
+}
+
+impl DepthMode {
+    /// The name used by the CLI and scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            DepthMode::Normalized => "normalized",
+            DepthMode::ReversedFloat => "reversed",
+        }
+    }
 }
 
 impl Default for RenderSettings {
@@ -204,6 +240,9 @@ impl Default for RenderSettings {
             shading: ShadingMode::Phong,
             interpolation: Interpolation::PerspectiveCorrect,
             texture_filter: None,
+            ssaa: 1,
+            depth: DepthMode::Normalized,
+            adaptive_tolerance: None,
         }
     }
 }

@@ -221,6 +221,23 @@ impl Texture {
         self.levels.len()
     }
 
+    /// Width and height of mip `level` (level 0 is the full texture).
+    /// Panics when `level >= self.levels()`.
+    pub fn level_size(&self, level: usize) -> (u32, u32) {
+        let lv = self.levels[level];
+        (lv.width, lv.height)
+    }
+
+    /// The stored texel at column `x`, row `y` of mip `level`, rows counted
+    /// from the bottom (t = 0), channels in [0, 1]. This is the value every
+    /// filter reads; reference renderers sample through it. Panics when the
+    /// level or position is out of range.
+    pub fn texel(&self, level: usize, x: u32, y: u32) -> Vec4 {
+        let lv = self.levels[level];
+        assert!(x < lv.width && y < lv.height, "texel ({x}, {y}) outside level {level}");
+        self.texels[lv.index(x, y)]
+    }
+
     /// The filtered texture value at (s, t). `lod` is the level of detail
     /// from [`lod`]; only [`Filter::Trilinear`] uses it. A lod ≤ 0 or NaN
     /// reads level 0; a lod at or beyond the last level reads the last.
