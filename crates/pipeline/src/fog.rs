@@ -33,15 +33,21 @@ pub struct FogPass {
 }
 
 impl FogPass {
-    /// The pass for a frame with this projection and window size.
-    pub fn new(fog: Fog, clip_from_eye: Mat4, width: u32, height: u32) -> FogPass {
+    /// The pass for a frame with this projection and window size (in
+    /// samples). `reversed` when the depth buffer holds reversed depth
+    /// d = (z_nc − 1)/2 (see [`crate::setup::DepthEncoding`]): the rows
+    /// then take z_nc = 2d + 1, which costs nothing per sample.
+    pub fn new(fog: Fog, clip_from_eye: Mat4, width: u32, height: u32, reversed: bool) -> FogPass {
         let m = clip_from_eye.inverse().transpose();
         let (w, h) = (width.max(1) as f32, height.max(1) as f32);
-        FogPass {
-            fog,
-            rows: [m.x_axis, m.y_axis, m.z_axis, m.w_axis],
-            scale: (2.0 / w, 1.0 / w - 1.0, -2.0 / h, 1.0 - 1.0 / h),
+        let mut rows = [m.x_axis, m.y_axis, m.z_axis, m.w_axis];
+        if reversed {
+            for r in &mut rows {
+                // z_nc·r.z + r.w = d·(2·r.z) + (r.z + r.w)
+                *r = Vec4::new(r.x, r.y, 2.0 * r.z, r.z + r.w);
+            }
         }
+        FogPass { fog, rows, scale: (2.0 / w, 1.0 / w - 1.0, -2.0 / h, 1.0 - 1.0 / h) }
     }
 
     /// The fog colour.
@@ -50,7 +56,7 @@ impl FogPass {
     }
 
     /// Fog factors for eight samples of row `y` starting at column `x`, with
-    /// NC depths `z`.
+    /// stored depths `z`.
     #[inline]
     pub fn factors(&self, x: i32, y: i32, z: f32x8) -> f32x8 {
         let (sx, ox, sy, oy) = self.scale;

@@ -29,4 +29,4 @@ pub mod tile;
 pub mod vertex;
 
 pub use image::Image;
-pub use render::{render, RenderOptions, RenderStats, Renderer};
+pub use render::{render, RenderOptions, RenderStats, Renderer, MAX_SSAA};

@@ -4,19 +4,23 @@ use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
 use zline_raster::Rect;
-use zline_scene::{Interpolation, Mesh, Projection, Scene, TextureMap};
+use zline_scene::{DepthMode, Interpolation, Mesh, Projection, Scene, TextureMap};
 use zline_shading::{LightingModel, PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::bin::{bin_primitives, Bins, PrimitiveChunk, TileGrid};
 use crate::clip::ClipVolume;
 use crate::fog::FogPass;
 use crate::image::{quantize_rgba, Image};
-use crate::setup::{setup_triangle, SetupContext, Viewport};
-use crate::tile::{ShadeContext, TileTarget};
+use crate::setup::{setup_triangle, DepthEncoding, SetupContext, Viewport};
+use crate::tile::{ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 use crate::vertex::{transform_mesh, ClipVertex, ObjectTransforms, Screen, VertexLighting};
 
 /// Triangles per rayon task in setup.
 const TRIANGLE_CHUNK: usize = 2048;
+
+/// The largest supersampling factor n (n×n samples per pixel); larger
+/// settings are taken as this.
+pub const MAX_SSAA: u32 = 8;
 
 /// Settings of the pipeline itself (the scene's settings say what to draw).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,8 +80,20 @@ impl Renderer {
         let start = Instant::now();
         let s = &scene.settings;
         let (width, height) = (s.width.max(1), s.height.max(1));
+        // Supersampling renders an n× larger window of samples (every stage
+        // below works in samples) and box-filters it in the resolve.
+        let n = s.ssaa.clamp(1, MAX_SSAA);
+        let (sample_width, sample_height) = (width * n, height * n);
         let eye_from_world = scene.camera.eye_from_world();
         let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);
+        let reversed = s.depth == DepthMode::ReversedFloat;
+        let depth = if reversed {
+            let (a, b) = scene.camera.reversed_depth_coefficients();
+            let perspective = matches!(scene.camera.projection, Projection::Perspective { .. });
+            DepthEncoding::Reversed { a, b, perspective }
+        } else {
+            DepthEncoding::Normalized
+        };
         let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
         let lighting = PreparedLights::new(&model, &eye_from_world);
         let materials: Vec<PreparedMaterial> =
@@ -99,8 +115,9 @@ impl Renderer {
                 _ => None,
             };
             let ctx = SetupContext {
-                viewport: Viewport { width, height },
-                volume: ClipVolume::new(width, height),
+                viewport: Viewport { width: sample_width, height: sample_height },
+                volume: ClipVolume::new(sample_width, sample_height),
+                depth,
                 shading: object.shading.unwrap_or(s.shading),
                 perspective: s.interpolation == Interpolation::PerspectiveCorrect,
                 cull_back_faces: object.cull_back_faces,
@@ -118,7 +135,8 @@ impl Renderer {
         stats.geometry = start.elapsed();
 
         let start = Instant::now();
-        let grid = TileGrid::new(width, height, options.tile_size);
+        let tile_size = options.tile_size.max(1);
+        let grid = TileGrid::new(sample_width, sample_height, tile_size * n);
         bin_primitives(chunks, &grid, &mut self.bins);
         stats.binning = start.elapsed();
 
@@ -127,9 +145,10 @@ impl Renderer {
         image.width = width;
         image.height = height;
         image.pixels.resize(width as usize * height as usize, 0);
-        let band_len = width as usize * grid.tile_size as usize;
+        let band_len = width as usize * tile_size as usize;
         let bins = &self.bins;
-        let fog = scene.fog.map(|f| FogPass::new(f, clip_from_eye, width, height));
+        let fog = scene.fog.map(|f| FogPass::new(f, clip_from_eye, sample_width, sample_height, reversed));
+        let clear = if reversed { DEPTH_CLEAR_REVERSED } else { DEPTH_CLEAR };
         let background = quantize_rgba(scene.background.extend(1.0));
         stats.fragments = image
             .pixels
@@ -145,10 +164,10 @@ impl Renderer {
                         (grid.rect(col, row as u32), &bins.opaque[tile], &bins.transparent[tile]);
                     if opaque.is_empty() && transparent.is_empty() {
                         // Nothing to draw: the background's bytes, without the buffers.
-                        fill_rect(band, width as usize, rect, background);
+                        fill_rect(band, width as usize, pixels_of(rect, n), background);
                         continue;
                     }
-                    target.clear(rect, scene.background);
+                    target.clear(rect, scene.background, clear);
                     shaded += target.opaque_pass(chunks, opaque, &shade);
                     if let Some(fog) = &fog {
                         target.fog_pass(fog);
@@ -157,7 +176,11 @@ impl Renderer {
                         shaded +=
                             target.transparency_pass(chunks, transparent, &shade, fog.as_ref(), &mut order);
                     }
-                    target.resolve(band, width as usize);
+                    if n == 1 {
+                        target.resolve(band, width as usize);
+                    } else {
+                        target.resolve_supersampled(band, width as usize, n);
+                    }
                 }
                 shaded
             })
@@ -198,6 +221,13 @@ impl Renderer {
             out.bounds.extend(out.prims.iter().map(|p| p.edges.bounds()));
         });
     }
+}
+
+/// The pixels whose samples a tile holds: with n×n samples per pixel, tiles
+/// and the sample window are whole multiples of n.
+fn pixels_of(samples: Rect, n: u32) -> Rect {
+    let n = n as i32;
+    Rect { x0: samples.x0 / n, y0: samples.y0 / n, x1: samples.x1 / n, y1: samples.y1 / n }
 }
 
 /// Fills a tile's pixels in `band` (the image rows from the tile's first

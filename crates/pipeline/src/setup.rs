@@ -58,7 +58,7 @@ pub enum Shader {
 pub struct Primitive {
     /// Coverage.
     pub edges: EdgeTable,
-    /// NC depth.
+    /// Depth, as [`SetupContext::depth`] encodes it.
     pub depth: DepthPlane,
     /// Colour.
     pub shader: Shader,
@@ -106,6 +106,48 @@ pub struct TexturedPlanes {
     pub material: u32,
 }
 
+/// What a primitive's depth plane holds (the scene's
+/// [`zline_scene::DepthMode`]). Either way a smaller value is nearer and
+/// the far plane maps to the buffer's clear value, so the tile compares
+/// with one strict `<` in both modes.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum DepthEncoding {
+    /// NC depth z_nc = z_clip/w ∈ [−1, 1] (SPEC §4), cleared to 1.
+    #[default]
+    Normalized,
+    /// Negated reversed depth d = −(w − z_clip)/(2w) = (z_nc − 1)/2 ∈
+    /// [−1, 0], cleared to 0, computed in f64 from the eye-space depth
+    /// alone: −(a·z_eye + b)/(2w) with the camera's (a, b)
+    /// (`Camera::reversed_depth_coefficients`) and w = −z_eye (perspective)
+    /// or 1 (orthographic). Far from the camera its magnitude is small,
+    /// where floats are dense, so it keeps the relative precision of z_eye
+    /// that NC depth (crowded near 1) loses; the negation only keeps the
+    /// comparison the same.
+    Reversed {
+        /// a in w − z_clip = a·z_eye + b.
+        a: f64,
+        /// b in w − z_clip = a·z_eye + b.
+        b: f64,
+        /// w = −z_eye (true) or 1.
+        perspective: bool,
+    },
+}
+
+impl DepthEncoding {
+    /// The value stored for a vertex.
+    #[inline]
+    fn value(self, v: &ClipVertex, p: &Projected) -> f64 {
+        match self {
+            DepthEncoding::Normalized => p.z,
+            DepthEncoding::Reversed { a, b, perspective } => {
+                let z = f64::from(v.eye.z);
+                let w = if perspective { -z } else { 1.0 };
+                -(a * z + b) / (2.0 * w)
+            }
+        }
+    }
+}
+
 /// Window size in pixels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Viewport {
@@ -122,6 +164,8 @@ pub struct SetupContext<'a> {
     pub viewport: Viewport,
     /// The clipping planes.
     pub volume: ClipVolume,
+    /// What depth planes hold.
+    pub depth: DepthEncoding,
     /// The object's shading mode.
     pub shading: ShadingMode,
     /// Perspective-correct (true) or screen-linear attributes.
@@ -262,7 +306,7 @@ fn emit(
     let (Some(edges), Some(basis)) = (EdgeTable::new(fixed), PlaneBasis::new(fixed)) else {
         return;
     };
-    let depth = DepthPlane::new(&basis, p.map(|v| v.z));
+    let depth = DepthPlane::new(&basis, std::array::from_fn(|k| ctx.depth.value(tri[k], &p[k])));
     let q = if ctx.perspective { p.map(|v| v.inv_w) } else { [1.0; 3] };
     let shader = match ctx.texture {
         Some(texture) => textured(tri, q, flat, &basis, texture, ctx, out),

@@ -25,8 +25,11 @@ use crate::bin::{PrimitiveChunk, PrimitiveRef};
 use crate::fog::FogPass;
 use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader, TexturedKind, TexturedPlanes};
 
-/// Depth initialised to the far plane (SPEC §4).
+/// NC depth initialised to the far plane (SPEC §4).
 pub const DEPTH_CLEAR: f32 = 1.0;
+
+/// Reversed depth's far plane (see [`crate::setup::DepthEncoding`]).
+pub const DEPTH_CLEAR_REVERSED: f32 = 0.0;
 
 /// What shading reads besides the primitive.
 #[derive(Clone, Copy, Debug)]
@@ -48,6 +51,8 @@ pub struct TileTarget {
     origin: i32,
     stride: usize,
     depth: Vec<f32>,
+    /// The far plane's depth: [`DEPTH_CLEAR`] or [`DEPTH_CLEAR_REVERSED`].
+    far: f32,
     rgb: [Vec<f32>; 3],
     background: Vec3,
     /// False while undrawn samples (depth 1) hold stale colours that
@@ -60,21 +65,24 @@ pub struct TileTarget {
 }
 
 impl TileTarget {
-    /// Resets the buffers for a tile: depth 1, colour the background.
+    /// Resets the buffers for a tile (`rect` in samples): depth `far`
+    /// ([`DEPTH_CLEAR`], or [`DEPTH_CLEAR_REVERSED`] for reversed depth),
+    /// colour the background.
     ///
     /// Only the depth buffer is written. A sample whose depth is still
-    /// [`DEPTH_CLEAR`] was never drawn — a fragment is written only when
-    /// z < stored, so a written depth is below 1 — and [`Self::resolve`]
-    /// gives it the background; the colour planes are not cleared at all.
-    /// That saves three of the four stores per sample of a clear.
-    pub fn clear(&mut self, rect: Rect, background: Vec3) {
+    /// `far` was never drawn — a fragment is written only when z < stored,
+    /// so a written depth is below `far` — and [`Self::resolve`] gives it
+    /// the background; the colour planes are not cleared at all. That saves
+    /// three of the four stores per sample of a clear.
+    pub fn clear(&mut self, rect: Rect, background: Vec3, far: f32) {
         let lanes = LANES as i32;
         self.rect = rect;
         self.origin = rect.x0 & !(lanes - 1);
         self.stride = ((rect.x1 + lanes - 1) & !(lanes - 1)).saturating_sub(self.origin).max(0) as usize;
         let n = self.stride * rect.height() as usize;
         self.depth.clear();
-        self.depth.resize(n, DEPTH_CLEAR);
+        self.depth.resize(n, far);
+        self.far = far;
         self.background = background;
         self.colors_valid = false;
         for plane in &mut self.rgb {
@@ -143,7 +151,7 @@ impl TileTarget {
         let bg = Vec3x8::splat(self.background);
         let [red, green, blue] = &mut self.rgb;
         for i in (0..self.depth.len()).step_by(LANES) {
-            let empty = load(&self.depth, i).cmp_eq(f32x8::splat(DEPTH_CLEAR));
+            let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
             for (plane, c) in [(&mut *red, bg.x), (&mut *green, bg.y), (&mut *blue, bg.z)] {
                 let old = load(plane, i);
                 store(plane, i, empty.blend(c, old));
@@ -170,7 +178,7 @@ impl TileTarget {
                 let empty = if self.colors_valid {
                     f32x8::ZERO
                 } else {
-                    load(&self.depth, i).cmp_eq(f32x8::splat(DEPTH_CLEAR))
+                    load(&self.depth, i).cmp_eq(f32x8::splat(self.far))
                 };
                 let c = |plane: &[f32], b: f32x8| empty.blend(b, load(plane, i));
                 let px = pack_rgba(c(red, bg.x), c(green, bg.y), c(blue, bg.z));
@@ -188,6 +196,32 @@ impl TileTarget {
         }
     }
 
+    /// Box-filters the tile's n×n samples per pixel into `band` (the packed
+    /// image rows from the tile's first pixel row; `width` in pixels): each
+    /// pixel gets the mean of its samples' colours (the background where a
+    /// sample was never drawn), summed in a fixed order, then SPEC §10's
+    /// quantization. The tile's rect is in samples and a multiple of n.
+    pub fn resolve_supersampled(&self, band: &mut [u32], width: usize, n: u32) {
+        let n = n as i32;
+        let scale = 1.0 / (n * n) as f32;
+        let [red, green, blue] = &self.rgb;
+        let (py0, px0) = (self.rect.y0 / n, self.rect.x0 / n);
+        for py in py0..self.rect.y1 / n {
+            let out = &mut band[(py - py0) as usize * width..][..width];
+            for px in px0..self.rect.x1 / n {
+                let mut sum = Vec3::ZERO;
+                for sy in py * n..(py + 1) * n {
+                    for sx in px * n..(px + 1) * n {
+                        let i = self.index(sx, sy);
+                        let drawn = self.colors_valid || self.depth[i] != self.far;
+                        sum += if drawn { Vec3::new(red[i], green[i], blue[i]) } else { self.background };
+                    }
+                }
+                out[px as usize] = crate::image::quantize_rgba((sum * scale).extend(1.0));
+            }
+        }
+    }
+
     /// Fogs every drawn sample of the tile (see [`crate::fog`]).
     pub fn fog_pass(&mut self, pass: &FogPass) {
         let fog = Vec3x8::splat(pass.color());
@@ -197,7 +231,7 @@ impl TileTarget {
             for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
                 let i = row * self.stride + (x - self.origin) as usize;
                 let z = load(&self.depth, i);
-                let drawn = z.cmp_lt(f32x8::splat(DEPTH_CLEAR));
+                let drawn = z.cmp_lt(f32x8::splat(self.far));
                 if drawn.none() {
                     continue;
                 }

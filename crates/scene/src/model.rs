@@ -146,6 +146,27 @@ impl Camera {
     }
 }
 
+impl Camera {
+    /// Coefficients (a, b) of w − z_clip = a·z_eye + b for this camera's
+    /// projection, computed in f64 from near and far: the numerator of
+    /// reversed depth (w − z_clip)/(2w), which [`DepthMode::ReversedFloat`]
+    /// evaluates from eye-space depth instead of subtracting two nearly
+    /// equal clip coordinates. Perspective: w = −z_eye, so a = 2n/(f − n),
+    /// b = 2fn/(f − n); orthographic: w = 1, a = 2/(f − n), b = 2f/(f − n).
+    pub fn reversed_depth_coefficients(&self) -> (f64, f64) {
+        match self.projection {
+            Projection::Perspective { near, far, .. } => {
+                let (n, f) = (f64::from(near), f64::from(far));
+                (2.0 * n / (f - n), 2.0 * f * (n / (f - n)))
+            }
+            Projection::Orthographic { near, far, .. } => {
+                let (n, f) = (f64::from(near), f64::from(far));
+                (2.0 / (f - n), 2.0 * f / (f - n))
+            }
+        }
+    }
+}
+
 /// `gluLookAt`, as glam's `Mat4::look_at_rh` but normalizing directions
 /// after scaling them by their largest component: glam's `normalize`
 /// squares the components and overflows f32 for eye–target distances

@@ -7,8 +7,10 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
-use zline::pipeline::{render, RenderOptions};
-use zline::scene::{Fog, FogCoordinate, FogMode, Interpolation, RenderSettings, Scene, ShadingMode};
+use zline::pipeline::{render, RenderOptions, MAX_SSAA};
+use zline::scene::{
+    DepthMode, Fog, FogCoordinate, FogMode, Interpolation, RenderSettings, Scene, ShadingMode,
+};
 use zline::shading::Filter;
 
 /// zline — a CPU renderer for the classical rendering pipeline.
@@ -67,6 +69,12 @@ struct Common {
     /// Fog coordinate: distance to the eye plane or to the eye.
     #[arg(long, value_enum)]
     fog_coordinate: Option<FogCoord>,
+    /// Supersampling: N×N samples per pixel, box-filtered (1 = off).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=MAX_SSAA as i64))]
+    ssaa: Option<u32>,
+    /// What the depth buffer stores.
+    #[arg(long, value_enum)]
+    depth: Option<Depth>,
     /// Tile edge in pixels; the image does not depend on it.
     #[arg(long, value_name = "PIXELS", default_value_t = RenderOptions::default().tile_size)]
     tile_size: u32,
@@ -95,6 +103,14 @@ enum FogCoord {
     EyePlane,
     /// |p| in eye space.
     Radial,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Depth {
+    /// NC depth in [−1, 1] (the seed's depth buffer; the default).
+    Normalized,
+    /// Reversed depth in f32: far more precise far from the camera.
+    Reversed,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -266,6 +282,15 @@ fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
             TexFilter::Bilinear => Filter::Bilinear,
             TexFilter::Trilinear => Filter::Trilinear,
         });
+    }
+    if let Some(n) = common.ssaa {
+        settings.ssaa = n;
+    }
+    if let Some(d) = common.depth {
+        settings.depth = match d {
+            Depth::Normalized => DepthMode::Normalized,
+            Depth::Reversed => DepthMode::ReversedFloat,
+        };
     }
     if let Some(i) = common.interpolation {
         settings.interpolation = match i {

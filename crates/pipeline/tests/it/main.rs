@@ -2,10 +2,12 @@
 //! from the SPEC formulas, clipping, draw order and determinism.
 
 mod clipping;
+mod depth_modes;
 mod determinism;
 mod fog;
 mod interpolation;
 mod lit_square;
+mod ssaa;
 mod support;
 mod texture;
 mod transparency;
