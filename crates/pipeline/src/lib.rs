@@ -19,6 +19,7 @@
 //! tiles only read it, so the image is bit-identical for any number of
 //! threads and any tile size.
 
+pub mod adaptive;
 pub mod bin;
 pub mod clip;
 pub mod fog;

@@ -3,10 +3,12 @@
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
+use glam::Vec3;
 use zline_raster::Rect;
 use zline_scene::{DepthMode, Interpolation, Mesh, Projection, Scene, TextureMap};
-use zline_shading::{LightingModel, PreparedLights, PreparedMaterial, ShadingMode};
+use zline_shading::{LightingModel, Material, PreparedLights, PreparedMaterial, ShadingMode};
 
+use crate::adaptive::Adaptive;
 use crate::bin::{bin_primitives, Bins, PrimitiveChunk, TileGrid};
 use crate::clip::ClipVolume;
 use crate::fog::FogPass;
@@ -96,8 +98,16 @@ impl Renderer {
         };
         let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
         let lighting = PreparedLights::new(&model, &eye_from_world);
-        let materials: Vec<PreparedMaterial> =
+        let mut materials: Vec<PreparedMaterial> =
             scene.objects.iter().map(|o| PreparedMaterial::new(o.material().sanitized())).collect();
+        let adaptive =
+            s.adaptive_tolerance.and_then(|t| Adaptive::new(t, &model.transformed(&eye_from_world)));
+        if adaptive.is_some() {
+            // Each object's material without specular, at index objects + i.
+            let plain =
+                |m: &PreparedMaterial| PreparedMaterial::new(Material { ks: Vec3::ZERO, ..m.material });
+            materials.extend(materials.clone().iter().map(plain));
+        }
         let mut stats = RenderStats::default();
         let mut textures: Vec<TextureMap> = Vec::new();
         self.used = 0;
@@ -123,6 +133,12 @@ impl Renderer {
                 cull_back_faces: object.cull_back_faces,
                 material: (&materials[index], index as u32),
                 lighting: &lighting,
+                adaptive: adaptive.as_ref(),
+                diffuse_only: if adaptive.is_some() {
+                    (scene.objects.len() + index) as u32
+                } else {
+                    index as u32
+                },
                 texture,
                 orthographic: matches!(scene.camera.projection, Projection::Orthographic { .. }),
                 blend_texture_alpha: texture.is_some_and(|t| textures[t as usize].alpha_blend),

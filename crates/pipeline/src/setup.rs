@@ -13,6 +13,7 @@ use glam::Vec3;
 use zline_raster::{AttributePlanes, DepthPlane, EdgeTable, FixedPoint, PlaneBasis};
 use zline_shading::{LitParts, PreparedLights, PreparedMaterial, ShadingMode};
 
+use crate::adaptive::{Adaptive, GouraudChoice};
 use crate::bin::PrimitiveChunk;
 
 use crate::clip::{clip_polygon, ClipVolume, MAX_CLIPPED};
@@ -176,6 +177,11 @@ pub struct SetupContext<'a> {
     pub material: (&'a PreparedMaterial, u32),
     /// The eye-space lighting model (flat shading evaluates it here).
     pub lighting: &'a PreparedLights,
+    /// The adaptive mode's data when it is on ([`crate::adaptive`]).
+    pub adaptive: Option<&'a Adaptive>,
+    /// Index of the object's material without specular in the frame's
+    /// table (used by the adaptive mode; equal to `material.1` when off).
+    pub diffuse_only: u32,
     /// The object's diffuse texture (index into the frame's table), when it
     /// has one and texture coordinates.
     pub texture: Option<u32>,
@@ -307,14 +313,34 @@ fn emit(
         return;
     };
     let depth = DepthPlane::new(&basis, std::array::from_fn(|k| ctx.depth.value(tri[k], &p[k])));
-    let q = if ctx.perspective { p.map(|v| v.inv_w) } else { [1.0; 3] };
-    let shader = match ctx.texture {
-        Some(texture) => textured(tri, q, flat, &basis, texture, ctx, out),
-        None => untextured(tri, q, flat.color(), &basis, ctx),
+    let (mut perspective, mut material, mut flat_color) = (ctx.perspective, ctx.material.1, None);
+    if let Some(adaptive) = ctx.adaptive {
+        match (ctx.shading, ctx.texture) {
+            (ShadingMode::Gouraud, None) => {
+                match adaptive.gouraud(tri.map(|v| v.color), p.map(|v| v.inv_w), perspective) {
+                    GouraudChoice::Flat(c) => flat_color = Some(c),
+                    GouraudChoice::Linear => perspective = false,
+                    GouraudChoice::Full => {}
+                }
+            }
+            (ShadingMode::Phong, _) => {
+                let ks = ctx.material.0.material.ks.max_element();
+                if ctx.material.0.specular && adaptive.specular_negligible(ks, tri.map(|v| v.eye)) {
+                    material = ctx.diffuse_only;
+                }
+            }
+            _ => {}
+        }
+    }
+    let q = if perspective { p.map(|v| v.inv_w) } else { [1.0; 3] };
+    let shader = match (ctx.texture, flat_color) {
+        (_, Some(color)) => Shader::Flat { color },
+        (Some(texture), None) => textured(tri, q, flat, &basis, (texture, material), ctx, out),
+        (None, None) => untextured(tri, q, flat.color(), &basis, material, ctx),
     };
     let kt = 1.0 - ctx.material.0.material.opacity;
     let sort_depth = ((p[0].z + p[1].z + p[2].z) / 3.0) as f32;
-    out.prims.push(Primitive { edges, depth, shader, perspective: ctx.perspective, kt, sort_depth });
+    out.prims.push(Primitive { edges, depth, shader, perspective, kt, sort_depth });
 }
 
 /// The shader of an untextured primitive: only the attributes its mode needs.
@@ -324,6 +350,7 @@ fn untextured(
     q: [f32; 3],
     flat: Vec3,
     basis: &PlaneBasis,
+    material: u32,
     ctx: &SetupContext<'_>,
 ) -> Shader {
     match ctx.shading {
@@ -340,7 +367,7 @@ fn untextured(
                 let (n, e) = (tri[k].normal * q[k], tri[k].eye * q[k]);
                 [q[k], n.x, n.y, n.z, e.x, e.y, e.z]
             });
-            Shader::Phong { planes: AttributePlanes::new(basis, v), material: ctx.material.1 }
+            Shader::Phong { planes: AttributePlanes::new(basis, v), material }
         }
     }
 }
@@ -352,7 +379,7 @@ fn textured(
     q: [f32; 3],
     flat: LitParts,
     basis: &PlaneBasis,
-    texture: u32,
+    (texture, material): (u32, u32),
     ctx: &SetupContext<'_>,
     out: &mut PrimitiveChunk,
 ) -> Shader {
@@ -375,7 +402,7 @@ fn textured(
         [q[k], uv.x, uv.y, a.x, a.y, a.z, b.x, b.y, b.z]
     });
     let planes = AttributePlanes::new(basis, values);
-    out.textured.push(TexturedPlanes { kind, planes, texture, material: ctx.material.1 });
+    out.textured.push(TexturedPlanes { kind, planes, texture, material });
     Shader::Textured { index: (out.textured.len() - 1) as u32 }
 }
 

@@ -72,6 +72,10 @@ struct Common {
     /// Supersampling: N×N samples per pixel, box-filtered (1 = off).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=MAX_SSAA as i64))]
     ssaa: Option<u32>,
+    /// Adaptive mode: per triangle, the cheapest evaluation whose colour
+    /// provably stays within TOL 8-bit steps of the full one.
+    #[arg(long, value_name = "TOL", value_parser = parse_tolerance)]
+    adaptive: Option<f32>,
     /// What the depth buffer stores.
     #[arg(long, value_enum)]
     depth: Option<Depth>,
@@ -128,6 +132,14 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
         (Some(w), Some(h)) => Ok((w, h)),
         _ => Err(format!("width and height must be whole numbers in 1..=16384, got '{s}'")),
     }
+}
+
+fn parse_tolerance(s: &str) -> Result<f32, String> {
+    s.trim()
+        .parse::<f32>()
+        .ok()
+        .filter(|t| (0.0..=255.0).contains(t))
+        .ok_or_else(|| format!("expected a tolerance in 8-bit steps, 0 to 255, got '{s}'"))
 }
 
 fn parse_fog(s: &str) -> Result<FogMode, String> {
@@ -282,6 +294,9 @@ fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
             TexFilter::Bilinear => Filter::Bilinear,
             TexFilter::Trilinear => Filter::Trilinear,
         });
+    }
+    if let Some(t) = common.adaptive {
+        settings.adaptive_tolerance = Some(t);
     }
     if let Some(n) = common.ssaa {
         settings.ssaa = n;

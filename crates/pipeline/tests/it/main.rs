@@ -1,6 +1,7 @@
 //! Integration tests of the pipeline: scenes with answers computed by hand
 //! from the SPEC formulas, clipping, draw order and determinism.
 
+mod adaptive;
 mod clipping;
 mod depth_modes;
 mod determinism;

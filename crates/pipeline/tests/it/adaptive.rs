@@ -1,0 +1,100 @@
+//! The adaptive mode (`RenderSettings::adaptive_tolerance`): every pixel
+//! within the stated bound of the full evaluation of the same shading mode,
+//! and shortcuts actually taken.
+
+use std::sync::Arc;
+
+use glam::{Mat4, Vec3};
+use proptest::prelude::*;
+use zline_scene::{uv_sphere, Interpolation, Object, Scene};
+use zline_shading::{Attenuation, Light, Material, ShadingMode};
+
+use crate::support::{draw, object, scene, wavy_grid};
+
+/// Largest 8-bit difference between two images of the same size.
+fn max_difference(a: &zline_pipeline::Image, b: &zline_pipeline::Image) -> u8 {
+    let (a, b) = (a.to_rgb(), b.to_rgb());
+    a.iter().zip(&b).map(|(x, y)| x.abs_diff(*y)).max().unwrap_or(0)
+}
+
+fn test_scene(mode: ShadingMode, light: Vec3, color: Vec3, a2: f32, distance: f32) -> Scene {
+    let mut sphere = uv_sphere(24, 48, 1.0);
+    sphere.material = Material::plastic(Vec3::new(0.7, 0.4, 0.2), 0.6, 40.0);
+    let sphere = Object {
+        world_from_object: Mat4::from_translation(Vec3::new(0.8, 0.0, -distance)),
+        ..object(Arc::new(sphere), Some(mode))
+    };
+    let lights = vec![
+        Light::Point { position: light, color, attenuation: Attenuation { a0: 1.0, a1: 0.0, a2 } },
+        Light::Directional { direction: Vec3::new(-0.2, -0.3, -1.0), color: Vec3::splat(0.1) },
+    ];
+    let mut s = scene(
+        96,
+        Vec3::splat(0.15),
+        lights,
+        vec![object(wavy_grid(20, -distance - 1.0), Some(mode)), sphere],
+    );
+    s.camera = crate::support::origin_camera(0.5, 100.0);
+    s
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
+
+    /// The module's claim: the colour moves by at most τ/255, so the 8-bit
+    /// value by at most ⌊τ⌋ + 1.
+    #[test]
+    fn every_pixel_stays_within_the_tolerance(
+        phong in any::<bool>(),
+        linear in any::<bool>(),
+        light in (-5.0f32..5.0, -5.0f32..5.0, -4.0f32..4.0),
+        color in (0.0f32..1.5, 0.0f32..1.5, 0.0f32..1.5),
+        a2 in prop_oneof![Just(0.0f32), 0.0f32..2.0],
+        distance in 2.5f32..12.0,
+        tolerance in prop_oneof![Just(0.25f32), Just(0.5), Just(1.0), Just(2.0), Just(4.0), Just(8.0)],
+    ) {
+        let mode = if phong { ShadingMode::Phong } else { ShadingMode::Gouraud };
+        let mut s = test_scene(mode, Vec3::from(light), Vec3::from(color), a2, distance);
+        if linear {
+            s.settings.interpolation = Interpolation::ScreenLinear;
+        }
+        let full = draw(&s);
+        s.settings.adaptive_tolerance = Some(tolerance);
+        let adaptive = draw(&s);
+        let bound = tolerance.floor() as u8 + 1;
+        let diff = max_difference(&full, &adaptive);
+        prop_assert!(diff <= bound, "{mode:?}, τ = {tolerance}: difference {diff} > {bound}");
+    }
+}
+
+#[test]
+fn shortcuts_are_taken_and_a_zero_tolerance_keeps_gouraud_exact_where_colours_differ() {
+    let s = test_scene(ShadingMode::Gouraud, Vec3::new(2.0, 3.0, 0.0), Vec3::ONE, 0.0, 4.0);
+    let full = draw(&s);
+    let mut adaptive = s.clone();
+    adaptive.settings.adaptive_tolerance = Some(4.0);
+    // At τ = 4 the shortcuts must change something (or they are never taken).
+    assert!(draw(&adaptive) != full);
+    // τ = 0 allows only triangles whose vertex colours are identical to go
+    // flat, and screen-linear only where w is constant: the same colours.
+    adaptive.settings.adaptive_tolerance = Some(0.0);
+    assert!(max_difference(&draw(&adaptive), &full) <= 1);
+}
+
+#[test]
+fn a_negligible_specular_is_dropped_and_a_visible_one_kept() {
+    // A light 35 units away with f = 1/(1 + d²): specular ≤ 0.6/1000, a
+    // sixth of an 8-bit step, dropped at τ = 1 on every triangle, so the
+    // image is exactly the one without specular; a nearby light's highlight
+    // stays.
+    for (light, dropped) in [(Vec3::new(0.0, 0.0, 35.0), true), (Vec3::new(1.0, 1.0, 0.0), false)] {
+        let mut s = test_scene(ShadingMode::Phong, light, Vec3::ONE, 1.0, 4.0);
+        s.lights.truncate(1);
+        let mut matte = s.clone();
+        for o in &mut matte.objects {
+            o.material = Some(Material { ks: Vec3::ZERO, ..o.mesh.material });
+        }
+        s.settings.adaptive_tolerance = Some(1.0);
+        assert_eq!(draw(&s) == draw(&matte), dropped, "light at {light}");
+    }
+}
