@@ -21,6 +21,7 @@ mod demo;
 mod error;
 mod framing;
 mod gltf;
+pub mod hard_cases;
 mod mesh;
 mod model;
 mod obj;
@@ -34,6 +35,7 @@ pub use framing::{
     default_lights, framing_camera, scene_for_gltf, scene_for_model, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
     FRAMING_FOVY_DEGREES, VIEW_DIRECTION,
 };
+pub use hard_cases::{hard_cases, HardCase};
 // `crate::` because `gltf` also names the glTF parsing crate.
 pub use crate::gltf::{load_gltf, load_gltf_with_warnings, GltfScene, MAX_GLTF_SHININESS};
 pub use mesh::{face_normal, FALLBACK_NORMAL};
