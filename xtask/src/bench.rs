@@ -76,7 +76,7 @@ fn settings(shading: ShadingMode) -> RenderSettings {
 
 /// A UV sphere of radius 1 seen from `distance` with a 40° field of view,
 /// lit by the default key and fill lights.
-fn sphere_scene(rings: u32, segments: u32, distance: f32, shading: ShadingMode) -> Scene {
+pub(crate) fn sphere_scene(rings: u32, segments: u32, distance: f32, shading: ShadingMode) -> Scene {
     // Built directly rather than through `scene_for_model`: the sphere is
     // known to be closed, and checking that on a million triangles would
     // dominate the benchmark's start-up.
@@ -108,7 +108,7 @@ fn sphere_scene(rings: u32, segments: u32, distance: f32, shading: ShadingMode) 
 
 /// The checkerboard floor at 1920×1080 with fog, optionally with two
 /// overlapping 2k spheres (the front one transparent) standing on it.
-fn textured_plane(spheres: bool) -> Result<Scene> {
+pub(crate) fn textured_plane(spheres: bool) -> Result<Scene> {
     use zline::scene::{Fog, FogCoordinate, FogMode, Interpolation, Material};
     use zline::shading::Filter;
     let floor = crate::docs::floor(Arc::new(crate::docs::checker()?), Filter::Trilinear, -400.0, 200.0)?;
@@ -141,17 +141,21 @@ fn textured_plane(spheres: bool) -> Result<Scene> {
     Ok(scene)
 }
 
+/// The Stanford bunny under the shared asset folder, when it is there.
+pub(crate) fn bunny(assets: &Path) -> Option<std::path::PathBuf> {
+    Some(assets.join("obj/bunny/bunny.obj")).filter(|p| p.exists())
+}
+
 fn cases(assets: &Path) -> Result<Vec<Case>> {
     let mut out = Vec::new();
-    let bunny = assets.join("obj/bunny/bunny.obj");
-    if bunny.exists() {
+    if let Some(bunny) = bunny(assets) {
         for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
             let path = bunny.clone();
             let build = move || Ok(scene_for_model(load_obj(&path)?, settings(mode)));
             out.push(Case { name: format!("bunny 69k {}", mode.name()), build: Box::new(build) });
         }
     } else {
-        eprintln!("note: {} not found; skipping the bunny (pass --assets)", bunny.display());
+        eprintln!("note: no obj/bunny/bunny.obj under {}; skipping the bunny (pass --assets)", assets.display());
     }
     // 32 rings × 32 segments ≈ 2k triangles; at distance 2.6 the sphere covers about half the frame.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
