@@ -66,6 +66,12 @@ pub fn plain(color: Vec3) -> Material {
     Material { ka: color, kd: Vec3::ZERO, ks: Vec3::ZERO, ..Material::DEFAULT }
 }
 
+/// The first-drawn or farther surface of `coplanar` and `parallel_planes`
+/// (8-bit: 217, 31, 31).
+pub const RED: Vec3 = Vec3::new(0.85, 0.12, 0.12);
+/// The second-drawn or nearer surface (8-bit: 31, 217, 31).
+pub const GREEN: Vec3 = Vec3::new(0.12, 0.85, 0.12);
+
 /// Eight distinct plain colours.
 const PALETTE: [Vec3; 8] = [
     Vec3::new(0.9, 0.2, 0.2),
@@ -264,7 +270,7 @@ pub fn coplanar() -> Scene {
     let plane_point = |x: f32, y: f32| Vec3::new(x, y, -4.0 - 0.6 * x - 0.3 * y);
     let red = [plane_point(-2.0, -1.5), plane_point(1.5, -1.2), plane_point(-0.5, 1.8)];
     let green = [plane_point(-1.4, 1.2), plane_point(-1.0, -1.7), plane_point(1.9, 0.9)];
-    let tris = vec![(red, Vec3::new(0.9, 0.1, 0.1)), (green, Vec3::new(0.1, 0.9, 0.1))];
+    let tris = vec![(red, RED), (green, GREEN)];
     flat_scene(256, 256, origin_camera(0.5, 50.0), flat_objects(tris))
 }
 
@@ -278,10 +284,10 @@ pub fn parallel_planes(depth: DepthMode) -> Scene {
     };
     let (far, near) = (square(-1000.0), square(-1000.0 + 1e-4));
     let tris = vec![
-        ([far[0], far[1], far[2]], Vec3::new(0.9, 0.1, 0.1)),
-        ([far[0], far[2], far[3]], Vec3::new(0.9, 0.1, 0.1)),
-        ([near[0], near[1], near[2]], Vec3::new(0.1, 0.9, 0.1)),
-        ([near[0], near[2], near[3]], Vec3::new(0.1, 0.9, 0.1)),
+        ([far[0], far[1], far[2]], RED),
+        ([far[0], far[2], far[3]], RED),
+        ([near[0], near[1], near[2]], GREEN),
+        ([near[0], near[2], near[3]], GREEN),
     ];
     let mut s = flat_scene(128, 128, origin_camera(0.1, 10_000.0), flat_objects(tris));
     s.settings.depth = depth;
