@@ -1,0 +1,48 @@
+//! Times the truth against the fast renderer on big meshes and prints the
+//! error statistics: a 1M-triangle UV sphere and the Stanford bunny (when
+//! `assets/obj/bunny/bunny.obj` or the path given as the first argument
+//! exists), at 640×360 with ssaa = 1 and 4.
+//!
+//! `cargo run --release -p zline-truth --example truth_timing [bunny.obj]`
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use zline_pipeline::{render, RenderOptions};
+use zline_scene::{load_obj, scene_for_model, uv_sphere, RenderSettings, Scene};
+use zline_truth::{render_truth, ErrorStats};
+
+fn main() {
+    let settings = RenderSettings { width: 640, height: 360, ..RenderSettings::default() };
+    let mut scenes = vec![("sphere 1M", scene_for_model(vec![uv_sphere(501, 1000, 1.0)], settings))];
+    let bunny =
+        std::env::args().nth(1).map(PathBuf::from).unwrap_or_else(|| "assets/obj/bunny/bunny.obj".into());
+    match load_obj(&bunny) {
+        Ok(meshes) => scenes.push(("bunny", scene_for_model(meshes, settings))),
+        Err(e) => eprintln!("skipping the bunny: {e}"),
+    }
+    println!("threads: {}", rayon::current_num_threads());
+    for (name, scene) in &scenes {
+        let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangle_count()).sum();
+        for ssaa in [1, 4] {
+            let scene = Scene { settings: RenderSettings { ssaa, ..scene.settings }, ..scene.clone() };
+            let start = Instant::now();
+            let truth = render_truth(&scene);
+            let truth_time = start.elapsed();
+            let start = Instant::now();
+            let (image, _) = render(&scene, &RenderOptions::default());
+            let fast_time = start.elapsed();
+            let e = ErrorStats::of_rgb8(&image.to_rgb(), &truth);
+            println!(
+                "{name} ({triangles} triangles) ssaa={ssaa}: truth {:.2} s, fast {:.3} s; \
+                 rmse {:.3}, max {}, exact {:.2} %, over 1 {:.3} %",
+                truth_time.as_secs_f64(),
+                fast_time.as_secs_f64(),
+                e.rmse,
+                e.max_abs,
+                100.0 * e.share_exact,
+                100.0 * e.share_over_1
+            );
+        }
+    }
+}

@@ -1,0 +1,261 @@
+//! One frame's geometry: every object's vertices in eye, clip and sample
+//! space, and every drawn triangle as a [`Prim`] in draw order (objects in
+//! scene order, triangles in mesh order, clipped pieces in fan order).
+//!
+//! Per triangle (SPEC §1–2): non-finite input is dropped; a triangle with a
+//! vertex outside the near or far plane is clipped ([`crate::clip`]); each
+//! piece with zero or non-finite area in sample space is dropped; with
+//! back-face culling on, a piece that is not counter-clockwise as seen by
+//! the viewer (negative doubled area, window y down) is dropped. Nothing
+//! else is special about mirrored (negative-determinant) model matrices,
+//! as in the fast renderer: the window winding alone decides. Without
+//! culling, a triangle whose front faces away from the viewer — decided in
+//! eye space on the original triangle, against −p for a perspective camera
+//! and +z for an orthographic one — is lit with its normals turned around
+//! (two-sided lighting, as the fast renderer's setup does).
+
+use std::sync::Arc;
+
+use glam::DVec3;
+use rayon::prelude::*;
+use zline_scene::{Interpolation, Mesh, Projection, Scene, TextureMap};
+use zline_shading::ShadingMode;
+
+use crate::camera::{self, Corner, ObjectTransforms, SampleSpace, Vertex};
+use crate::clip::clip_triangle;
+use crate::coverage::signed_area2;
+use crate::lighting::{EyeLights, MaterialF64};
+
+/// Triangles per rayon task in setup.
+const TRIANGLE_CHUNK: usize = 4096;
+
+/// An object with its per-frame data.
+#[derive(Debug)]
+pub(crate) struct ObjectFrame {
+    /// The mesh.
+    pub(crate) mesh: Arc<Mesh>,
+    /// Transformed vertices, one per mesh position.
+    pub(crate) vertices: Vec<Vertex>,
+    /// The object's material, sanitized.
+    pub(crate) material: MaterialF64,
+    /// Its shading mode (the object's, else the scene's).
+    pub(crate) mode: ShadingMode,
+    /// The diffuse texture with the scene's filter override, when the mesh
+    /// has one and texture coordinates.
+    pub(crate) texture: Option<TextureMap>,
+    /// Drawn in the transparency pass: opacity < 1, or texture alpha blends.
+    pub(crate) transparent: bool,
+}
+
+/// A corner of a clipped piece: its projection and its weights with
+/// respect to the original triangle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ClippedCorner {
+    pub(crate) corner: Corner,
+    pub(crate) beta: DVec3,
+}
+
+/// A triangle (or a piece of a clipped one) to draw.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Prim {
+    /// Index of the object.
+    pub(crate) object: u32,
+    /// Index of the triangle in the object's mesh.
+    pub(crate) triangle: u32,
+    /// Seen from behind without culling: normals are turned around.
+    pub(crate) back: bool,
+    /// The piece's corners when the triangle was clipped (rare, so boxed).
+    pub(crate) clipped: Option<Box<[ClippedCorner; 3]>>,
+}
+
+/// A prim's corners in sample space and their weights with respect to the
+/// original triangle's vertices.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PrimGeometry {
+    pub(crate) corners: [Corner; 3],
+    pub(crate) beta: [DVec3; 3],
+}
+
+/// Everything the tiles read.
+#[derive(Debug)]
+pub(crate) struct Frame<'a> {
+    /// The scene.
+    pub(crate) scene: &'a Scene,
+    /// Supersampling factor n (samples per pixel along each axis).
+    pub(crate) n: u32,
+    /// Image size in pixels.
+    pub(crate) size: (u32, u32),
+    /// Sample grid size: (n·W, n·H).
+    pub(crate) limit: (i64, i64),
+    /// Perspective-correct attribute interpolation (else screen-linear).
+    pub(crate) perspective: bool,
+    /// Lights in eye space.
+    pub(crate) lights: EyeLights,
+    /// The objects.
+    pub(crate) objects: Vec<ObjectFrame>,
+    /// Triangles to draw, in draw order.
+    pub(crate) prims: Vec<Prim>,
+}
+
+impl<'a> Frame<'a> {
+    /// Transforms and sets up every object of `scene`.
+    pub(crate) fn new(scene: &'a Scene) -> Frame<'a> {
+        let s = &scene.settings;
+        let (width, height) = (s.width.max(1), s.height.max(1));
+        let n = s.ssaa.max(1);
+        let space = SampleSpace { width: f64::from(width * n), height: f64::from(height * n) };
+        let eye_from_world = camera::eye_from_world(&scene.camera);
+        let clip_from_eye = camera::clip_from_eye(&scene.camera, f64::from(width) / f64::from(height));
+        let orthographic = matches!(scene.camera.projection, Projection::Orthographic { .. });
+        let mut objects = Vec::with_capacity(scene.objects.len());
+        let mut prims = Vec::new();
+        for (index, object) in scene.objects.iter().enumerate() {
+            let world_from_object = object.world_from_object.as_dmat4();
+            let t = ObjectTransforms::new(clip_from_eye, eye_from_world, world_from_object);
+            let frame_object = object_frame(scene, index, &t, &space);
+            let ctx =
+                SetupContext { object: index as u32, cull: object.cull_back_faces, orthographic, space };
+            prims.extend(setup_object(&frame_object, &ctx));
+            objects.push(frame_object);
+        }
+        Frame {
+            scene,
+            n,
+            size: (width, height),
+            limit: (i64::from(width * n), i64::from(height * n)),
+            perspective: s.interpolation == Interpolation::PerspectiveCorrect,
+            lights: EyeLights::new(scene.ambient, &scene.lights, &eye_from_world),
+            objects,
+            prims,
+        }
+    }
+
+    /// A prim's corners and weights.
+    pub(crate) fn geometry(&self, prim: &Prim) -> PrimGeometry {
+        match &prim.clipped {
+            Some(c) => PrimGeometry { corners: c.map(|k| k.corner), beta: c.map(|k| k.beta) },
+            None => {
+                let object = &self.objects[prim.object as usize];
+                let tri = object.mesh.triangles[prim.triangle as usize];
+                PrimGeometry {
+                    corners: tri.map(|i| object.vertices[i as usize].corner.unwrap_or_default()),
+                    beta: DVec3::AXES,
+                }
+            }
+        }
+    }
+}
+
+/// The per-frame data of object `index`.
+fn object_frame(scene: &Scene, index: usize, t: &ObjectTransforms, space: &SampleSpace) -> ObjectFrame {
+    let object = &scene.objects[index];
+    let mesh = Arc::clone(&object.mesh);
+    let vertices = mesh
+        .positions
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let normal = mesh.normals.get(i).map_or(DVec3::ZERO, |n| n.as_dvec3());
+            t.vertex(p.as_dvec3(), normal, space)
+        })
+        .collect();
+    let texture = match (&mesh.diffuse_map, mesh.uvs.is_empty()) {
+        (Some(map), false) => {
+            let mut map = map.clone();
+            if let Some(filter) = scene.settings.texture_filter {
+                map.sampler.filter = filter;
+            }
+            Some(map)
+        }
+        _ => None,
+    };
+    let material = MaterialF64::new(&object.material());
+    let transparent = material.opacity < 1.0 || texture.as_ref().is_some_and(|m| m.alpha_blend);
+    ObjectFrame {
+        mode: object.shading.unwrap_or(scene.settings.shading),
+        mesh,
+        vertices,
+        material,
+        texture,
+        transparent,
+    }
+}
+
+/// What setup needs to know about the object.
+#[derive(Clone, Copy, Debug)]
+struct SetupContext {
+    object: u32,
+    cull: bool,
+    orthographic: bool,
+    space: SampleSpace,
+}
+
+/// The prims of one object, in mesh order.
+fn setup_object(object: &ObjectFrame, ctx: &SetupContext) -> Vec<Prim> {
+    let chunks: Vec<Vec<Prim>> = object
+        .mesh
+        .triangles
+        .par_chunks(TRIANGLE_CHUNK)
+        .enumerate()
+        .map(|(chunk, tris)| {
+            let mut out = Vec::with_capacity(tris.len());
+            for (k, tri) in tris.iter().enumerate() {
+                let index = (chunk * TRIANGLE_CHUNK + k) as u32;
+                setup_triangle(&object.vertices, *tri, index, ctx, &mut out);
+            }
+            out
+        })
+        .collect();
+    chunks.concat()
+}
+
+/// Appends the drawn pieces of one triangle to `out`.
+fn setup_triangle(vertices: &[Vertex], tri: [u32; 3], index: u32, ctx: &SetupContext, out: &mut Vec<Prim>) {
+    let Some(v) = gather(vertices, tri) else { return };
+    if !v.iter().all(|v| v.eye.is_finite() && v.clip.is_finite()) {
+        return;
+    }
+    let back = !ctx.cull && seen_from_behind(&v, ctx.orthographic);
+    let prim = |clipped| Prim { object: ctx.object, triangle: index, back, clipped };
+    if let [Some(a), Some(b), Some(c)] = v.map(|v| v.corner) {
+        if drawn([a, b, c], ctx.cull) {
+            out.push(prim(None));
+        }
+        return;
+    }
+    let (poly, n) = clip_triangle(v.map(|v| v.clip));
+    for i in 1..n.saturating_sub(1) {
+        let piece = [poly[0], poly[i], poly[i + 1]];
+        let corners = piece.map(|p| ctx.space.project(p.clip));
+        if let [Some(a), Some(b), Some(c)] = corners {
+            if drawn([a, b, c], ctx.cull) {
+                let k = |j: usize, corner| ClippedCorner { corner, beta: piece[j].beta };
+                out.push(prim(Some(Box::new([k(0, a), k(1, b), k(2, c)]))));
+            }
+        }
+    }
+}
+
+/// The three vertices of a triangle; `None` when an index is out of range.
+fn gather(vertices: &[Vertex], t: [u32; 3]) -> Option<[&Vertex; 3]> {
+    Some([vertices.get(t[0] as usize)?, vertices.get(t[1] as usize)?, vertices.get(t[2] as usize)?])
+}
+
+/// False for zero or non-finite area, and for back faces when culling.
+fn drawn(c: [Corner; 3], cull: bool) -> bool {
+    let cross = signed_area2(c[0].pos, c[1].pos, c[2].pos);
+    cross.is_finite() && cross != 0.0 && !(cull && cross > 0.0)
+}
+
+/// True when the triangle's counter-clockwise side faces away from the
+/// viewer, decided in eye space.
+fn seen_from_behind(v: &[&Vertex; 3], orthographic: bool) -> bool {
+    let normal = face_cross(v);
+    let to_viewer = if orthographic { DVec3::Z } else { -v[0].eye };
+    normal.dot(to_viewer) < 0.0
+}
+
+/// (p1 − p0) × (p2 − p0) in eye space: the unnormalized face normal.
+pub(crate) fn face_cross(v: &[&Vertex; 3]) -> DVec3 {
+    (v[1].eye - v[0].eye).cross(v[2].eye - v[0].eye)
+}

@@ -1,0 +1,173 @@
+//! Shading one fragment (SPEC §5–8): the prim's attributes at the sample,
+//! the texture, the shading mode, the lighting model and fog, all in f64.
+//!
+//! Interpolation. The sample's screen weights λ over the prim (its corners
+//! in sample space) become weights over the original triangle's vertices,
+//! through the corners' clip weights β: perspective-correct weights
+//! μ_i = (λ_i/w_i) / Σ_j (λ_j/w_j), or screen-linear weights λ_i
+//! (`Interpolation::ScreenLinear`: linear over each clipped piece, as the
+//! fast renderer's planes are). The exact surface point — for fog and the
+//! depth-independent eye position — always uses μ.
+//!
+//! Shading modes (SPEC §6), per-object override first:
+//! - Flat: the lighting model at the original triangle's eye-space centroid
+//!   with its face normal (p1 − p0) × (p2 − p0), normalized.
+//! - Gouraud: the lighting model at the three original vertices, colours
+//!   interpolated: untextured, the clamped vertex colours; textured, the
+//!   ambient+diffuse and specular parts separately (SPEC §7). A clipped
+//!   piece's new vertices carry interpolated colours, not relit ones.
+//! - Phong: eye position and normal interpolated, the normal renormalized
+//!   (a zero normal stays zero), the lighting model per sample.
+//!
+//! With a texture, c = clamp(texel ⊙ (ambient+diffuse) + specular); the
+//! texture coordinates' derivatives for the level of detail are exact
+//! (quotient rule for perspective-correct s = S/Q) in sample space.
+
+use glam::{DVec2, DVec3, DVec4};
+use zline_shading::ShadingMode;
+
+use crate::coverage::SampleTriangle;
+use crate::fog::apply_fog;
+use crate::frame::{face_cross, Frame, ObjectFrame, Prim};
+use crate::lighting::Parts;
+use crate::texture::{self, UvDerivatives};
+
+/// A shaded fragment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Shaded {
+    /// Lit, clamped and fogged colour.
+    pub(crate) color: DVec3,
+    /// The texel's alpha (1 without a texture).
+    pub(crate) alpha: f64,
+    /// See [`Parts::switch_margin`].
+    pub(crate) switch_margin: f64,
+}
+
+/// A prim's attributes at one sample.
+struct Surface<'f> {
+    prim: &'f Prim,
+    object: &'f ObjectFrame,
+    /// The original triangle's vertex indices.
+    vertices: [usize; 3],
+    /// Attribute weights of the original vertices.
+    attr: [f64; 3],
+    /// Perspective-correct weights: the exact surface point.
+    exact: [f64; 3],
+    /// Derivatives of `attr` along x and y (sample space).
+    d_attr: [DVec2; 3],
+}
+
+impl Frame<'_> {
+    /// The prim's attributes at sample position `p`; `None` for a prim that
+    /// has no area (never drawn).
+    fn surface(&self, id: u32, p: DVec2) -> Option<Surface<'_>> {
+        let prim = &self.prims[id as usize];
+        let object = &self.objects[prim.object as usize];
+        let geometry = self.geometry(prim);
+        let tri = SampleTriangle::new(geometry.corners)?;
+        let lambda = tri.weights(&tri.values(p));
+        let inv_w = geometry.corners.map(|c| c.inv_w);
+        let q: f64 = (0..3).map(|i| lambda[i] * inv_w[i]).sum();
+        let mu = [0, 1, 2].map(|i| lambda[i] * inv_w[i] / q);
+        let grads = tri.weight_gradients();
+        let d_sub = if self.perspective {
+            let dq: DVec2 = (0..3).map(|i| grads[i] * inv_w[i]).sum();
+            [0, 1, 2].map(|i| (grads[i] * inv_w[i] - dq * mu[i]) / q)
+        } else {
+            grads
+        };
+        let sub = if self.perspective { mu } else { lambda };
+        let beta = geometry.beta;
+        let to_original = |w: [f64; 3]| -> [f64; 3] {
+            let v: DVec3 = (0..3).map(|i| beta[i] * w[i]).sum();
+            v.to_array()
+        };
+        let d_attr = [0, 1, 2].map(|k| (0..3).map(|i| d_sub[i] * beta[i][k]).sum());
+        let tri_indices = object.mesh.triangles[prim.triangle as usize];
+        Some(Surface {
+            prim,
+            object,
+            vertices: tri_indices.map(|i| i as usize),
+            attr: to_original(sub),
+            exact: to_original(mu),
+            d_attr,
+        })
+    }
+
+    /// The texel alpha of prim `id` at `p` (1 without a texture): what an
+    /// alpha cutoff tests before the depth buffer is written.
+    pub(crate) fn alpha(&self, id: u32, p: DVec2) -> f64 {
+        self.surface(id, p).and_then(|s| self.texel(&s)).map_or(1.0, |t| t.w)
+    }
+
+    /// Shades prim `id` at sample position `p`.
+    pub(crate) fn shade(&self, id: u32, p: DVec2) -> Shaded {
+        let Some(s) = self.surface(id, p) else {
+            return Shaded { color: DVec3::ZERO, alpha: 1.0, switch_margin: f64::INFINITY };
+        };
+        let texel = self.texel(&s);
+        let (color, switch_margin) = self.lit(&s, texel);
+        let color = match &self.scene.fog {
+            Some(fog) => {
+                let eye = blend3(&s.exact, |k| self.vertex(&s, k).eye);
+                apply_fog(fog, color, eye)
+            }
+            None => color,
+        };
+        Shaded { color, alpha: texel.map_or(1.0, |t| t.w), switch_margin }
+    }
+
+    fn vertex<'s>(&self, s: &Surface<'s>, k: usize) -> &'s crate::camera::Vertex {
+        &s.object.vertices[s.vertices[k]]
+    }
+
+    /// The filtered texel, when the object is textured.
+    fn texel(&self, s: &Surface<'_>) -> Option<DVec4> {
+        let map = s.object.texture.as_ref()?;
+        let uv = |k: usize| s.object.mesh.uvs.get(s.vertices[k]).map_or(DVec2::ZERO, |t| t.as_dvec2());
+        let at = blend3(&s.attr, uv);
+        let d = UvDerivatives {
+            dx: (0..3).map(|k| uv(k) * s.d_attr[k].x).sum(),
+            dy: (0..3).map(|k| uv(k) * s.d_attr[k].y).sum(),
+        };
+        Some(texture::sample(&map.texture, &map.sampler, at, &d))
+    }
+
+    /// The clamped lit colour (SPEC §5–7) and the lighting's switch margin.
+    fn lit(&self, s: &Surface<'_>, texel: Option<DVec4>) -> (DVec3, f64) {
+        let (m, lights) = (&s.object.material, &self.lights);
+        let side = if s.prim.back { -1.0 } else { 1.0 };
+        let normal = |k: usize| self.vertex(s, k).normal * side;
+        let eye = |k: usize| self.vertex(s, k).eye;
+        let parts = match s.object.mode {
+            ShadingMode::Flat => {
+                let v = [0, 1, 2].map(|k| self.vertex(s, k));
+                let n = face_cross(&v).normalize_or_zero() * side;
+                lights.shade(m, (eye(0) + eye(1) + eye(2)) / 3.0, n)
+            }
+            ShadingMode::Gouraud => {
+                let at_vertices = [0, 1, 2].map(|k| lights.shade(m, eye(k), normal(k)));
+                if texel.is_none() {
+                    let color = blend3(&s.attr, |k| at_vertices[k].color());
+                    let margin = at_vertices.iter().map(|p| p.switch_margin).fold(f64::INFINITY, f64::min);
+                    return (color, margin);
+                }
+                Parts::blend(&at_vertices, &s.attr)
+            }
+            ShadingMode::Phong => {
+                let n = blend3(&s.attr, normal).normalize_or_zero();
+                lights.shade(m, blend3(&s.attr, eye), n)
+            }
+        };
+        let color = match texel {
+            Some(t) => (t.truncate() * parts.ambient_diffuse + parts.specular).clamp(DVec3::ZERO, DVec3::ONE),
+            None => parts.color(),
+        };
+        (color, parts.switch_margin)
+    }
+}
+
+/// Σ_k w_k · f(k) over the three vertices.
+fn blend3<T: std::ops::Mul<f64, Output = T> + std::iter::Sum>(w: &[f64; 3], f: impl Fn(usize) -> T) -> T {
+    (0..3).map(|k| f(k) * w[k]).sum()
+}
