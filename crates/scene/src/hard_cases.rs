@@ -72,13 +72,15 @@ pub const RED: Vec3 = Vec3::new(0.85, 0.12, 0.12);
 /// The second-drawn or nearer surface (8-bit: 31, 217, 31).
 pub const GREEN: Vec3 = Vec3::new(0.12, 0.85, 0.12);
 
-/// Eight distinct plain colours.
+/// Eight distinct plain colours, each channel at least 0.05 of an 8-bit
+/// step away from a rounding boundary (c·255 + ½ not within 0.05 of an
+/// integer), so f32 and f64 renderers quantize them alike.
 const PALETTE: [Vec3; 8] = [
-    Vec3::new(0.9, 0.2, 0.2),
-    Vec3::new(0.2, 0.8, 0.3),
+    Vec3::new(0.88, 0.2, 0.2),
+    Vec3::new(0.2, 0.8, 0.32),
     Vec3::new(0.25, 0.35, 0.95),
     Vec3::new(0.95, 0.85, 0.2),
-    Vec3::new(0.8, 0.3, 0.85),
+    Vec3::new(0.8, 0.32, 0.85),
     Vec3::new(0.2, 0.85, 0.85),
     Vec3::new(0.6, 0.6, 0.6),
     Vec3::new(0.95, 0.55, 0.15),
@@ -200,10 +202,12 @@ pub fn near_plane() -> Scene {
 pub fn huge_coordinates() -> Scene {
     let (w, h) = (256, 256);
     let p = |x: f64, y: f64| at_pixel(w, h, x, y);
+    // At depths 0, −1 and −2 so no two tie: the first is in front.
+    let at = |v: Vec3, z: f32| Vec3::new(v.x, v.y, z);
     let tris = vec![
-        ([p(-1e6, 100.3), p(1e6, 60.7), p(3.0, 1e6)], PALETTE[0]),
-        ([p(-1e6, -1e6), p(1e6 + 0.25, -1e6), p(200.6, 1e6)], PALETTE[1]),
-        ([p(130.2, -1e6), p(1e6, 1e6), p(-1e6, 1e6 - 0.5)], PALETTE[2]),
+        ([p(-1e6, 100.3), p(1e6, 60.7), p(3.0, 1e6)].map(|v| at(v, 0.0)), PALETTE[0]),
+        ([p(-1e6, -1e6), p(1e6 + 0.25, -1e6), p(200.6, 1e6)].map(|v| at(v, -1.0)), PALETTE[1]),
+        ([p(130.2, -1e6), p(1e6, 1e6), p(-1e6, 1e6 - 0.5)].map(|v| at(v, -2.0)), PALETTE[2]),
     ];
     flat_scene(w, h, pixel_camera(h), flat_objects(tris))
 }

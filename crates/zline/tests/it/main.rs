@@ -2,6 +2,7 @@
 
 mod bad_input;
 mod cli;
+mod hard_cases;
 
 use std::path::Path;
 use std::process::{Command, Output};
