@@ -1,4 +1,5 @@
-//! zline developer tasks. `cargo xtask bench` measures frame times.
+//! zline developer tasks. `cargo xtask bench` measures frame times;
+//! `cargo xtask regress` compares renders with reference images.
 
 use std::path::PathBuf;
 
@@ -8,6 +9,7 @@ use clap::{Parser, Subcommand};
 mod bench;
 mod contact;
 mod docs;
+mod regress;
 
 /// Developer tasks for zline.
 #[derive(Parser)]
@@ -60,6 +62,19 @@ enum Task {
         #[arg(long, default_value = "320x240", value_parser = contact::parse_cell)]
         cell: (u32, u32),
     },
+    /// Render every tests/scenes/*.toml and compare it exactly with its
+    /// reference PNG; failures are drawn into target/regress/.
+    Regress {
+        /// Only scenes whose name contains this text.
+        #[arg(long)]
+        filter: Option<String>,
+    },
+    /// Rewrite the reference PNGs of tests/scenes/ and say what changed.
+    Bless {
+        /// Only scenes whose name contains this text.
+        #[arg(long)]
+        filter: Option<String>,
+    },
 }
 
 fn main() -> Result<()> {
@@ -70,5 +85,7 @@ fn main() -> Result<()> {
         }
         Task::DocsImages { out } => docs::run(&out),
         Task::ContactSheet { assets, out, cell } => contact::run(&assets, &out, cell),
+        Task::Regress { filter } => regress::run(regress::Mode::Check, filter.as_deref()),
+        Task::Bless { filter } => regress::run(regress::Mode::Bless, filter.as_deref()),
     }
 }

@@ -44,7 +44,7 @@ pub use model::{
 };
 pub use obj::{load_obj, load_obj_with_warnings};
 pub use primitives::{cube, plane, torus, uv_sphere};
-pub use scene_file::{load_scene, MAX_IMAGE_SIDE, MAX_PRIMITIVE_DIVISIONS};
+pub use scene_file::{load_scene, MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_PRIMITIVE_DIVISIONS, MAX_SSAA};
 pub use zline_shading::{
     Attenuation, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
 };

@@ -38,7 +38,6 @@
 //! image file.
 
 use std::cell::RefCell;
-use std::collections::HashMap;
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
@@ -518,24 +517,6 @@ fn truncate(s: &str) -> String {
         out.push('…');
     }
     out
-}
-
-/// Paths of the distinct model files loaded by a scene, each loaded once.
-#[derive(Default)]
-pub(crate) struct ModelCache {
-    loaded: HashMap<PathBuf, Vec<std::sync::Arc<Mesh>>>,
-}
-
-impl ModelCache {
-    /// The meshes of the OBJ file at `path`, loading it on first use.
-    pub(crate) fn get(&mut self, path: &Path) -> Result<Vec<std::sync::Arc<Mesh>>, SceneError> {
-        if let Some(meshes) = self.loaded.get(path) {
-            return Ok(meshes.clone());
-        }
-        let meshes: Vec<_> = load_obj(path)?.into_iter().map(std::sync::Arc::new).collect();
-        self.loaded.insert(path.to_path_buf(), meshes.clone());
-        Ok(meshes)
-    }
 }
 
 #[cfg(test)]

@@ -12,12 +12,11 @@
 use std::fmt::Display;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
 use toml::Spanned;
-use zline_shading::{Attenuation, Filter, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
+use zline_shading::{Attenuation, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
 
 use crate::error::SceneError;
 use crate::framing::{
@@ -25,8 +24,8 @@ use crate::framing::{
     DEFAULT_BACKGROUND,
 };
 use crate::mesh::bounds_of;
-use crate::model::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene};
-use crate::obj::{read_text, ModelCache};
+use crate::model::{Camera, Mesh, Object, Projection, Scene};
+use crate::obj::read_text;
 use crate::primitives::{cube, plane, torus, uv_sphere};
 
 /// Largest image side a scene file may ask for.
@@ -51,6 +50,9 @@ pub const MAX_PRIMITIVE_DIVISIONS: u32 = 4096;
 /// shading = "phong"                 # flat | gouraud | phong (default)
 /// interpolation = "perspective"     # perspective (default) | linear
 /// filter = "trilinear"              # nearest | bilinear | trilinear: replaces every texture's own
+/// ssaa = 1                          # n×n supersampling, 1..=8; default 1 (off)
+/// depth = "normalized"              # normalized (default) | reversed (reversed-Z float)
+/// adaptive = 0.5                    # adaptive mode's tolerance in 8-bit units, in [0, 255]; default off
 ///
 /// [camera]                          # omitted: the scene is framed
 /// eye = [0, 1, 5]                   # required
@@ -81,7 +83,7 @@ pub const MAX_PRIMITIVE_DIVISIONS: u32 = 4096;
 /// coordinate = "eye-plane"          # eye-plane (−z_eye, default) | radial (|p_eye|)
 ///
 /// [[objects]]                       # at least one
-/// model = "models/suzanne.obj"      # an OBJ file, or else:
+/// model = "models/suzanne.obj"      # an OBJ, glTF or GLB file (its nodes, not its camera or lights), or else:
 /// # primitive = "sphere"            # rings (32), segments (64), radius (1)
 /// # primitive = "plane"             # size (10), subdivisions (8)
 /// # primitive = "cube"              # size (1)
@@ -158,24 +160,6 @@ enum FogCoordinateDef {
     Radial,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RenderDef {
-    width: Option<S<u32>>,
-    height: Option<S<u32>>,
-    shading: Option<ShadingDef>,
-    interpolation: Option<InterpolationDef>,
-    filter: Option<FilterDef>,
-}
-
-#[derive(Clone, Copy, Deserialize)]
-#[serde(rename_all = "lowercase")]
-enum FilterDef {
-    Nearest,
-    Bilinear,
-    Trilinear,
-}
-
 #[derive(Clone, Copy, Deserialize)]
 #[serde(rename_all = "lowercase")]
 enum ShadingDef {
@@ -192,13 +176,6 @@ impl From<ShadingDef> for ShadingMode {
             ShadingDef::Phong => ShadingMode::Phong,
         }
     }
-}
-
-#[derive(Clone, Copy, Deserialize)]
-#[serde(rename_all = "lowercase")]
-enum InterpolationDef {
-    Perspective,
-    Linear,
 }
 
 #[derive(Clone, Copy, Default, Deserialize)]
@@ -330,40 +307,6 @@ impl Builder<'_> {
         };
         let fog = file.fog.as_ref().map(|f| self.fog(f)).transpose()?;
         Ok(Scene { camera, background, ambient, lights, objects, settings, fog })
-    }
-
-    fn settings(&self, render: Option<RenderDef>) -> Result<RenderSettings> {
-        let mut settings = RenderSettings::default();
-        let Some(render) = render else { return Ok(settings) };
-        if let Some(w) = &render.width {
-            settings.width = self.image_side(w, "render.width")?;
-        }
-        if let Some(h) = &render.height {
-            settings.height = self.image_side(h, "render.height")?;
-        }
-        if let Some(s) = render.shading {
-            settings.shading = s.into();
-        }
-        if let Some(i) = render.interpolation {
-            settings.interpolation = match i {
-                InterpolationDef::Perspective => Interpolation::PerspectiveCorrect,
-                InterpolationDef::Linear => Interpolation::ScreenLinear,
-            };
-        }
-        settings.texture_filter = render.filter.map(|f| match f {
-            FilterDef::Nearest => Filter::Nearest,
-            FilterDef::Bilinear => Filter::Bilinear,
-            FilterDef::Trilinear => Filter::Trilinear,
-        });
-        Ok(settings)
-    }
-
-    fn image_side(&self, v: &S<u32>, key: &str) -> Result<u32> {
-        let side = *v.get_ref();
-        if !(1..=MAX_IMAGE_SIDE).contains(&side) {
-            return Err(self.error(v.span(), key, format!("must be in 1..={MAX_IMAGE_SIDE}, got {side}")));
-        }
-        Ok(side)
     }
 
     fn camera(&self, def: &S<CameraDef>, bounds: (Vec3, Vec3), aspect: f32) -> Result<Camera> {
@@ -498,9 +441,9 @@ impl Builder<'_> {
     /// The objects of one `[[objects]]` entry: one per mesh of its model.
     fn objects(&mut self, def: &S<ObjectDef>, key: &str) -> Result<Vec<Object>> {
         let o = def.get_ref();
-        let meshes = match (&o.model, &o.primitive) {
+        let parts = match (&o.model, &o.primitive) {
             (Some(model), None) => self.model(o, model, key)?,
-            (None, Some(kind)) => vec![Arc::new(self.primitive(o, *kind.get_ref(), key)?)],
+            (None, Some(kind)) => vec![ModelPart::alone(self.primitive(o, *kind.get_ref(), key)?)],
             (Some(_), Some(_)) => {
                 return Err(self.error(def.span(), key, "give 'model' or 'primitive', not both"))
             }
@@ -509,17 +452,19 @@ impl Builder<'_> {
         let world_from_object = self.transform(o, key)?;
         let shading = o.shading.map(ShadingMode::from);
         let material_def = o.material.as_ref();
-        let mut objects = Vec::with_capacity(meshes.len());
-        for mesh in meshes {
+        let mut objects = Vec::with_capacity(parts.len());
+        for ModelPart { mesh, model_from_mesh, cullable } in parts {
             let material = material_def.map(|m| self.material(m, mesh.material, key)).transpose()?;
             let opacity = material.unwrap_or(mesh.material).opacity;
-            let cull_back_faces = o.cull_back_faces.unwrap_or_else(|| default_culling(&mesh, opacity));
+            let cull_back_faces =
+                o.cull_back_faces.unwrap_or_else(|| cullable && default_culling(&mesh, opacity));
+            let world_from_object = world_from_object * model_from_mesh;
             objects.push(Object { mesh, world_from_object, material, shading, cull_back_faces });
         }
         Ok(objects)
     }
 
-    fn model(&mut self, o: &ObjectDef, model: &S<String>, key: &str) -> Result<Vec<Arc<Mesh>>> {
+    fn model(&mut self, o: &ObjectDef, model: &S<String>, key: &str) -> Result<Vec<ModelPart>> {
         for (value, name) in
             [(&o.rings, "rings"), (&o.segments, "segments"), (&o.subdivisions, "subdivisions")]
         {
@@ -666,3 +611,9 @@ fn fitted_depth_range(eye: Vec3, target: Vec3, (min, max): (Vec3, Vec3)) -> (f32
 }
 
 mod checks;
+mod models;
+mod render;
+
+use models::{ModelCache, ModelPart};
+use render::RenderDef;
+pub use render::{MAX_ADAPTIVE_TOLERANCE, MAX_SSAA};

@@ -6,11 +6,11 @@ use std::sync::Arc;
 
 use glam::Vec3;
 use zline_scene::{
-    default_lights, load_scene, Attenuation, FogCoordinate, FogMode, Interpolation, Light, Projection,
-    ShadingMode, DEFAULT_AMBIENT,
+    default_lights, load_scene, Attenuation, DepthMode, FogCoordinate, FogMode, Interpolation, Light,
+    Projection, RenderSettings, ShadingMode, DEFAULT_AMBIENT,
 };
 
-use crate::{check_message, data, temp_file};
+use crate::{check_message, data, repo, temp_file};
 
 /// A minimal valid scene body to which tests add or in which they replace.
 const OBJECT: &str = "[[objects]]\nprimitive = \"cube\"\n";
@@ -109,6 +109,26 @@ radius = 2
 }
 
 #[test]
+fn gltf_models_keep_their_node_transforms_and_double_sided_materials() {
+    let cube = repo("assets/gltf/Box/glTF-Binary/Box.glb");
+    let quads = repo("assets/gltf/TextureCoordinateTest/glTF/TextureCoordinateTest.gltf");
+    let text = format!(
+        "[[objects]]\nmodel = {cube:?}\ntranslate = [5, 0, 0]\n[[objects]]\nmodel = {quads:?}\n\
+         [[objects]]\nmodel = {cube:?}\n[objects.material]\nopacity = 0.5\n"
+    );
+    let scene = load_scene(&temp_file("gltf.toml", &text)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.objects.len(), 1 + 5 + 1);
+    let (cube, glass) = (&scene.objects[0], &scene.objects[6]);
+    // The file's root node turns y into −z; the object's translation follows.
+    let p = cube.world_from_object.transform_point3(Vec3::Y);
+    assert!((p - Vec3::new(5.0, 0.0, -1.0)).length() < 1e-5, "{p}");
+    assert!(cube.cull_back_faces, "closed, opaque, single-sided");
+    assert!(scene.objects[1..6].iter().all(|o| !o.cull_back_faces), "double-sided materials");
+    assert!(!glass.cull_back_faces, "made transparent by the override");
+    assert!(Arc::ptr_eq(&cube.mesh, &glass.mesh), "a model file is loaded once");
+}
+
+#[test]
 fn without_camera_and_lights_the_scene_is_framed_and_lit() {
     let text = format!("{OBJECT}translate = [10, 0, 0]\n");
     let scene = load_scene(&temp_file("framed.toml", &text)).unwrap();
@@ -197,6 +217,64 @@ fn bad_render_settings_are_rejected() {
         &["background: every component must be in [0, 1], got [2.0, 0.0, 0.0]"],
     );
     check_scene_error("amb.toml", &format!("ambient = [0, -1, 0]\n{OBJECT}"), &["ambient", "[0, ∞)"]);
+}
+
+fn settings_of(name: &str, render: &str) -> RenderSettings {
+    let text = format!("[render]\n{render}\n{OBJECT}");
+    load_scene(&temp_file(name, &text)).unwrap_or_else(|e| panic!("{e}")).settings
+}
+
+#[test]
+fn supersampling_depth_and_adaptive_are_read_as_written() {
+    let s = settings_of("all.toml", "ssaa = 4\ndepth = \"reversed\"\nadaptive = 0.5");
+    assert_eq!((s.ssaa, s.depth, s.adaptive_tolerance), (4, DepthMode::ReversedFloat, Some(0.5)));
+    let s = settings_of("none.toml", "width = 64");
+    assert_eq!((s.ssaa, s.depth, s.adaptive_tolerance), (1, DepthMode::Normalized, None));
+    for mode in [DepthMode::Normalized, DepthMode::ReversedFloat] {
+        let s = settings_of("depth.toml", &format!("depth = {:?}", mode.name()));
+        assert_eq!(s.depth, mode, "the scene-file name is DepthMode::name");
+    }
+    for (text, ssaa) in [("ssaa = 1", 1), ("ssaa = 8", 8)] {
+        assert_eq!(settings_of("ssaa.toml", text).ssaa, ssaa);
+    }
+    for (text, tolerance) in [("adaptive = 0", 0.0), ("adaptive = 255", 255.0), ("adaptive = 2", 2.0)] {
+        assert_eq!(settings_of("adaptive.toml", text).adaptive_tolerance, Some(tolerance));
+    }
+}
+
+#[test]
+fn bad_supersampling_depth_and_adaptive_are_rejected() {
+    let render = |body: &str| format!("[render]\n{body}\n{OBJECT}");
+    check_scene_error(
+        "ssaa0.toml",
+        &render("ssaa = 0"),
+        &["line 2, column 8: render.ssaa: must be in 1..=8, got 0"],
+    );
+    check_scene_error("ssaa9.toml", &render("ssaa = 9"), &["line 2, column 8: render.ssaa", "got 9"]);
+    check_scene_error("ssaaneg.toml", &render("ssaa = -2"), &["line 2, column 8", "-2"]);
+    check_scene_error("ssaaf.toml", &render("ssaa = 2.5"), &["line 2, column 8", "2.5"]);
+    check_scene_error(
+        "depth.toml",
+        &render("depth = \"inverted\""),
+        &["line 2, column 9", "unknown variant `inverted`, expected `normalized` or `reversed`"],
+    );
+    check_scene_error(
+        "adaptneg.toml",
+        &render("adaptive = -1"),
+        &["line 2, column 12: render.adaptive: must be in [0, 255], got -1"],
+    );
+    check_scene_error(
+        "adaptbig.toml",
+        &render("adaptive = 255.5"),
+        &["render.adaptive: must be in [0, 255], got 255.5"],
+    );
+    check_scene_error(
+        "adaptnan.toml",
+        &render("adaptive = nan"),
+        &["line 2, column 12: render.adaptive: must be finite, got NaN"],
+    );
+    check_scene_error("adaptinf.toml", &render("adaptive = inf"), &["render.adaptive: must be finite"]);
+    check_scene_error("adaptstr.toml", &render("adaptive = \"low\""), &["line 2, column 12", "string"]);
 }
 
 #[test]

@@ -1,0 +1,110 @@
+//! The `[render]` table of a scene file → [`RenderSettings`]: image size,
+//! shading, interpolation, texture filter, supersampling, depth mode and
+//! the adaptive mode's tolerance, each checked and located on error.
+
+use serde::Deserialize;
+use zline_shading::Filter;
+
+use super::{Builder, Result, ShadingDef, MAX_IMAGE_SIDE, S};
+use crate::model::{DepthMode, Interpolation, RenderSettings};
+
+/// Largest supersampling factor a scene file may ask for (`ssaa = 8`: 64
+/// samples per pixel).
+pub const MAX_SSAA: u32 = 8;
+
+/// Largest adaptive tolerance, in 8-bit units: a whole channel's range.
+pub const MAX_ADAPTIVE_TOLERANCE: f32 = 255.0;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RenderDef {
+    width: Option<S<u32>>,
+    height: Option<S<u32>>,
+    shading: Option<ShadingDef>,
+    interpolation: Option<InterpolationDef>,
+    filter: Option<FilterDef>,
+    ssaa: Option<S<u32>>,
+    depth: Option<DepthDef>,
+    adaptive: Option<S<f32>>,
+}
+
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum FilterDef {
+    Nearest,
+    Bilinear,
+    Trilinear,
+}
+
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum InterpolationDef {
+    Perspective,
+    Linear,
+}
+
+/// The names are [`DepthMode::name`]'s.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum DepthDef {
+    Normalized,
+    Reversed,
+}
+
+impl Builder<'_> {
+    pub(super) fn settings(&self, render: Option<RenderDef>) -> Result<RenderSettings> {
+        let mut settings = RenderSettings::default();
+        let Some(render) = render else { return Ok(settings) };
+        if let Some(w) = &render.width {
+            settings.width = self.image_side(w, "render.width")?;
+        }
+        if let Some(h) = &render.height {
+            settings.height = self.image_side(h, "render.height")?;
+        }
+        if let Some(s) = render.shading {
+            settings.shading = s.into();
+        }
+        if let Some(i) = render.interpolation {
+            settings.interpolation = match i {
+                InterpolationDef::Perspective => Interpolation::PerspectiveCorrect,
+                InterpolationDef::Linear => Interpolation::ScreenLinear,
+            };
+        }
+        settings.texture_filter = render.filter.map(|f| match f {
+            FilterDef::Nearest => Filter::Nearest,
+            FilterDef::Bilinear => Filter::Bilinear,
+            FilterDef::Trilinear => Filter::Trilinear,
+        });
+        if let Some(n) = &render.ssaa {
+            settings.ssaa = self.ssaa(n)?;
+        }
+        if let Some(d) = render.depth {
+            settings.depth = match d {
+                DepthDef::Normalized => DepthMode::Normalized,
+                DepthDef::Reversed => DepthMode::ReversedFloat,
+            };
+        }
+        if render.adaptive.is_some() {
+            let tolerance =
+                self.optional(&render.adaptive, "render.adaptive", 0.0, 0.0, MAX_ADAPTIVE_TOLERANCE)?;
+            settings.adaptive_tolerance = Some(tolerance);
+        }
+        Ok(settings)
+    }
+
+    fn image_side(&self, v: &S<u32>, key: &str) -> Result<u32> {
+        let side = *v.get_ref();
+        if !(1..=MAX_IMAGE_SIDE).contains(&side) {
+            return Err(self.error(v.span(), key, format!("must be in 1..={MAX_IMAGE_SIDE}, got {side}")));
+        }
+        Ok(side)
+    }
+
+    fn ssaa(&self, v: &S<u32>) -> Result<u32> {
+        let n = *v.get_ref();
+        if !(1..=MAX_SSAA).contains(&n) {
+            return Err(self.error(v.span(), "render.ssaa", format!("must be in 1..={MAX_SSAA}, got {n}")));
+        }
+        Ok(n)
+    }
+}
