@@ -155,7 +155,10 @@ fn cases(assets: &Path) -> Result<Vec<Case>> {
             out.push(Case { name: format!("bunny 69k {}", mode.name()), build: Box::new(build) });
         }
     } else {
-        eprintln!("note: no obj/bunny/bunny.obj under {}; skipping the bunny (pass --assets)", assets.display());
+        eprintln!(
+            "note: no obj/bunny/bunny.obj under {}; skipping the bunny (pass --assets)",
+            assets.display()
+        );
     }
     // 32 rings × 32 segments ≈ 2k triangles; at distance 2.6 the sphere covers about half the frame.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {

@@ -7,9 +7,11 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 mod bench;
+mod chart;
 mod contact;
 mod docs;
 mod regress;
+mod report;
 
 /// Developer tasks for zline.
 #[derive(Parser)]
@@ -75,6 +77,32 @@ enum Task {
         #[arg(long)]
         filter: Option<String>,
     },
+    /// Speed against error: every setting on every report scene, timed
+    /// and compared with the f64 truth; writes a markdown table and a chart.
+    Report {
+        /// The shared asset folder holding obj/bunny/bunny.obj (skipped with
+        /// a message when missing).
+        #[arg(long, default_value = "../shared/assets")]
+        assets: PathBuf,
+        /// The markdown table.
+        #[arg(long, default_value = "docs/report.md")]
+        out: PathBuf,
+        /// The chart.
+        #[arg(long, default_value = "docs/images/report-chart.png")]
+        chart: PathBuf,
+        /// Frames timed per cell (median).
+        #[arg(long, default_value_t = 5)]
+        frames: usize,
+        /// Image size of the benchmark scenes, WxH.
+        #[arg(long, default_value = "640x360", value_parser = contact::parse_cell)]
+        size: (u32, u32),
+        /// Only scenes whose name contains this text.
+        #[arg(long)]
+        filter: Option<String>,
+        /// TrueType font for the chart's text.
+        #[arg(long, default_value = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")]
+        font: PathBuf,
+    },
 }
 
 fn main() -> Result<()> {
@@ -87,5 +115,8 @@ fn main() -> Result<()> {
         Task::ContactSheet { assets, out, cell } => contact::run(&assets, &out, cell),
         Task::Regress { filter } => regress::run(regress::Mode::Check, filter.as_deref()),
         Task::Bless { filter } => regress::run(regress::Mode::Bless, filter.as_deref()),
+        Task::Report { assets, out, chart, frames, size, filter, font } => {
+            report::run(&report::Args { assets, out, chart, frames, size, filter, font })
+        }
     }
 }

@@ -30,4 +30,4 @@ pub mod tile;
 pub mod vertex;
 
 pub use image::Image;
-pub use render::{render, RenderOptions, RenderStats, Renderer, MAX_SSAA};
+pub use render::{render, RenderOptions, RenderStats, Renderer};

@@ -20,10 +20,6 @@ use crate::vertex::{transform_mesh, ClipVertex, ObjectTransforms, Screen, Vertex
 /// Triangles per rayon task in setup.
 const TRIANGLE_CHUNK: usize = 2048;
 
-/// The largest supersampling factor n (n×n samples per pixel); larger
-/// settings are taken as this.
-pub const MAX_SSAA: u32 = 8;
-
 /// Settings of the pipeline itself (the scene's settings say what to draw).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RenderOptions {
@@ -84,7 +80,8 @@ impl Renderer {
         let (width, height) = (s.width.max(1), s.height.max(1));
         // Supersampling renders an n× larger window of samples (every stage
         // below works in samples) and box-filters it in the resolve.
-        let n = s.ssaa.clamp(1, MAX_SSAA);
+        // Larger factors than scene files accept are taken as the largest.
+        let n = s.ssaa.clamp(1, zline_scene::MAX_SSAA);
         let (sample_width, sample_height) = (width * n, height * n);
         let eye_from_world = scene.camera.eye_from_world();
         let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);

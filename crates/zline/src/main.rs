@@ -7,7 +7,7 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
-use zline::pipeline::{render, RenderOptions, MAX_SSAA};
+use zline::pipeline::{render, RenderOptions};
 use zline::scene::{
     DepthMode, Fog, FogCoordinate, FogMode, Interpolation, RenderSettings, Scene, ShadingMode,
 };
@@ -70,7 +70,7 @@ struct Common {
     #[arg(long, value_enum)]
     fog_coordinate: Option<FogCoord>,
     /// Supersampling: N×N samples per pixel, box-filtered (1 = off).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=MAX_SSAA as i64))]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=zline::scene::MAX_SSAA as i64))]
     ssaa: Option<u32>,
     /// Adaptive mode: per triangle, the cheapest evaluation whose colour
     /// provably stays within TOL 8-bit steps of the full one.
@@ -138,7 +138,7 @@ fn parse_tolerance(s: &str) -> Result<f32, String> {
     s.trim()
         .parse::<f32>()
         .ok()
-        .filter(|t| (0.0..=255.0).contains(t))
+        .filter(|t| (0.0..=zline::scene::MAX_ADAPTIVE_TOLERANCE).contains(t))
         .ok_or_else(|| format!("expected a tolerance in 8-bit steps, 0 to 255, got '{s}'"))
 }
 

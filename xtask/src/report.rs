@@ -1,0 +1,294 @@
+//! `cargo xtask report`: speed against error. Every setting that trades one
+//! for the other renders every report scene; each image is timed (median of
+//! several frames) and compared with two f64 truths from `zline-truth`:
+//! the best image (Phong, perspective-correct, 16 samples per pixel) and the
+//! truth of the setting's own model (same shading, interpolation and
+//! sampling). Writes a markdown table and a chart of time against error.
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use zline::pipeline::{Image, RenderOptions, Renderer};
+use zline::scene::{hard_cases, DepthMode, Interpolation, RenderSettings, Scene, ShadingMode};
+use zline_truth::{render_truth, ErrorStats, TruthImage};
+
+/// Where the report's inputs and outputs go.
+pub(crate) struct Args {
+    pub(crate) assets: PathBuf,
+    pub(crate) out: PathBuf,
+    pub(crate) chart: PathBuf,
+    pub(crate) frames: usize,
+    pub(crate) size: (u32, u32),
+    pub(crate) filter: Option<String>,
+    pub(crate) font: PathBuf,
+}
+
+/// One setting: a name and what it changes.
+#[derive(Clone, Copy, Debug)]
+struct Setting {
+    name: &'static str,
+    shading: ShadingMode,
+    interpolation: Interpolation,
+    adaptive: Option<f32>,
+    ssaa: u32,
+    depth: DepthMode,
+}
+
+impl Setting {
+    const fn new(name: &'static str, shading: ShadingMode, interpolation: Interpolation) -> Setting {
+        Setting { name, shading, interpolation, adaptive: None, ssaa: 1, depth: DepthMode::Normalized }
+    }
+
+    fn apply(&self, s: &mut RenderSettings) {
+        s.shading = self.shading;
+        s.interpolation = self.interpolation;
+        s.adaptive_tolerance = self.adaptive;
+        s.ssaa = self.ssaa;
+        s.depth = self.depth;
+    }
+
+    /// The truth of this setting's own model: same shading, interpolation
+    /// and samples (adaptive and depth encodings are the fast renderer's
+    /// choices; their model is the base mode's).
+    fn model(&self) -> (ShadingMode, Interpolation, u32) {
+        (self.shading, self.interpolation, self.ssaa)
+    }
+}
+
+const PERSPECTIVE: Interpolation = Interpolation::PerspectiveCorrect;
+const LINEAR: Interpolation = Interpolation::ScreenLinear;
+
+fn settings() -> Vec<Setting> {
+    use ShadingMode::{Flat, Gouraud, Phong};
+    let adaptive =
+        |name, shading, tol| Setting { adaptive: Some(tol), ..Setting::new(name, shading, PERSPECTIVE) };
+    vec![
+        Setting::new("flat", Flat, PERSPECTIVE),
+        Setting::new("gouraud", Gouraud, PERSPECTIVE),
+        Setting::new("gouraud linear", Gouraud, LINEAR),
+        adaptive("gouraud adaptive 0.5", Gouraud, 0.5),
+        adaptive("gouraud adaptive 2", Gouraud, 2.0),
+        adaptive("gouraud adaptive 8", Gouraud, 8.0),
+        Setting::new("phong", Phong, PERSPECTIVE),
+        Setting::new("phong linear", Phong, LINEAR),
+        adaptive("phong adaptive 0.5", Phong, 0.5),
+        adaptive("phong adaptive 2", Phong, 2.0),
+        adaptive("phong adaptive 8", Phong, 8.0),
+        Setting { depth: DepthMode::ReversedFloat, ..Setting::new("phong reversed-z", Phong, PERSPECTIVE) },
+        Setting { ssaa: 2, ..Setting::new("phong ssaa 2x2", Phong, PERSPECTIVE) },
+        Setting { ssaa: 4, ..Setting::new("phong ssaa 4x4", Phong, PERSPECTIVE) },
+    ]
+}
+
+/// The best image: Phong, perspective-correct, 4×4 samples.
+const BEST: (ShadingMode, Interpolation, u32) = (ShadingMode::Phong, PERSPECTIVE, 4);
+
+/// A report scene; `benchmark` scenes make up the chart.
+struct ReportScene {
+    name: String,
+    benchmark: bool,
+    scene: Scene,
+}
+
+fn scenes(args: &Args) -> Result<Vec<ReportScene>> {
+    let (w, h) = args.size;
+    let sized = |mut s: Scene| {
+        s.settings.width = w;
+        s.settings.height = h;
+        s
+    };
+    let mut out = Vec::new();
+    match crate::bench::bunny(&args.assets) {
+        Some(path) => {
+            let model =
+                zline::scene::load_obj(&path).with_context(|| format!("loading {}", path.display()))?;
+            let settings = RenderSettings { width: w, height: h, ..RenderSettings::default() };
+            out.push(ReportScene {
+                name: "bunny".into(),
+                benchmark: true,
+                scene: zline::scene::scene_for_model(model, settings),
+            });
+        }
+        None => eprintln!("note: the bunny is not under {}; skipped (pass --assets)", args.assets.display()),
+    }
+    out.push(ReportScene {
+        name: "textured plane + fog".into(),
+        benchmark: true,
+        scene: sized(crate::bench::textured_plane(false)?),
+    });
+    out.push(ReportScene {
+        name: "transparent spheres".into(),
+        benchmark: true,
+        scene: sized(crate::bench::textured_plane(true)?),
+    });
+    out.push(ReportScene {
+        name: "sphere 1M".into(),
+        benchmark: true,
+        scene: sized(crate::bench::sphere_scene(500, 1000, 2.6, ShadingMode::Phong)),
+    });
+    for case in hard_cases() {
+        out.push(ReportScene { name: format!("hard: {}", case.name), benchmark: false, scene: case.scene });
+    }
+    for s in &mut out {
+        // The setting decides the shading of every object.
+        for o in &mut s.scene.objects {
+            o.shading = None;
+        }
+    }
+    Ok(out)
+}
+
+/// One measured cell of the report.
+struct Row {
+    scene: usize,
+    setting: usize,
+    ms: f64,
+    best: ErrorStats,
+    own: ErrorStats,
+}
+
+pub(crate) fn run(args: &Args) -> Result<()> {
+    let settings = settings();
+    let scenes: Vec<ReportScene> = scenes(args)?
+        .into_iter()
+        .filter(|s| args.filter.as_deref().is_none_or(|f| s.name.contains(f)))
+        .collect();
+    if scenes.is_empty() {
+        bail!("no scene matches the filter");
+    }
+    let mut rows = Vec::new();
+    for (si, rs) in scenes.iter().enumerate() {
+        let start = Instant::now();
+        let mut truths: HashMap<(ShadingMode, Interpolation, u32), TruthImage> = HashMap::new();
+        let mut truth = |key: (ShadingMode, Interpolation, u32)| -> TruthImage {
+            truths
+                .entry(key)
+                .or_insert_with(|| {
+                    let mut s = rs.scene.clone();
+                    (s.settings.shading, s.settings.interpolation, s.settings.ssaa) = key;
+                    render_truth(&s)
+                })
+                .clone()
+        };
+        let best = truth(BEST);
+        for (ki, setting) in settings.iter().enumerate() {
+            let mut scene = rs.scene.clone();
+            setting.apply(&mut scene.settings);
+            let (ms, image) = time(&scene, args.frames);
+            let rgb = image.to_rgb();
+            let own = truth(setting.model());
+            rows.push(Row {
+                scene: si,
+                setting: ki,
+                ms,
+                best: ErrorStats::of_rgb8(&rgb, &best),
+                own: ErrorStats::of_rgb8(&rgb, &own),
+            });
+        }
+        eprintln!("{}: {:.1} s", rs.name, start.elapsed().as_secs_f64());
+    }
+    let markdown = table(&scenes, &settings, &rows, args);
+    write(&args.out, markdown.as_bytes())?;
+    let points = chart_points(&scenes, &settings, &rows);
+    crate::chart::draw(&args.chart, &args.font, &points)?;
+    for p in points.iter().filter(|p| p.name.contains("adaptive")) {
+        println!("{}: {}", p.name, if p.pareto { "on the Pareto front" } else { "dominated" });
+    }
+    println!("wrote {} and {}", args.out.display(), args.chart.display());
+    Ok(())
+}
+
+/// Median wall time in ms of `frames` renders (after a warm-up) and the
+/// image.
+fn time(scene: &Scene, frames: usize) -> (f64, Image) {
+    let (mut renderer, mut image) = (Renderer::default(), Image::empty());
+    let options = RenderOptions::default();
+    renderer.render_into(scene, &options, &mut image);
+    let mut times: Vec<f64> = (0..frames.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            renderer.render_into(scene, &options, &mut image);
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    (times[times.len() / 2], image)
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<()> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    }
+    std::fs::write(path, bytes).with_context(|| format!("writing {}", path.display()))
+}
+
+fn table(scenes: &[ReportScene], settings: &[Setting], rows: &[Row], args: &Args) -> String {
+    let mut md = String::new();
+    let threads = rayon::current_num_threads();
+    let _ = writeln!(
+        md,
+        "# Speed against error\n\nMade by `cargo xtask report` ({}×{} for the benchmark scenes, each hard case at its own size; \
+         median of {} frames, {threads} threads). Errors are in 8-bit steps against two f64 truths from `zline-truth`: \
+         **best** = Phong, perspective-correct, 4×4 samples per pixel; **own** = the truth of the setting's own model \
+         (same shading, interpolation and samples). *exact* is the share of pixels equal to the truth in all three channels.\n",
+        args.size.0, args.size.1, args.frames
+    );
+    for (si, s) in scenes.iter().enumerate() {
+        let _ = writeln!(md, "## {}\n", s.name);
+        let _ = writeln!(
+            md,
+            "| setting | ms | RMSE vs best | max vs best | > 1 vs best | exact vs own | max vs own |"
+        );
+        let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|---:|");
+        for r in rows.iter().filter(|r| r.scene == si) {
+            let _ = writeln!(
+                md,
+                "| {} | {:.2} | {:.3} | {:.0} | {:.3} % | {:.3} % | {:.0} |",
+                settings[r.setting].name,
+                r.ms,
+                r.best.rmse,
+                r.best.max_abs,
+                100.0 * r.best.share_over_1,
+                100.0 * r.own.share_exact,
+                r.own.max_abs
+            );
+        }
+        md.push('\n');
+    }
+    md
+}
+
+/// A setting's place on the chart: summed time and mean RMSE over the
+/// benchmark scenes.
+pub(crate) struct Point {
+    pub(crate) name: &'static str,
+    pub(crate) ms: f64,
+    pub(crate) rmse: f64,
+    pub(crate) pareto: bool,
+}
+
+fn chart_points(scenes: &[ReportScene], settings: &[Setting], rows: &[Row]) -> Vec<Point> {
+    let n = scenes.iter().filter(|s| s.benchmark).count().max(1) as f64;
+    let mut points: Vec<Point> = settings
+        .iter()
+        .enumerate()
+        .map(|(ki, s)| {
+            let bench = rows.iter().filter(|r| r.setting == ki && scenes[r.scene].benchmark);
+            let (ms, rmse) = bench.fold((0.0, 0.0), |(t, e), r| (t + r.ms, e + r.best.rmse / n));
+            Point { name: s.name, ms, rmse, pareto: false }
+        })
+        .collect();
+    for i in 0..points.len() {
+        let dominated = points.iter().enumerate().any(|(j, q)| {
+            j != i
+                && q.ms <= points[i].ms
+                && q.rmse <= points[i].rmse
+                && (q.ms < points[i].ms || q.rmse < points[i].rmse)
+        });
+        points[i].pareto = !dominated;
+    }
+    points
+}
