@@ -52,15 +52,16 @@ mod tile;
 use rayon::prelude::*;
 use zline_scene::Scene;
 
-pub use image::{quantize, TruthImage};
+pub use image::{quantize, Diagnostics, TruthImage};
 pub use metrics::ErrorStats;
 
 /// What to compute besides the image.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TruthOptions {
-    /// Fill [`TruthImage::boundary_distance`]. Costs an evaluation of every
-    /// triangle over its bounds widened by 2 pixels, and a record of every
-    /// fragment: meant for small test scenes.
+    /// Fill [`TruthImage::diagnostics`]. Costs an evaluation of every
+    /// triangle over its bounds widened by 2 pixels, a record of every
+    /// fragment and four more shadings per sample: meant for small test
+    /// scenes.
     pub diagnostics: bool,
 }
 
@@ -80,7 +81,9 @@ pub fn render_truth_with(scene: &Scene, options: &TruthOptions) -> TruthImage {
         .collect();
     let (width, height) = frame.size;
     let mut rgb = vec![glam::DVec3::ZERO; width as usize * height as usize];
-    let mut boundary = vec![0.0f32; if options.diagnostics { rgb.len() } else { 0 }];
+    let mut diagnostics = options
+        .diagnostics
+        .then(|| Diagnostics { boundary_distance: vec![0.0; rgb.len()], sensitivity: vec![0.0; rgb.len()] });
     for (t, out) in tiles.iter().enumerate() {
         let (col, row) = (t as u32 % bins.cols, t as u32 / bins.cols);
         let (x0, y0) = ((col * tile::TILE_PIXELS) as usize, (row * tile::TILE_PIXELS) as usize);
@@ -88,10 +91,11 @@ pub fn render_truth_with(scene: &Scene, options: &TruthOptions) -> TruthImage {
         for (k, c) in out.rgb.iter().enumerate() {
             let i = (y0 + k / tw) * width as usize + x0 + k % tw;
             rgb[i] = *c;
-            if let Some(&d) = out.boundary.get(k) {
-                boundary[i] = d;
+            if let Some(d) = &mut diagnostics {
+                d.boundary_distance[i] = out.boundary[k];
+                d.sensitivity[i] = out.sensitivity[k];
             }
         }
     }
-    TruthImage { width, height, rgb, boundary_distance: options.diagnostics.then_some(boundary) }
+    TruthImage { width, height, rgb, diagnostics }
 }
