@@ -5,7 +5,8 @@
 //! It shares the scene model (`zline-scene`, and the material, light, fog
 //! and texture types of `zline-shading`) and none of the fast code: it never
 //! depends on `zline-raster` or `zline-pipeline`, and reads textures only
-//! through `Texture::texel`, `level_size` and `levels`. Lighting, fog,
+//! through `Texture::texel`, `level_size` and `levels`. (The pipeline is a
+//! dev-dependency: the property tests compare it with the truth.) Lighting, fog,
 //! filtering and level of detail are re-derived here from the spec; where
 //! the spec leaves a choice, the truth follows the fast renderer's stated
 //! convention, so that it is the truth of the same model.
@@ -14,8 +15,13 @@
 //! sample grid), `clip` (near/far in clip space), `frame` (vertices and the
 //! drawn triangles, culling, two-sided lighting), `coverage` (edge
 //! functions, top-left rule, depth), `tile` (binning, opaque and
-//! transparency passes, box filter), `shade` (interpolation and shading
-//! modes), `lighting`, `texture`, `fog`, `image` and [`metrics`].
+//! transparency passes, box filter, diagnostics), `shade` (interpolation and
+//! shading modes), `lighting`, `texture`, `fog`, `image` and [`metrics`].
+//!
+//! With [`TruthOptions::diagnostics`] the image carries, per pixel, how far
+//! it is from an edge or a depth intersection and how fast its colour
+//! changes under a 1/256-pixel move ([`Diagnostics`]): what a comparison
+//! with a renderer that snaps and rounds must allow for.
 //!
 //! Invariants:
 //! - every sample is covered, depth-tested and shaded with exact f64

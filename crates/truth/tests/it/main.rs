@@ -2,6 +2,7 @@
 //! answers, property tests against the fast renderer, and determinism.
 
 mod hand;
+mod supersampling;
 mod support;
 mod threads;
 mod versus_fast;
