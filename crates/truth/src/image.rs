@@ -14,16 +14,27 @@ pub struct TruthImage {
     /// `width · height` colours: the mean of each pixel's sample colours
     /// (each lit, clamped, fogged and blended), not clamped again.
     pub rgb: Vec<DVec3>,
-    /// With [`crate::TruthOptions::diagnostics`], per pixel: the distance in
-    /// pixels from its nearest sample to the nearest place where the image
-    /// may change abruptly — a triangle edge (of any triangle, hidden or
-    /// not), or a swap of depth order between the visible fragment and
-    /// another one (see the `tile` module) — capped at 2 pixels; 0 where a
-    /// light's N·L is within 10⁻⁴ of 0, where the specular term switches.
-    /// Nearest filtering and alpha cutoffs are not covered. Samples this
-    /// close to a boundary may legitimately differ between renderers that
-    /// round coordinates differently.
-    pub boundary_distance: Option<Vec<f32>>,
+    /// Where a renderer that rounds coordinates and colours differently may
+    /// legitimately differ; with [`crate::TruthOptions::diagnostics`] only.
+    pub diagnostics: Option<Diagnostics>,
+}
+
+/// Per-pixel measures of how sensitive the truth is to small shifts of the
+/// geometry: what a comparison with a fast renderer must allow for.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Diagnostics {
+    /// The distance in pixels from the pixel's nearest sample to the nearest
+    /// place where the image may change abruptly — an edge of any triangle
+    /// (hidden or not), or a swap of depth order between the visible
+    /// fragment and another one covering the sample — capped at 2 pixels;
+    /// 0 where a light's N·L is within 10⁻⁴ of 0, where its specular term
+    /// switches on. Nearest filtering and alpha cutoffs are not covered.
+    pub boundary_distance: Vec<f32>,
+    /// The largest change, in 8-bit steps, of a sample's colour when the
+    /// sample moves 1/256 pixel along x or y — twice the largest shift of a
+    /// vertex snapped to the 1/256-pixel grid, so a bound (to first order)
+    /// on what such snapping does to the colour away from boundaries.
+    pub sensitivity: Vec<f32>,
 }
 
 impl TruthImage {

@@ -5,7 +5,8 @@
 //! It shares the scene model (`zline-scene`, and the material, light, fog
 //! and texture types of `zline-shading`) and none of the fast code: it never
 //! depends on `zline-raster` or `zline-pipeline`, and reads textures only
-//! through `Texture::texel`, `level_size` and `levels`. Lighting, fog,
+//! through `Texture::texel`, `level_size` and `levels`. (The pipeline is a
+//! dev-dependency: the property tests compare it with the truth.) Lighting, fog,
 //! filtering and level of detail are re-derived here from the spec; where
 //! the spec leaves a choice, the truth follows the fast renderer's stated
 //! convention, so that it is the truth of the same model.
@@ -14,8 +15,13 @@
 //! sample grid), `clip` (near/far in clip space), `frame` (vertices and the
 //! drawn triangles, culling, two-sided lighting), `coverage` (edge
 //! functions, top-left rule, depth), `tile` (binning, opaque and
-//! transparency passes, box filter), `shade` (interpolation and shading
-//! modes), `lighting`, `texture`, `fog`, `image` and [`metrics`].
+//! transparency passes, box filter, diagnostics), `shade` (interpolation and
+//! shading modes), `lighting`, `texture`, `fog`, `image` and [`metrics`].
+//!
+//! With [`TruthOptions::diagnostics`] the image carries, per pixel, how far
+//! it is from an edge or a depth intersection and how fast its colour
+//! changes under a 1/256-pixel move ([`Diagnostics`]): what a comparison
+//! with a renderer that snaps and rounds must allow for.
 //!
 //! Invariants:
 //! - every sample is covered, depth-tested and shaded with exact f64
@@ -52,15 +58,16 @@ mod tile;
 use rayon::prelude::*;
 use zline_scene::Scene;
 
-pub use image::{quantize, TruthImage};
+pub use image::{quantize, Diagnostics, TruthImage};
 pub use metrics::ErrorStats;
 
 /// What to compute besides the image.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TruthOptions {
-    /// Fill [`TruthImage::boundary_distance`]. Costs an evaluation of every
-    /// triangle over its bounds widened by 2 pixels, and a record of every
-    /// fragment: meant for small test scenes.
+    /// Fill [`TruthImage::diagnostics`]. Costs an evaluation of every
+    /// triangle over its bounds widened by 2 pixels, a record of every
+    /// fragment and four more shadings per sample: meant for small test
+    /// scenes.
     pub diagnostics: bool,
 }
 
@@ -80,7 +87,9 @@ pub fn render_truth_with(scene: &Scene, options: &TruthOptions) -> TruthImage {
         .collect();
     let (width, height) = frame.size;
     let mut rgb = vec![glam::DVec3::ZERO; width as usize * height as usize];
-    let mut boundary = vec![0.0f32; if options.diagnostics { rgb.len() } else { 0 }];
+    let mut diagnostics = options
+        .diagnostics
+        .then(|| Diagnostics { boundary_distance: vec![0.0; rgb.len()], sensitivity: vec![0.0; rgb.len()] });
     for (t, out) in tiles.iter().enumerate() {
         let (col, row) = (t as u32 % bins.cols, t as u32 / bins.cols);
         let (x0, y0) = ((col * tile::TILE_PIXELS) as usize, (row * tile::TILE_PIXELS) as usize);
@@ -88,10 +97,11 @@ pub fn render_truth_with(scene: &Scene, options: &TruthOptions) -> TruthImage {
         for (k, c) in out.rgb.iter().enumerate() {
             let i = (y0 + k / tw) * width as usize + x0 + k % tw;
             rgb[i] = *c;
-            if let Some(&d) = out.boundary.get(k) {
-                boundary[i] = d;
+            if let Some(d) = &mut diagnostics {
+                d.boundary_distance[i] = out.boundary[k];
+                d.sensitivity[i] = out.sensitivity[k];
             }
         }
     }
-    TruthImage { width, height, rgb, boundary_distance: options.diagnostics.then_some(boundary) }
+    TruthImage { width, height, rgb, diagnostics }
 }

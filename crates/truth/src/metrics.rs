@@ -85,8 +85,7 @@ mod tests {
 
     #[test]
     fn statistics_of_a_known_difference() {
-        let truth =
-            TruthImage { width: 2, height: 1, rgb: vec![DVec3::ZERO, DVec3::ONE], boundary_distance: None };
+        let truth = TruthImage { width: 2, height: 1, rgb: vec![DVec3::ZERO, DVec3::ONE], diagnostics: None };
         let stats = ErrorStats::of_rgb8(&[0, 0, 0, 255, 252, 255], &truth);
         assert_eq!((stats.pixels, stats.max_abs, stats.share_exact, stats.share_over_1), (2, 3.0, 0.5, 0.5));
         assert!((stats.rmse - (9.0f64 / 6.0).sqrt()).abs() < 1e-12);

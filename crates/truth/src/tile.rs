@@ -20,8 +20,8 @@
 //!    order, so the image does not depend on threads or tiles.
 //!
 //! With diagnostics on, each sample also gets its distance in pixels to the
-//! nearest place where the visible result can change abruptly (see
-//! [`crate::TruthImage::boundary_distance`]).
+//! nearest place where the visible result can change abruptly, and how
+//! fast its colour changes (see [`crate::Diagnostics`]).
 
 use glam::{DVec2, DVec3};
 
@@ -39,6 +39,11 @@ pub(crate) const DIAGNOSTIC_RANGE: f64 = 2.0;
 /// The fast renderer's N·L is within ~10⁻⁶ of the exact value (f32
 /// interpolation and normalization), so 10⁻⁴ leaves a wide margin.
 const SWITCH_MARGIN: f64 = 1e-4;
+
+/// Diagnostics move samples this far (pixels) to measure how fast their
+/// colour changes: twice the largest shift (1/512 pixel per axis) that
+/// snapping to a 1/256-pixel grid causes.
+pub(crate) const SENSITIVITY_STEP: f64 = 1.0 / 256.0;
 
 /// No fragment.
 const NONE: u32 = u32::MAX;
@@ -84,6 +89,7 @@ pub(crate) fn bin(frame: &Frame<'_>, margin: f64) -> Bins {
 pub(crate) struct TileOutput {
     pub(crate) rgb: Vec<DVec3>,
     pub(crate) boundary: Vec<f32>,
+    pub(crate) sensitivity: Vec<f32>,
 }
 
 /// A fragment kept for the transparency pass or the diagnostics.
@@ -198,52 +204,77 @@ impl TileSamples<'_, '_> {
         }
     }
 
+    /// The colour of sample `s` evaluated at position `p`: its opaque
+    /// fragment (or the background) with its transparent fragments `frags`
+    /// blended over it; `switch` is set when the lighting is at a switch.
+    fn compose(&self, s: usize, p: DVec2, frags: &[Fragment], switch: &mut bool) -> DVec3 {
+        let frame = self.frame;
+        let mut color = frame.scene.background.as_dvec3();
+        if self.owner[s] != NONE {
+            let shaded = frame.shade(self.owner[s], p);
+            color = shaded.color;
+            *switch |= shaded.switch_margin < SWITCH_MARGIN;
+        }
+        for f in frags {
+            let shaded = frame.shade(f.prim, p);
+            let object = &frame.objects[frame.prims[f.prim as usize].object as usize];
+            let alpha = match &object.texture {
+                Some(m) if m.alpha_blend && m.alpha_cutoff.is_none() => shaded.alpha,
+                _ => 1.0,
+            };
+            let keep = object.material.opacity * alpha;
+            color = shaded.color * keep + color * (1.0 - keep);
+            *switch |= shaded.switch_margin < SWITCH_MARGIN;
+        }
+        color
+    }
+
+    /// Diagnostics: the largest change of sample `s`'s colour, in 8-bit
+    /// steps, when its position moves by [`SENSITIVITY_STEP`] pixels along
+    /// x or y (the same fragments, shaded at the moved position).
+    fn sensitivity(&self, s: usize, p: DVec2, frags: &[Fragment], color: DVec3) -> f64 {
+        let step = SENSITIVITY_STEP * f64::from(self.frame.n);
+        let moves = [DVec2::X, DVec2::NEG_X, DVec2::Y, DVec2::NEG_Y];
+        let mut ignored = false;
+        moves
+            .iter()
+            .map(|&m| {
+                (self.compose(s, p + m * step, frags, &mut ignored) - color).abs().max_element() * 255.0
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// Shades, blends and box-filters the tile.
     fn resolve(mut self, blended: &[Fragment], (pw, ph): (i64, i64)) -> TileOutput {
-        let frame = self.frame;
-        let background = frame.scene.background.as_dvec3();
-        let mut colors = vec![background; self.depth.len()];
-        let mut switch = vec![false; self.depth.len()];
-        let mut next = blended.iter().peekable();
-        for (s, color) in colors.iter_mut().enumerate() {
+        let len = self.depth.len();
+        let mut colors = Vec::with_capacity(len);
+        let mut switch = vec![false; len];
+        let mut sensitivity = vec![0.0; if self.diagnostics.is_some() { len } else { 0 }];
+        let mut rest = blended;
+        for (s, at_switch) in switch.iter_mut().enumerate() {
+            let count = rest.iter().take_while(|f| f.sample as usize == s).count();
+            let (frags, tail) = rest.split_at(count);
+            rest = tail;
             let p = self.position(s);
-            if self.owner[s] != NONE {
-                let shaded = frame.shade(self.owner[s], p);
-                *color = shaded.color;
-                switch[s] |= shaded.switch_margin < SWITCH_MARGIN;
+            let color = self.compose(s, p, frags, at_switch);
+            if let Some(v) = sensitivity.get_mut(s) {
+                *v = self.sensitivity(s, p, frags, color);
             }
-            while let Some(f) = next.next_if(|f| f.sample as usize == s) {
-                let shaded = frame.shade(f.prim, p);
-                let object = &frame.objects[frame.prims[f.prim as usize].object as usize];
-                let alpha = match &object.texture {
-                    Some(m) if m.alpha_blend && m.alpha_cutoff.is_none() => shaded.alpha,
-                    _ => 1.0,
-                };
-                let keep = object.material.opacity * alpha;
-                *color = shaded.color * keep + *color * (1.0 - keep);
-                switch[s] |= shaded.switch_margin < SWITCH_MARGIN;
-            }
+            colors.push(color);
         }
-        let n = frame.n as usize;
+        let n = self.frame.n as usize;
         let w = (self.rect.x1 - self.rect.x0) as usize;
         let mut out = TileOutput::default();
         let distances = self.diagnostics.take().map(|d| self.distances(d, &switch));
         for py in 0..ph as usize {
             for px in 0..pw as usize {
-                let mut sum = DVec3::ZERO;
-                let mut nearest = f64::INFINITY;
-                for b in 0..n {
-                    for a in 0..n {
-                        let s = (py * n + b) * w + px * n + a;
-                        sum += colors[s];
-                        if let Some(d) = &distances {
-                            nearest = nearest.min(d[s]);
-                        }
-                    }
-                }
+                let samples = (0..n * n).map(|k| (py * n + k / n) * w + px * n + k % n);
+                let sum: DVec3 = samples.clone().map(|s| colors[s]).sum();
                 out.rgb.push(sum / (n * n) as f64);
-                if distances.is_some() {
+                if let Some(d) = &distances {
+                    let nearest = samples.clone().map(|s| d[s]).fold(f64::INFINITY, f64::min);
                     out.boundary.push((nearest / n as f64) as f32);
+                    out.sensitivity.push(samples.map(|s| sensitivity[s]).fold(0.0, f64::max) as f32);
                 }
             }
         }

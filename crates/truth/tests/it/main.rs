@@ -1,0 +1,8 @@
+//! Integration tests of the ground truth: scenes with hand-computed
+//! answers, property tests against the fast renderer, and determinism.
+
+mod hand;
+mod supersampling;
+mod support;
+mod threads;
+mod versus_fast;

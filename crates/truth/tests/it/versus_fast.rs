@@ -1,0 +1,353 @@
+//! Property tests: the fast renderer (`zline_pipeline::render`) against the
+//! truth on random small scenes — random triangles (some crossing the near
+//! plane or reaching behind the eye), model matrices (rotated, scaled,
+//! mirrored), materials, culling, every shading mode, point and directional
+//! lights with attenuation, perspective and orthographic cameras,
+//! perspective-correct and screen-linear interpolation, fog, and a
+//! transparent planar quad.
+//!
+//! The bound. Away from places where the image may change abruptly — the
+//! truth's `boundary_distance` at least [`MARGIN`] — every channel of the
+//! fast image is the rounding of a value within [`TOLERANCE`] plus the
+//! truth's `sensitivity` of its unquantized colour:
+//! |fast − 255·c| ≤ ½ + TOLERANCE + sensitivity. And at least
+//! [`EXACT_SHARE`] of the compared pixels equal the quantized truth.
+//! Reasons:
+//! - The fast renderer snaps vertices to 1/256 pixel, which moves edges and
+//!   depth intersections by at most 1/512 pixel (√2/512 along a diagonal);
+//!   a margin of one pixel leaves more than 300× that, and covers its f32
+//!   depth and edge arithmetic too.
+//! - Snapping also shifts its attribute planes: at a sample, by at most the
+//!   attributes' change over a 1/512-pixel move, to first order. The
+//!   sensitivity is the colour's change over a 1/256-pixel move, so it
+//!   bounds that. It is what lets steep colours pass (highlights, or a
+//!   Phong normal swinging through a short interpolated vector: up to
+//!   several steps per 1/256 pixel) while flat regions are held to the
+//!   tolerance.
+//! - What remains is f32 rounding: transforms, attribute planes
+//!   (`AttributePlanes::error_bound`: 32·2⁻²⁴ relative to the operands),
+//!   lighting (a few ulps per term, the 2⁻²⁴ specular cutoff), texture
+//!   filtering and level of detail, fog (depth read back from f32, ~10⁻⁶
+//!   relative) — about 0.001 step at these magnitudes. 1500 random scenes
+//!   gave at most 0.003 step beyond the sensitivity; TOLERANCE = 0.01 step.
+//! - The exact share: a colour error e flips the rounding of a channel with
+//!   probability about e. Two runs of 1500 scenes gave 99.8 % and 99.9 %
+//!   exact pixels overall and at least 98.3 % per scene; 95 % still catches
+//!   a systematic difference (rounding off by half a step makes about half
+//!   the pixels inexact).
+//! - Transparent surfaces are one planar quad, so the per-triangle sort of
+//!   the fast renderer and the per-sample sort of the truth agree.
+//! - Textures use bilinear or trilinear filtering: nearest filtering is
+//!   discontinuous at texel boundaries, which the diagnostics do not
+//!   report.
+//!
+//! Known difference, kept out of these scenes (reported, not bounded): the
+//! fast renderer relights the new vertices of a clipped, textured Gouraud
+//! triangle instead of interpolating their lit parts (SPEC §2, §6–7); see
+//! [`untexture_clipped_gouraud`].
+
+use std::sync::Arc;
+
+use glam::{Mat4, Quat, Vec2, Vec3};
+use proptest::prelude::*;
+use zline_pipeline::{render, RenderOptions};
+use zline_scene::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene, TextureMap};
+use zline_shading::{
+    Attenuation, Filter, Fog, FogCoordinate, FogMode, Light, Material, Sampler, ShadingMode, Texture, Wrap,
+};
+use zline_truth::{render_truth_with, TruthOptions};
+
+/// Pixels closer than this (in pixels) to an edge, a depth intersection or
+/// a lighting switch are not compared: 512× the snapping distance.
+const MARGIN: f32 = 1.0;
+/// How far (in 8-bit steps), beyond the sensitivity, the value the fast
+/// renderer rounded may be from the truth's unquantized colour: f32
+/// rounding (see the module documentation).
+const TOLERANCE: f64 = 0.01;
+/// Share of compared pixels that must equal the quantized truth; at least
+/// two pixels may differ in any scene, for scenes with few compared pixels.
+const EXACT_SHARE: f64 = 0.95;
+/// Image side in pixels.
+const SIZE: u32 = 48;
+
+fn unit() -> impl Strategy<Value = f32> {
+    0.0f32..=1.0
+}
+
+fn color() -> impl Strategy<Value = Vec3> {
+    (unit(), unit(), unit()).prop_map(|(r, g, b)| Vec3::new(r, g, b))
+}
+
+fn direction() -> impl Strategy<Value = Vec3> {
+    (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)
+        .prop_map(|(x, y, z)| Vec3::new(x, y, z))
+        .prop_filter("not too short", |v| v.length() > 0.1)
+        .prop_map(Vec3::normalize)
+}
+
+/// A vertex in front of the camera, or (one in six) near or behind the eye.
+fn vertex() -> impl Strategy<Value = Vec3> {
+    (-3.0f32..3.0, -3.0f32..3.0, -9.0f32..-2.0, 0..6u8, -2.0f32..1.5)
+        .prop_map(|(x, y, z, near, zn)| Vec3::new(x, y, if near == 0 { zn } else { z }))
+}
+
+fn material() -> impl Strategy<Value = Material> {
+    (color(), color(), color(), prop::sample::select(vec![1.0f32, 5.0, 16.0, 40.5]))
+        .prop_map(|(ka, kd, ks, ns)| Material { ka, kd, ks, ns, opacity: 1.0 })
+}
+
+fn shading() -> impl Strategy<Value = Option<ShadingMode>> {
+    prop::option::of(prop::sample::select(ShadingMode::ALL.to_vec()))
+}
+
+/// A model matrix about the point (0, 0, −5): rotation, uniform scale, an
+/// optional mirror, a small shift.
+fn transform() -> impl Strategy<Value = Mat4> {
+    (0..3u8, direction(), -3.2f32..3.2, 0.6f32..1.4, any::<bool>(), direction()).prop_map(
+        |(kind, axis, angle, scale, mirror, shift)| {
+            if kind == 0 {
+                return Mat4::IDENTITY;
+            }
+            let centre = Vec3::new(0.0, 0.0, -5.0);
+            let mirror = if mirror { Vec3::new(-1.0, 1.0, 1.0) } else { Vec3::ONE };
+            Mat4::from_translation(centre + shift * 0.5)
+                * Mat4::from_scale_rotation_translation(
+                    mirror * scale,
+                    Quat::from_axis_angle(axis, angle),
+                    Vec3::ZERO,
+                )
+                * Mat4::from_translation(-centre)
+        },
+    )
+}
+
+/// A random texture of 1 to 8 texels per side with bilinear or trilinear
+/// filtering (nearest is discontinuous at texel boundaries, which the
+/// diagnostics do not report) and random wrapping.
+fn texture_map() -> impl Strategy<Value = TextureMap> {
+    let wrap = || prop::sample::select(vec![Wrap::Repeat, Wrap::ClampToEdge]);
+    (1..=8u32, 1..=8u32, prop::collection::vec(any::<u8>(), 256), any::<bool>(), wrap(), wrap()).prop_map(
+        |(w, h, bytes, trilinear, wrap_s, wrap_t)| {
+            let pixels: Vec<u8> = bytes.iter().copied().cycle().take((w * h * 4) as usize).collect();
+            let filter = if trilinear { Filter::Trilinear } else { Filter::Bilinear };
+            TextureMap {
+                texture: Arc::new(Texture::from_rgba8(w, h, &pixels).expect("a valid texture")),
+                sampler: Sampler { filter, wrap_s, wrap_t },
+                alpha_blend: false,
+                alpha_cutoff: None,
+            }
+        },
+    )
+}
+
+/// Texture coordinates for the three corners of a triangle.
+fn uvs() -> impl Strategy<Value = [Vec2; 3]> {
+    let uv = || (-1.5f32..1.5, -1.5f32..1.5).prop_map(|(s, t)| Vec2::new(s, t));
+    (uv(), uv(), uv()).prop_map(|(a, b, c)| [a, b, c])
+}
+
+/// One random triangle: corners, vertex normals, texture coordinates.
+fn triangle() -> impl Strategy<Value = ([Vec3; 3], [Vec3; 3], [Vec2; 3])> {
+    ((vertex(), vertex(), vertex()), (direction(), direction(), direction()), uvs())
+        .prop_map(|((a, b, c), (na, nb, nc), t)| ([a, b, c], [na, nb, nc], t))
+}
+
+/// An opaque object of one to four random triangles, textured in half the
+/// cases.
+fn opaque_object() -> impl Strategy<Value = Object> {
+    (
+        prop::collection::vec(triangle(), 1..=4),
+        material(),
+        shading(),
+        any::<bool>(),
+        transform(),
+        prop::option::of(texture_map()),
+    )
+        .prop_map(|(tris, material, shading, cull, world_from_object, diffuse_map)| {
+            let (mut positions, mut normals, mut uvs) = (Vec::new(), Vec::new(), Vec::new());
+            for (p, n, t) in tris {
+                positions.extend(p);
+                normals.extend(n);
+                uvs.extend(t);
+            }
+            let triangles = (0..positions.len() as u32 / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+            let mesh =
+                Mesh { name: "random".into(), positions, normals, triangles, material, uvs, diffuse_map };
+            object(mesh, shading, cull, world_from_object)
+        })
+}
+
+/// A transparent planar quad (two triangles), tilted about its centre.
+fn transparent_quad() -> impl Strategy<Value = Object> {
+    (
+        (-2.0f32..2.0, -2.0f32..2.0, -8.0f32..-3.0),
+        0.5f32..2.5,
+        direction(),
+        -1.2f32..1.2,
+        material(),
+        0.1f32..0.9,
+        shading(),
+    )
+        .prop_map(|((cx, cy, cz), half, axis, angle, material, opacity, shading)| {
+            let r = Quat::from_axis_angle(axis, angle);
+            let centre = Vec3::new(cx, cy, cz);
+            let positions = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .map(|(x, y)| centre + r * Vec3::new(x * half, y * half, 0.0))
+                .to_vec();
+            let normal = r * Vec3::Z;
+            let mesh = Mesh {
+                name: "glass".into(),
+                positions,
+                normals: vec![normal; 4],
+                triangles: vec![[0, 1, 2], [0, 2, 3]],
+                material: Material { opacity, ..material },
+                uvs: vec![],
+                diffuse_map: None,
+            };
+            object(mesh, shading, false, Mat4::IDENTITY)
+        })
+}
+
+fn object(
+    mesh: Mesh,
+    shading: Option<ShadingMode>,
+    cull_back_faces: bool,
+    world_from_object: Mat4,
+) -> Object {
+    Object { mesh: Arc::new(mesh), world_from_object, material: None, shading, cull_back_faces }
+}
+
+fn light() -> impl Strategy<Value = Light> {
+    prop_oneof![
+        ((-5.0f32..5.0, -5.0f32..5.0, -8.0f32..3.0), color(), (0.5f32..1.5, 0.0f32..0.3, 0.0f32..0.1))
+            .prop_map(|((x, y, z), color, (a0, a1, a2))| Light::Point {
+                position: Vec3::new(x, y, z),
+                color,
+                attenuation: Attenuation { a0, a1, a2 },
+            }),
+        (direction(), color()).prop_map(|(direction, color)| Light::Directional { direction, color }),
+    ]
+}
+
+fn camera() -> impl Strategy<Value = Camera> {
+    (any::<bool>(), 30.0f32..90.0, 0.2f32..1.0, 15.0f32..40.0, (-1.0f32..1.0, -1.0f32..1.0, 0.0f32..1.0))
+        .prop_map(|(ortho, fovy_degrees, near, far, (x, y, z))| Camera {
+            eye: Vec3::new(x, y, z),
+            target: Vec3::new(0.0, 0.0, -5.0),
+            up: Vec3::Y,
+            projection: if ortho {
+                Projection::Orthographic { height: 8.0, near, far }
+            } else {
+                Projection::Perspective { fovy_degrees, near, far }
+            },
+        })
+}
+
+fn fog() -> impl Strategy<Value = Option<Fog>> {
+    let mode = prop_oneof![
+        (2.0f32..5.0, 8.0f32..15.0).prop_map(|(start, end)| FogMode::Linear { start, end }),
+        (0.05f32..0.3).prop_map(|density| FogMode::Exponential { density }),
+        (0.05f32..0.2).prop_map(|density| FogMode::SquaredExponential { density }),
+    ];
+    let coordinate = prop::sample::select(vec![FogCoordinate::EyePlane, FogCoordinate::Radial]);
+    prop::option::of((mode, color(), coordinate).prop_map(|(mode, color, coordinate)| Fog {
+        mode,
+        color,
+        coordinate,
+    }))
+}
+
+prop_compose! {
+    fn random_scene()(
+        camera in camera(),
+        mut objects in prop::collection::vec(opaque_object(), 1..=3),
+        glass in prop::option::of(transparent_quad()),
+        lights in prop::collection::vec(light(), 1..=3),
+        ambient in color(),
+        background in color(),
+        fog in fog(),
+        shading in prop::sample::select(ShadingMode::ALL.to_vec()),
+        linear in any::<bool>(),
+    ) -> Scene {
+        objects.extend(glass);
+        untexture_clipped_gouraud(&mut objects, &camera, shading);
+        let interpolation = if linear { Interpolation::ScreenLinear } else { Interpolation::PerspectiveCorrect };
+        Scene {
+            camera,
+            background,
+            ambient: ambient * 0.4,
+            lights,
+            objects,
+            settings: RenderSettings { width: SIZE, height: SIZE, shading, interpolation, ..RenderSettings::default() },
+            fog,
+        }
+    }
+}
+
+/// Removes the texture of Gouraud objects with a vertex outside the near or
+/// far plane: the fast renderer relights the new vertices of such clipped
+/// textured triangles where SPEC §2 interpolates their lit parts (a known
+/// difference, reported, which these tests would otherwise find).
+fn untexture_clipped_gouraud(objects: &mut [Object], camera: &Camera, default: ShadingMode) {
+    let (near, far) = match camera.projection {
+        Projection::Perspective { near, far, .. } | Projection::Orthographic { near, far, .. } => (near, far),
+    };
+    for object in objects {
+        let eye_from_object = camera.eye_from_world() * object.world_from_object;
+        let clipped = object.mesh.positions.iter().any(|&p| {
+            let depth = -eye_from_object.transform_point3(p).z;
+            depth < near * 1.01 || depth > far * 0.99
+        });
+        if clipped && object.shading.unwrap_or(default) == ShadingMode::Gouraud {
+            Arc::make_mut(&mut object.mesh).diffuse_map = None;
+        }
+    }
+}
+
+/// The comparison: returns (compared, exact) or a description of the first
+/// pixel beyond the bound.
+fn compare(scene: &Scene) -> Result<(usize, usize), String> {
+    let truth = render_truth_with(scene, &TruthOptions { diagnostics: true });
+    let fast = render(scene, &RenderOptions::default()).0.to_rgb();
+    let reference = truth.quantized_rgb8();
+    let diagnostics = truth.diagnostics.as_ref().expect("diagnostics were asked for");
+    let (mut compared, mut exact) = (0, 0);
+    for (i, &d) in diagnostics.boundary_distance.iter().enumerate() {
+        if d < MARGIN {
+            continue;
+        }
+        compared += 1;
+        let (got, want) = (&fast[3 * i..3 * i + 3], &reference[3 * i..3 * i + 3]);
+        let exact_colour = truth.rgb[i].to_array();
+        for k in 0..3 {
+            let excess = (f64::from(got[k]) - exact_colour[k].clamp(0.0, 1.0) * 255.0).abs() - 0.5;
+            let sensitivity = f64::from(diagnostics.sensitivity[i]);
+            if excess > TOLERANCE + sensitivity {
+                let (x, y) = (i as u32 % truth.width, i as u32 / truth.width);
+                return Err(format!(
+                    "pixel ({x}, {y}): fast {got:?}, truth {want:?} (unquantized {}), {excess:.3} step \
+                     beyond rounding, boundary distance {d}, sensitivity {sensitivity}",
+                    truth.pixel(x, y) * 255.0
+                ));
+            }
+        }
+        exact += usize::from(got == want);
+    }
+    Ok((compared, exact))
+}
+
+/// 64 cases, or `ZLINE_TRUTH_CASES` for a longer search.
+fn cases() -> u32 {
+    std::env::var("ZLINE_TRUTH_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(64)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(cases()))]
+
+    #[test]
+    fn fast_renderer_is_within_the_bound_of_the_truth(scene in random_scene()) {
+        let (compared, exact) = compare(&scene).map_err(TestCaseError::fail)?;
+        let allowed = ((1.0 - EXACT_SHARE) * compared as f64).max(2.0);
+        prop_assert!((compared - exact) as f64 <= allowed, "{} of {compared} compared pixels inexact", compared - exact);
+    }
+}
