@@ -44,6 +44,9 @@
 //!   whose lobe matches a Beckmann/GGX lobe of width α (Walter et al.
 //!   2007); the clamp keeps a mirror-smooth surface from an infinite
 //!   exponent;
+//! - ke = emissiveFactor × KHR_materials_emissive_strength (default 1),
+//!   clamped to [0, 1] like every coefficient; an emissiveTexture is
+//!   warned about and ignored (the factor alone is used);
 //! - opacity = baseColorFactor.a for alphaMode BLEND, 1 otherwise (MASK
 //!   warns: the cutoff is not supported yet; texture alpha is not used);
 //! - back faces are culled unless the material is doubleSided, and only
@@ -73,8 +76,7 @@
 //! [`Light::Directional`] along the node's −z in world space. Spot → a
 //! point light, with a warning that the cone is ignored.
 //!
-//! **Warned and ignored:** COLOR_0, emission (emissiveFactor, -Texture and
-//! KHR_materials_emissive_strength), normal, occlusion and
+//! **Warned and ignored:** COLOR_0, emissive textures, normal, occlusion and
 //! metallic–roughness textures, alpha MASK, MIRRORED_REPEAT, primitive
 //! modes other than TRIANGLES, skins (drawn in the bind pose), morph
 //! targets (drawn without), animations (drawn at rest), extensions other
@@ -515,8 +517,8 @@ impl Loader<'_> {
         let name = material_name(material);
         let pbr = material.pbr_metallic_roughness();
         let mut ignored = Vec::new();
-        if material.emissive_factor() != [0.0; 3] || material.emissive_texture().is_some() {
-            ignored.push("emission");
+        if material.emissive_texture().is_some() {
+            ignored.push("emissive texture (emissiveFactor alone is used)");
         }
         if material.normal_texture().is_some() {
             ignored.push("normal texture");

@@ -274,7 +274,9 @@ fn unsupported_features_warn_and_still_load() {
     let path = quad_gltf(
         "unsupported",
         r#""extensionsUsed": ["KHR_texture_transform"],
-        "materials": [{"name": "glow", "emissiveFactor": [1, 0, 0], "alphaMode": "MASK"}],
+        "materials": [{"name": "glow", "emissiveFactor": [1, 0, 0], "emissiveTexture": {"index": 0},
+            "alphaMode": "MASK"}],
+        "textures": [{"source": 0}], "images": [{"uri": "never-read.png"}],
         "nodes": [{"mesh": 0}, {"mesh": 1}],
         "scenes": [{"nodes": [0, 1]}]"#,
     );
@@ -288,12 +290,13 @@ fn unsupported_features_warn_and_still_load() {
     edit(&path, r#""TEXCOORD_0": 1}"#, r#""TEXCOORD_0": 1, "COLOR_0": 0}"#);
     let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
     assert_eq!(scene.objects.len(), 1, "the lines are skipped");
+    assert_eq!(scene.objects[0].material().ke, Vec3::new(1.0, 0.0, 0.0), "the factor without the texture");
     let expected = [
         "extension 'KHR_texture_transform' is not supported",
         "mesh 'lines': primitive mode Lines is not supported; skipped",
         "skins are not supported",
         "mesh 'quad': vertex colours (COLOR_0) are not supported",
-        "material 'glow': emission not supported",
+        "material 'glow': emissive texture (emissiveFactor alone is used) not supported",
         "material 'glow': alphaMode MASK without a base colour texture is drawn opaque",
     ];
     assert_eq!(warnings.len(), expected.len(), "{warnings:?}");
@@ -303,6 +306,33 @@ fn unsupported_features_warn_and_still_load() {
             "{part:?} not in {warnings:?}"
         );
     }
+}
+
+#[test]
+fn emissive_factor_times_strength_becomes_ke() {
+    let path = quad_gltf(
+        "emissive",
+        r#""extensionsUsed": ["KHR_materials_emissive_strength"],
+        "materials": [
+            {"emissiveFactor": [0.25, 0.5, 0.125],
+             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 3}}},
+            {"emissiveFactor": [0.25, 0.5, 0.125]}
+        ],
+        "nodes": [{"mesh": 0}, {"mesh": 1}], "scenes": [{"nodes": [0, 1]}]"#,
+    );
+    edit(
+        &path,
+        r#""meshes": ["#,
+        r#""meshes": [{"name": "plain", "primitives": [{"attributes": {"POSITION": 0}, "indices": 2, "material": 1}]}, "#,
+    );
+    edit(&path, r#""nodes": [{"mesh": 0}, {"mesh": 1}]"#, r#""nodes": [{"mesh": 1}, {"mesh": 0}]"#);
+    let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    // × 3 gives (0.75, 1.5, 0.375); ke is clamped to [0, 1] like every coefficient.
+    assert_eq!(scene.objects[0].material().ke, Vec3::new(0.75, 1.0, 0.375));
+    assert_eq!(scene.objects[1].material().ke, Vec3::new(0.25, 0.5, 0.125), "no strength: the factor");
+    let plain = load_gltf(&repo("assets/gltf/Box/glTF-Binary/Box.glb")).unwrap();
+    assert_eq!(plain.objects[0].material().ke, Vec3::ZERO, "no emissiveFactor: no emission");
 }
 
 /// The quad with a base colour texture whose image is `uri`.
