@@ -47,8 +47,13 @@
 //! - ke = emissiveFactor × KHR_materials_emissive_strength (default 1),
 //!   clamped to [0, 1] like every coefficient; an emissiveTexture is
 //!   warned about and ignored (the factor alone is used);
-//! - opacity = baseColorFactor.a for alphaMode BLEND, 1 otherwise (MASK
-//!   warns: the cutoff is not supported yet; texture alpha is not used);
+//! - opacity = baseColorFactor.a for alphaMode BLEND, 1 otherwise. MASK
+//!   with a base colour texture discards samples whose texel alpha is below
+//!   alphaCutoff (default 0.5; see [`TextureMap::alpha_cutoff`]); without
+//!   one (none given, or the texture could not be used) the constant
+//!   alpha baseColorFactor.a decides for the whole primitive: below the
+//!   cutoff it draws nothing and is left out (a file whose every primitive
+//!   is left out so has no triangles, an error), otherwise it is opaque;
 //! - back faces are culled unless the material is doubleSided, and only
 //!   on closed opaque meshes (the rule of bare OBJ models).
 //!
@@ -77,7 +82,7 @@
 //! point light, with a warning that the cone is ignored.
 //!
 //! **Warned and ignored:** COLOR_0, emissive textures, normal, occlusion and
-//! metallic–roughness textures, alpha MASK, MIRRORED_REPEAT, primitive
+//! metallic–roughness textures, MIRRORED_REPEAT, primitive
 //! modes other than TRIANGLES, skins (drawn in the bind pose), morph
 //! targets (drawn without), animations (drawn at rest), extensions other
 //! than the two above, light ranges and spot cones, a node reached twice
@@ -346,13 +351,21 @@ impl Loader<'_> {
             built = built.with_uvs(uvs).map_err(mesh_error)?;
         }
         self.warn_about_material(&material);
+        let cutoff = material.alpha_cutoff().unwrap_or(0.5);
         if let Some(info) = base_color {
             let alpha = match material.alpha_mode() {
                 gltf::material::AlphaMode::Blend => (true, None),
-                gltf::material::AlphaMode::Mask => (false, Some(material.alpha_cutoff().unwrap_or(0.5))),
+                gltf::material::AlphaMode::Mask => (false, Some(cutoff)),
                 gltf::material::AlphaMode::Opaque => (false, None),
             };
             built = self.attach_base_color(built, &info, uv_set, alpha)?;
+        }
+        if material.alpha_mode() == gltf::material::AlphaMode::Mask && built.diffuse_map.is_none() {
+            // MASK on the constant alpha: every sample has the factor's alpha.
+            let alpha = material.pbr_metallic_roughness().base_color_factor()[3];
+            if alpha < cutoff {
+                return Ok(None);
+            }
         }
         let cull = !material.double_sided() && default_culling(&built, built.material.opacity);
         Ok(Some((built, cull)))
@@ -531,13 +544,6 @@ impl Loader<'_> {
         }
         if !ignored.is_empty() {
             self.warn(format!("material '{name}': {} not supported; ignored", ignored.join(", ")));
-        }
-        if material.alpha_mode() == gltf::material::AlphaMode::Mask
-            && material.pbr_metallic_roughness().base_color_texture().is_none()
-        {
-            self.warn(format!(
-                "material '{name}': alphaMode MASK without a base colour texture is drawn opaque"
-            ));
         }
     }
 

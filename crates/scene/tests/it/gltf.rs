@@ -297,7 +297,6 @@ fn unsupported_features_warn_and_still_load() {
         "skins are not supported",
         "mesh 'quad': vertex colours (COLOR_0) are not supported",
         "material 'glow': emissive texture (emissiveFactor alone is used) not supported",
-        "material 'glow': alphaMode MASK without a base colour texture is drawn opaque",
     ];
     assert_eq!(warnings.len(), expected.len(), "{warnings:?}");
     for part in expected {
@@ -306,6 +305,40 @@ fn unsupported_features_warn_and_still_load() {
             "{part:?} not in {warnings:?}"
         );
     }
+}
+
+#[test]
+fn mask_without_a_texture_applies_to_the_constant_alpha() {
+    // Material 0: alpha 0.3 below the default cutoff 0.5 → the quad draws
+    // nothing. Material 1: the same alpha over a cutoff of 0.25 → opaque.
+    // Material 2: a base colour texture whose image is missing, alpha 0.3
+    // → drawn untextured, so the constant alpha decides: nothing.
+    let path = quad_gltf(
+        "mask",
+        r#""materials": [
+            {"name": "hidden", "alphaMode": "MASK", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 0.3]}},
+            {"name": "shown", "alphaMode": "MASK", "alphaCutoff": 0.25,
+             "pbrMetallicRoughness": {"baseColorFactor": [0, 1, 0, 0.3]}},
+            {"name": "lost", "alphaMode": "MASK",
+             "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 1, 0.3], "baseColorTexture": {"index": 0}}}
+        ],
+        "textures": [{"source": 0}], "images": [{"uri": "missing.png"}],
+        "nodes": [{"mesh": 0}, {"mesh": 1}, {"mesh": 2}], "scenes": [{"nodes": [0, 1, 2]}]"#,
+    );
+    let quad_with = |m: u32| {
+        format!(
+            r#"{{"name": "q{m}", "primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1}}, "indices": 2, "material": {m}}}]}}, "#
+        )
+    };
+    edit(&path, r#""meshes": ["#, &format!(r#""meshes": [{}{}"#, quad_with(1), quad_with(2)));
+    let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    check_message(&warnings[0], &["missing.png"]);
+    let names: Vec<&str> = scene.objects.iter().map(|o| o.mesh.name.as_str()).collect();
+    assert_eq!(names, ["q1"], "only the material whose alpha reaches its cutoff is drawn");
+    let m = scene.objects[0].material();
+    assert_eq!((m.kd, m.opacity), (Vec3::new(0.0, 1.0, 0.0), 1.0), "drawn opaque");
+    assert!(scene.objects[0].mesh.diffuse_map.is_none());
 }
 
 #[test]
