@@ -9,3 +9,4 @@ mod lit_square;
 mod support;
 mod texture;
 mod transparency;
+mod vertex_colors;

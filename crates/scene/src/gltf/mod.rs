@@ -81,7 +81,12 @@
 //! [`Light::Directional`] along the node's −z in world space. Spot → a
 //! point light, with a warning that the cone is ignored.
 //!
-//! **Warned and ignored:** COLOR_0, emissive textures, normal, occlusion and
+//! Vertex colours: COLOR_0 (RGB; an alpha below 1 is warned about and
+//! ignored) becomes [`Mesh::colors`], a per-vertex factor on kd and ka as
+//! glTF's base colour multiplication prescribes (applied by flat and
+//! Gouraud shading; Phong shading does not apply it yet).
+//!
+//! **Warned and ignored:** COLOR_0 alpha, emissive textures, normal, occlusion and
 //! metallic–roughness textures, MIRRORED_REPEAT, primitive
 //! modes other than TRIANGLES, skins (drawn in the bind pose), morph
 //! targets (drawn without), animations (drawn at rest), extensions other
@@ -327,9 +332,6 @@ impl Loader<'_> {
         if primitive.morph_targets().len() > 0 {
             self.warn(format!("mesh '{name}': morph targets are not supported; drawn without them"));
         }
-        if primitive.get(&gltf::Semantic::Colors(0)).is_some() {
-            self.warn(format!("mesh '{name}': vertex colours (COLOR_0) are not supported; ignored"));
-        }
         let Some(positions) = self.read_positions(primitive, &name)? else {
             self.warn(format!("mesh '{name}': primitive has no POSITION; skipped"));
             return Ok(None);
@@ -349,6 +351,9 @@ impl Loader<'_> {
             .map_err(mesh_error)?;
         if let Some(uvs) = uvs {
             built = built.with_uvs(uvs).map_err(mesh_error)?;
+        }
+        if let Some(colors) = self.read_colors(primitive, &name)? {
+            built = built.with_colors(colors).map_err(mesh_error)?;
         }
         self.warn_about_material(&material);
         let cutoff = material.alpha_cutoff().unwrap_or(0.5);
@@ -397,6 +402,26 @@ impl Loader<'_> {
         let normals: Vec<Vec3> = read.map(|it| it.map(Vec3::from).collect()).unwrap_or_default();
         self.check_count(&accessor, name, "NORMAL", normals.len())?;
         Ok((normals.len() == vertices).then_some(normals))
+    }
+
+    /// COLOR_0 as RGB; a warning when some alpha is below 1 (not used).
+    fn read_colors(
+        &mut self,
+        primitive: &gltf::Primitive,
+        name: &str,
+    ) -> Result<Option<Vec<Vec3>>, SceneError> {
+        let Some(accessor) = primitive.get(&gltf::Semantic::Colors(0)) else { return Ok(None) };
+        let types = [Dimensions::Vec3, Dimensions::Vec4]
+            .into_iter()
+            .flat_map(|d| [DataType::F32, DataType::U8, DataType::U16].map(|t| (d, t)));
+        self.check_accessor(&accessor, name, "COLOR_0", &types.collect::<Vec<_>>())?;
+        let read = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice)).read_colors(0);
+        let rgba: Vec<[f32; 4]> = read.map(|r| r.into_rgba_f32().collect()).unwrap_or_default();
+        self.check_count(&accessor, name, "COLOR_0", rgba.len())?;
+        if rgba.iter().any(|c| c[3] < 1.0) {
+            self.warn(format!("mesh '{name}': vertex colour (COLOR_0) alpha is not supported; ignored"));
+        }
+        Ok(Some(rgba.iter().map(|&[r, g, b, _]| Vec3::new(r, g, b)).collect()))
     }
 
     /// Texture coordinates of a set, flipped to t = 1 − v.

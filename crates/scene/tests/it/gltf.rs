@@ -291,11 +291,12 @@ fn unsupported_features_warn_and_still_load() {
     let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
     assert_eq!(scene.objects.len(), 1, "the lines are skipped");
     assert_eq!(scene.objects[0].material().ke, Vec3::new(1.0, 0.0, 0.0), "the factor without the texture");
+    let corners = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
+    assert_eq!(scene.objects[0].mesh.colors, corners, "COLOR_0 read from the POSITION accessor");
     let expected = [
         "extension 'KHR_texture_transform' is not supported",
         "mesh 'lines': primitive mode Lines is not supported; skipped",
         "skins are not supported",
-        "mesh 'quad': vertex colours (COLOR_0) are not supported",
         "material 'glow': emissive texture (emissiveFactor alone is used) not supported",
     ];
     assert_eq!(warnings.len(), expected.len(), "{warnings:?}");
@@ -339,6 +340,24 @@ fn mask_without_a_texture_applies_to_the_constant_alpha() {
     let m = scene.objects[0].material();
     assert_eq!((m.kd, m.opacity), (Vec3::new(0.0, 1.0, 0.0), 1.0), "drawn opaque");
     assert!(scene.objects[0].mesh.diffuse_map.is_none());
+}
+
+#[test]
+fn vertex_color_test_reads_color_0_as_rgb() {
+    let (scene, warnings) =
+        load_gltf_with_warnings(&repo("assets/gltf/VertexColorTest/glTF-Binary/VertexColorTest.glb"))
+            .unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let test = scene.objects.iter().find(|o| o.mesh.name.starts_with("VertexColorTestMesh")).unwrap();
+    let label = scene.objects.iter().find(|o| o.mesh.name.starts_with("LabelMesh")).unwrap();
+    assert!(label.mesh.colors.is_empty(), "no COLOR_0, no colours");
+    assert_eq!(test.mesh.colors.len(), test.mesh.vertex_count());
+    // The test row is tinted pure red, green and blue, the reference row
+    // white (the file's backing panel has greys near 0.5 and 1 too).
+    for c in [Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE, Vec3::splat(0.501_960_8)] {
+        assert!(test.mesh.colors.contains(&c), "{c} missing from {:?}", test.mesh.colors);
+    }
+    assert!(test.mesh.colors.iter().all(|c| c.cmpge(Vec3::ZERO).all() && c.cmple(Vec3::ONE).all()));
 }
 
 #[test]
