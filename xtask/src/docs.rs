@@ -43,7 +43,14 @@ pub(crate) fn floor(texture: Arc<Texture>, filter: Filter, far: f32, half: f32) 
     ];
     let repeat = CELLS as f32;
     let uvs = positions.iter().map(|p| Vec2::new(p.x / repeat, -p.z / repeat)).collect();
-    let unlit = Material { ka: Vec3::ONE, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0 };
+    let unlit = Material {
+        ka: Vec3::ONE,
+        kd: Vec3::ZERO,
+        ks: Vec3::ZERO,
+        ns: 1.0,
+        opacity: 1.0,
+        ..Material::default()
+    };
     let mesh = Mesh::new("floor", positions, None, vec![[0, 1, 2], [0, 2, 3]], unlit)?.with_uvs(uvs)?;
     let sampler = Sampler { filter, wrap_s: Wrap::Repeat, wrap_t: Wrap::Repeat };
     Ok(mesh.with_diffuse_map(TextureMap { texture, sampler, alpha_blend: false, alpha_cutoff: None }))

@@ -139,6 +139,7 @@ impl Renderer {
                 texture,
                 orthographic: matches!(scene.camera.projection, Projection::Orthographic { .. }),
                 blend_texture_alpha: texture.is_some_and(|t| textures[t as usize].alpha_blend),
+                vertex_colors: !object.mesh.colors.is_empty(),
             };
             let transforms = ObjectTransforms::new(clip_from_eye, eye_from_world, object.world_from_object);
             self.setup_object(&object.mesh, &transforms, &ctx);
@@ -206,8 +207,9 @@ impl Renderer {
     /// in mesh order.
     fn setup_object(&mut self, mesh: &Mesh, transforms: &ObjectTransforms, ctx: &SetupContext<'_>) {
         let lighting = match ctx.shading {
-            // Textured Gouraud lights its (clipped) vertices in setup, in parts.
-            ShadingMode::Gouraud if ctx.texture.is_none() => {
+            // Textured Gouraud lights its (clipped) vertices in setup, in
+            // parts, and so does Gouraud with vertex colours (in `color`).
+            ShadingMode::Gouraud if ctx.texture.is_none() && !ctx.vertex_colors => {
                 VertexLighting::Gouraud(ctx.lighting, ctx.material.0)
             }
             _ => VertexLighting::None,

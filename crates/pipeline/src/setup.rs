@@ -191,6 +191,11 @@ pub struct SetupContext<'a> {
     /// True for an orthographic projection (the viewer looks along −z
     /// everywhere), false for a perspective one (the viewer is at the origin).
     pub orthographic: bool,
+    /// True when the mesh has vertex colours: [`ClipVertex::color`] holds
+    /// them, a factor on ka and kd like a texel, applied by flat shading
+    /// (their mean at the centroid) and Gouraud shading (lit here in setup,
+    /// per vertex). Phong shading does not apply them yet.
+    pub vertex_colors: bool,
 }
 
 /// Sets up one triangle (vertices in the mesh's order) and appends 0 or more
@@ -273,7 +278,22 @@ fn flat_parts(tri: &[&ClipVertex; 3], back: bool, ctx: &SetupContext<'_>) -> Lit
         normal = -normal;
     }
     let centroid = ((p[0] + p[1] + p[2]) / 3.0).as_vec3();
-    ctx.lighting.shade_parts(ctx.material.0, centroid, normal, Vec3::ZERO)
+    let mut parts = ctx.lighting.shade_parts(ctx.material.0, centroid, normal, Vec3::ZERO);
+    if ctx.vertex_colors {
+        parts.ambient_diffuse *= (tri[0].color + tri[1].color + tri[2].color) / 3.0;
+    }
+    parts
+}
+
+/// The ambient+diffuse and specular parts at a vertex (Gouraud in setup),
+/// the former multiplied by the vertex colour when the mesh has them.
+#[inline]
+fn vertex_parts(v: &ClipVertex, ctx: &SetupContext<'_>) -> LitParts {
+    let mut parts = ctx.lighting.shade_parts(ctx.material.0, v.eye, v.normal, Vec3::ZERO);
+    if ctx.vertex_colors {
+        parts.ambient_diffuse *= v.color;
+    }
+    parts
 }
 
 /// True when the triangle's front (counter-clockwise) side faces away from
@@ -290,7 +310,9 @@ fn seen_from_behind(tri: &[&ClipVertex; 3], orthographic: bool) -> bool {
 fn turned(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
     let normal = -v.normal;
     let color = match (ctx.shading, ctx.texture) {
-        (ShadingMode::Gouraud, None) => ctx.lighting.shade(ctx.material.0, v.eye, normal, Vec3::ZERO),
+        (ShadingMode::Gouraud, None) if !ctx.vertex_colors => {
+            ctx.lighting.shade(ctx.material.0, v.eye, normal, Vec3::ZERO)
+        }
         _ => v.color,
     };
     ClipVertex { normal, color, ..*v }
@@ -357,7 +379,8 @@ fn untextured(
         ShadingMode::Flat => Shader::Flat { color: flat },
         ShadingMode::Gouraud => {
             let v = std::array::from_fn(|k| {
-                let c = tri[k].color * q[k];
+                let lit = if ctx.vertex_colors { vertex_parts(tri[k], ctx).color() } else { tri[k].color };
+                let c = lit * q[k];
                 [q[k], c.x, c.y, c.z]
             });
             Shader::Gouraud { planes: AttributePlanes::new(basis, v) }
@@ -391,7 +414,7 @@ fn textured(
         ShadingMode::Gouraud => (
             TexturedKind::Gouraud,
             tri.map(|v| {
-                let parts = ctx.lighting.shade_parts(ctx.material.0, v.eye, v.normal, Vec3::ZERO);
+                let parts = vertex_parts(v, ctx);
                 [parts.ambient_diffuse, parts.specular]
             }),
         ),

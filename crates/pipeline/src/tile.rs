@@ -418,18 +418,12 @@ impl TileTarget {
                 let (sx, tx) = (d(dx[1], dx[0], s) * fw, d(dx[2], dx[0], tt) * fh);
                 let (sy, ty) = (d(dy[1], dy[0], s) * fw, d(dy[2], dy[0], tt) * fh);
                 let footprint = (sx * sx + tx * tx).max(sy * sy + ty * ty);
-                (f32x8::splat(0.5) * footprint.log2()).to_array()
+                f32x8::splat(0.5) * footprint.log2()
             } else {
-                [0.0; LANES]
+                f32x8::ZERO
             };
-            let (s, tt) = (s.to_array(), tt.to_array());
-            let texels: [glam::Vec4; LANES] =
-                std::array::from_fn(|k| map.texture.sample(&map.sampler, s[k], tt[k], lods[k]));
-            let texel = Vec3x8 {
-                x: f32x8::from(texels.map(|c| c.x)),
-                y: f32x8::from(texels.map(|c| c.y)),
-                z: f32x8::from(texels.map(|c| c.z)),
-            };
+            let [r, g, b, texel_alpha] = map.texture.sample_x8(&map.sampler, s, tt, lods);
+            let texel = Vec3x8 { x: r, y: g, z: b };
             let pair = |i: usize| Vec3x8 { x: a[i] * inv, y: a[i + 1] * inv, z: a[i + 2] * inv };
             let (ambient_diffuse, specular) = match kind {
                 TexturedKind::Flat { ambient_diffuse, specular } => {
@@ -440,7 +434,7 @@ impl TileTarget {
                     lighting.shade_parts_x8(material, pair(6), pair(3).normalize_or_zero())
                 }
             };
-            let alpha = if blend_alpha { f32x8::from(texels.map(|c| c.w)) } else { f32x8::ONE };
+            let alpha = if blend_alpha { texel_alpha } else { f32x8::ONE };
             ((texel * ambient_diffuse + specular).clamp01(), alpha)
         })
     }

@@ -17,8 +17,9 @@ use zline_shading::{PreparedLights, PreparedMaterial, Vec3x8};
 /// Vertices per rayon task: big enough that scheduling costs nothing.
 const VERTEX_CHUNK: usize = 4096;
 
-/// One transformed vertex. `color` is the lit colour for Gouraud objects and
-/// zero otherwise. The vertex stage also classifies it against the view
+/// One transformed vertex. `color` is the lit colour for Gouraud objects
+/// lit here, the mesh's vertex colour for meshes that have them (lit in
+/// setup), and zero otherwise. The vertex stage also classifies it against the view
 /// volume and the clipping planes and, when it needs no clipping, divides
 /// and snaps it once here instead of once per triangle that uses it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -29,7 +30,8 @@ pub struct ClipVertex {
     pub eye: Vec3,
     /// Unit eye-space normal (zero when the normal matrix is singular).
     pub normal: Vec3,
-    /// Lit colour (Gouraud only), clamped to [0, 1].
+    /// Lit colour (Gouraud lit by the vertex stage), clamped to [0, 1]; or
+    /// the vertex colour ([`zline_scene::Mesh::colors`]).
     pub color: Vec3,
     /// Texture coordinates (zero for meshes without them).
     pub uv: glam::Vec2,
@@ -125,6 +127,11 @@ pub fn transform_mesh(
         if let Some(uvs) = mesh.uvs.get(start..start + out.len()) {
             for (v, &uv) in out.iter_mut().zip(uvs) {
                 v.uv = uv;
+            }
+        }
+        if let Some(colors) = mesh.colors.get(start..start + out.len()) {
+            for (v, &c) in out.iter_mut().zip(colors) {
+                v.color = c;
             }
         }
         if let VertexLighting::Gouraud(lights, material) = lighting {

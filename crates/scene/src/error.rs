@@ -62,6 +62,22 @@ pub enum MeshError {
         /// t.
         t: f32,
     },
+    /// The vertex colour array does not have one entry per vertex.
+    #[error("{colors} vertex colours given for {positions} vertices")]
+    ColorCount {
+        /// Number of colours.
+        colors: usize,
+        /// Number of positions.
+        positions: usize,
+    },
+    /// A vertex colour is NaN or infinite.
+    #[error("vertex {vertex} has non-finite colour {color}")]
+    NonFiniteColor {
+        /// Index of the vertex.
+        vertex: usize,
+        /// The colour.
+        color: glam::Vec3,
+    },
 }
 
 /// An error while loading a model or scene file.

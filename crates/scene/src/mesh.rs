@@ -57,6 +57,7 @@ impl Mesh {
             triangles,
             material,
             uvs: Vec::new(),
+            colors: Vec::new(),
             diffuse_map: None,
         })
     }
@@ -72,6 +73,20 @@ impl Mesh {
             return Err(MeshError::NonFiniteUv { vertex, s: t.x, t: t.y });
         }
         self.uvs = uvs;
+        Ok(self)
+    }
+
+    /// The same mesh with vertex colours, one per position, each a factor
+    /// on ka and kd (see [`Mesh::colors`]). Errors when the count differs or
+    /// a colour is not finite.
+    pub fn with_colors(mut self, colors: Vec<Vec3>) -> Result<Mesh, MeshError> {
+        if colors.len() != self.positions.len() {
+            return Err(MeshError::ColorCount { colors: colors.len(), positions: self.positions.len() });
+        }
+        if let Some(vertex) = colors.iter().position(|c| !c.is_finite()) {
+            return Err(MeshError::NonFiniteColor { vertex, color: colors[vertex] });
+        }
+        self.colors = colors;
         Ok(self)
     }
 

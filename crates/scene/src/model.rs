@@ -43,6 +43,12 @@ pub struct Mesh {
     /// Texture coordinates (s, t), one per position, or empty when the mesh
     /// has none (SPEC §7: t = 0 at the bottom of the image).
     pub uvs: Vec<Vec2>,
+    /// Vertex colours (RGB), one per position, or empty when the mesh has
+    /// none. Like a texel, a vertex colour multiplies ka and kd (glTF
+    /// COLOR_0 multiplies the base colour), not ks or ke; it is applied
+    /// with flat shading (the mean of the three corners, at the centroid)
+    /// and Gouraud shading (at the vertices), and not yet with Phong shading.
+    pub colors: Vec<Vec3>,
     /// The diffuse texture, if any; used only when `uvs` is not empty.
     pub diffuse_map: Option<TextureMap>,
 }

@@ -17,7 +17,7 @@
 //! to vertices defined earlier in the file, as the OBJ format says.
 //!
 //! Materials come from the MTL files named by `mtllib`, relative to the OBJ
-//! file: `Ka`, `Kd`, `Ks`, `Ns`, `d` (opacity) or else `Tr` (opacity =
+//! file: `Ka`, `Kd`, `Ks`, `Ke` (emission), `Ns`, `d` (opacity) or else `Tr` (opacity =
 //! 1 − Tr), sanitized to their valid ranges. A missing `Ka` is taken equal
 //! to `Kd`; other missing keys take [`Material::DEFAULT`]'s values. A
 //! missing or broken MTL file, or an unknown `usemtl` name, is not an error:
@@ -292,6 +292,7 @@ fn material_from_mtl(m: &tobj::Material) -> Material {
     let tr = m.unknown_param.get("Tr").and_then(|v| v.split_whitespace().next()?.parse::<f32>().ok());
     let opacity = m.dissolve.or(tr.map(|t| 1.0 - t)).unwrap_or(1.0);
     Material {
+        ke: m.emissive.map_or(d.ke, Vec3::from),
         ka: m.ambient.map_or(kd, Vec3::from),
         kd,
         ks: m.specular.map_or(d.ks, Vec3::from),
@@ -621,11 +622,14 @@ mod tests {
         assert_eq!(mat.ks, Material::DEFAULT.ks);
         assert_eq!(mat.ns, 64.0);
         assert_eq!(mat.opacity, 0.75);
+        assert_eq!(mat.ke, Vec3::ZERO, "no Ke, no emission");
         m.dissolve = Some(0.5);
         m.specular = Some([2.0, f32::NAN, 0.5]);
+        m.emissive = Some([0.1, 3.0, -1.0]);
         let mat = material_from_mtl(&m);
         assert_eq!(mat.opacity, 0.5, "d wins over Tr");
         assert_eq!(mat.ks, Vec3::new(1.0, 0.0, 0.5), "sanitized");
+        assert_eq!(mat.ke, Vec3::new(0.1, 1.0, 0.0), "Ke, sanitized");
     }
 
     proptest::proptest! {

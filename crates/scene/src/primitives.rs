@@ -138,6 +138,7 @@ fn primitive(name: &str, positions: Vec<Vec3>, normals: Vec<Vec3>, triangles: Ve
         triangles,
         material: Material::DEFAULT,
         uvs: Vec::new(),
+        colors: Vec::new(),
         diffuse_map: None,
     }
 }

@@ -5,6 +5,11 @@ use glam::Vec3;
 /// Coefficients of the lighting model for one surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {
+    /// Emission coefficient ke (RGB, in [0, 1]): light the surface gives
+    /// off by itself, added to the lit colour before the clamp,
+    /// I = ke + ka·Ia + … (glTF `emissiveFactor`, MTL `Ke`). A texture does
+    /// not modulate it.
+    pub ke: Vec3,
     /// Ambient reflection coefficient ka (RGB, in [0, 1]).
     pub ka: Vec3,
     /// Diffuse reflection coefficient kd (RGB, in [0, 1]).
@@ -19,12 +24,19 @@ pub struct Material {
 
 impl Material {
     /// A matte grey material, the default for models without an MTL file.
-    pub const DEFAULT: Material =
-        Material { ka: Vec3::splat(0.8), kd: Vec3::splat(0.8), ks: Vec3::splat(0.2), ns: 32.0, opacity: 1.0 };
+    pub const DEFAULT: Material = Material {
+        ke: Vec3::ZERO,
+        ka: Vec3::splat(0.8),
+        kd: Vec3::splat(0.8),
+        ks: Vec3::splat(0.2),
+        ns: 32.0,
+        opacity: 1.0,
+    };
 
-    /// A material with ka = kd = `color`, the given specular and shininess.
+    /// A material with ka = kd = `color`, the given specular and shininess,
+    /// no emission.
     pub fn plastic(color: Vec3, ks: f32, ns: f32) -> Material {
-        Material { ka: color, kd: color, ks: Vec3::splat(ks), ns, opacity: 1.0 }
+        Material { ke: Vec3::ZERO, ka: color, kd: color, ks: Vec3::splat(ks), ns, opacity: 1.0 }
     }
 
     /// True when the specular term contributes nothing for any light.
@@ -41,7 +53,7 @@ impl Material {
         };
         let ns = if self.ns.is_finite() { self.ns.max(0.0) } else { 1.0 };
         let opacity = if self.opacity.is_nan() { 1.0 } else { self.opacity.clamp(0.0, 1.0) };
-        Material { ka: c(self.ka), kd: c(self.kd), ks: c(self.ks), ns, opacity }
+        Material { ke: c(self.ke), ka: c(self.ka), kd: c(self.kd), ks: c(self.ks), ns, opacity }
     }
 }
 

@@ -1,8 +1,12 @@
 //! The basic lighting model, evaluated at one point (SPEC §5):
 //!
 //! ```text
-//! I = ka·Ia + Σ_i f(d_i) · Il_i · [ kd·max(0, N·L_i) + ks·max(0, N·H_i)^ns ]
+//! I = ke + ka·Ia + Σ_i f(d_i) · Il_i · [ kd·max(0, N·L_i) + ks·max(0, N·H_i)^ns ]
 //! ```
+//!
+//! ke is the material's emission (glTF `emissiveFactor`, MTL `Ke`; 0 by
+//! default). A texture modulates ka and kd only (SPEC §7), so ke travels
+//! with the specular term in the part a texel does not multiply.
 //!
 //! with a local viewer, the Blinn half-way vector, and no specular term where
 //! N·L ≤ 0. The result is clamped to [0, 1] per channel.
@@ -21,12 +25,13 @@ pub struct LightingModel {
 }
 
 /// The two parts of the lit colour, kept apart so a texture can modulate the
-/// first and not the second (SPEC §7). Neither part is clamped.
+/// first and not the second (SPEC §7). Neither part is clamped. Emission,
+/// which no texture modulates, is in the second.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LitParts {
     /// ka·Ia + Σ f·Il·kd·max(0, N·L).
     pub ambient_diffuse: Vec3,
-    /// Σ f·Il·ks·max(0, N·H)^ns.
+    /// ke + Σ f·Il·ks·max(0, N·H)^ns: the emission and the specular term.
     pub specular: Vec3,
 }
 
@@ -91,7 +96,7 @@ impl LightingModel {
         }
         LitParts {
             ambient_diffuse: material.ka * self.ambient + material.kd * diffuse,
-            specular: material.ks * specular,
+            specular: material.ke + material.ks * specular,
         }
     }
 }
@@ -116,8 +121,14 @@ mod tests {
     #[test]
     fn head_on_point_light_gives_kd_plus_ks() {
         // N = L = V = H = +z: N·L = N·H = 1, so I = kd + ks (before clamping).
-        let m =
-            Material { ka: Vec3::ZERO, kd: Vec3::splat(0.5), ks: Vec3::splat(0.25), ns: 10.0, opacity: 1.0 };
+        let m = Material {
+            ka: Vec3::ZERO,
+            kd: Vec3::splat(0.5),
+            ks: Vec3::splat(0.25),
+            ns: 10.0,
+            opacity: 1.0,
+            ..Material::default()
+        };
         let model = white_point(Vec3::new(0.0, 0.0, 2.0), Attenuation::NONE);
         let parts = model.shade_parts(&m, Vec3::ZERO, Vec3::Z, Vec3::new(0.0, 0.0, 5.0));
         check_close(parts.ambient_diffuse, Vec3::splat(0.5));
@@ -142,7 +153,14 @@ mod tests {
 
     #[test]
     fn directional_light_uses_minus_direction() {
-        let m = Material { ka: Vec3::ZERO, kd: Vec3::ONE, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0 };
+        let m = Material {
+            ka: Vec3::ZERO,
+            kd: Vec3::ONE,
+            ks: Vec3::ZERO,
+            ns: 1.0,
+            opacity: 1.0,
+            ..Material::default()
+        };
         let model = LightingModel {
             ambient: Vec3::splat(0.1),
             lights: vec![Light::Directional { direction: Vec3::new(0.0, -1.0, -1.0), color: Vec3::ONE }],

@@ -183,7 +183,10 @@ impl PreparedLights {
         }
         let (diffuse, specular) = (sum.diffuse, sum.specular);
         let mat = &m.material;
-        LitParts { ambient_diffuse: mat.ka * self.ambient + mat.kd * diffuse, specular: mat.ks * specular }
+        LitParts {
+            ambient_diffuse: mat.ka * self.ambient + mat.kd * diffuse,
+            specular: mat.ke + mat.ks * specular,
+        }
     }
 
     /// Ambient light Ia.
@@ -249,7 +252,7 @@ mod tests {
                     Light::Directional { direction: dir * 3.0, color: Vec3::new(0.3, 0.6, 0.9) },
                 ],
             };
-            let m = Material { ka: Vec3::splat(0.2), kd: Vec3::new(0.9, 0.5, 0.1), ks: Vec3::splat(0.7), ns, opacity: 1.0 };
+            let m = Material { ke: Vec3::new(0.05, 0.0, 0.1), ka: Vec3::splat(0.2), kd: Vec3::new(0.9, 0.5, 0.1), ks: Vec3::splat(0.7), ns, opacity: 1.0 };
             let plain = model.shade_parts(&m, p, n, eye);
             let prepared = PreparedLights::new(&model, &Mat4::IDENTITY).shade_parts(&PreparedMaterial::new(m), p, n, eye);
             let err = (plain.ambient_diffuse - prepared.ambient_diffuse).abs().max_element()

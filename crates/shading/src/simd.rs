@@ -152,7 +152,8 @@ impl PreparedLights {
         let mat = &m.material;
         let ambient_diffuse =
             Vec3x8::splat(mat.ka * self.ambient()).add(Vec3x8::splat(mat.kd).mul(sum.diffuse));
-        (ambient_diffuse, Vec3x8::splat(mat.ks).mul(sum.specular))
+        let specular = Vec3x8::splat(mat.ke).add(Vec3x8::splat(mat.ks).mul(sum.specular));
+        (ambient_diffuse, specular)
     }
 }
 
@@ -225,7 +226,8 @@ mod tests {
         };
         let lights = PreparedLights::new(&model, &Mat4::IDENTITY);
         for ns in [1.0, 20.0, 64.0, 7.5] {
-            let m = PreparedMaterial::new(Material::plastic(Vec3::new(0.7, 0.4, 0.2), 0.6, ns));
+            let plastic = Material::plastic(Vec3::new(0.7, 0.4, 0.2), 0.6, ns);
+            let m = PreparedMaterial::new(Material { ke: Vec3::new(0.05, 0.1, 0.3), ..plastic });
             let mut points = [Vec3::ZERO; 8];
             let mut normals = [Vec3::ZERO; 8];
             for k in 0..8 {

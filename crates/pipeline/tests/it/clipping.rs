@@ -45,7 +45,14 @@ fn oracle(tri: &[DVec3; 3], i: u32, j: u32) -> Option<bool> {
 
 #[track_caller]
 fn check_clipped(tri: [DVec3; 3]) {
-    let white = Material { ka: Vec3::ONE, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0 };
+    let white = Material {
+        ka: Vec3::ONE,
+        kd: Vec3::ZERO,
+        ks: Vec3::ZERO,
+        ns: 1.0,
+        opacity: 1.0,
+        ..Material::default()
+    };
     let p = tri.map(|v| v.as_vec3()).to_vec();
     let mut o = object(mesh(p, vec![Vec3::Z; 3], vec![[0, 1, 2]], white), Some(ShadingMode::Flat));
     o.cull_back_faces = false;
@@ -85,7 +92,14 @@ fn triangle_crossing_near_and_far_planes() {
 
 #[test]
 fn triangle_entirely_behind_the_eye_draws_nothing() {
-    let white = Material { ka: Vec3::ONE, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0 };
+    let white = Material {
+        ka: Vec3::ONE,
+        kd: Vec3::ZERO,
+        ks: Vec3::ZERO,
+        ns: 1.0,
+        opacity: 1.0,
+        ..Material::default()
+    };
     let p = vec![Vec3::new(-1.0, -1.0, 3.0), Vec3::new(1.0, -1.0, 3.0), Vec3::new(0.0, 1.0, 3.0)];
     let mut o = object(mesh(p, vec![Vec3::Z; 3], vec![[0, 1, 2]], white), None);
     o.cull_back_faces = false;
@@ -95,7 +109,14 @@ fn triangle_entirely_behind_the_eye_draws_nothing() {
 
 #[test]
 fn non_finite_and_huge_vertices_never_panic() {
-    let white = Material { ka: Vec3::ONE, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0 };
+    let white = Material {
+        ka: Vec3::ONE,
+        kd: Vec3::ZERO,
+        ks: Vec3::ZERO,
+        ns: 1.0,
+        opacity: 1.0,
+        ..Material::default()
+    };
     let p = vec![
         Vec3::new(f32::NAN, 0.0, -2.0),
         Vec3::new(1.0, 0.0, -2.0),

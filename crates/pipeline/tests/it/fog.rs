@@ -30,6 +30,7 @@ fn render(
         ks: Vec3::ZERO,
         ns: 1.0,
         opacity: 1.0,
+        ..Material::default()
     };
     let mut s = scene(SIZE, Vec3::ONE, vec![], vec![object(square(0.0, 0.0, 0.9 * -z, z, m), None)]);
     s.camera = crate::support::origin_camera(1.0, 100.0);

@@ -59,7 +59,14 @@ fn expected(i: u32, j: u32, perspective: bool) -> Option<f64> {
 }
 
 fn render(interpolation: Interpolation) -> zline_pipeline::Image {
-    let m = Material { ka: Vec3::ZERO, kd: Vec3::ONE, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0 };
+    let m = Material {
+        ka: Vec3::ZERO,
+        kd: Vec3::ONE,
+        ks: Vec3::ZERO,
+        ns: 1.0,
+        opacity: 1.0,
+        ..Material::default()
+    };
     let positions = TRI.map(|p| DVec3::from_array(p).as_vec3()).to_vec();
     let normals = NORMALS.map(|n| unit(n).as_vec3()).to_vec();
     let light = Light::Directional { direction: Vec3::NEG_Z, color: Vec3::ONE };
@@ -122,7 +129,14 @@ fn the_two_modes_differ_visibly_on_a_receding_triangle() {
 fn orthographic_square_covers_exactly_its_pixels() {
     // Height 4 across 64 pixels: the square |x|, |y| ≤ 1 covers pixel
     // centres 16.5 … 47.5 in both directions — 32 × 32 pixels.
-    let m = Material { ka: Vec3::ONE, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0 };
+    let m = Material {
+        ka: Vec3::ONE,
+        kd: Vec3::ZERO,
+        ks: Vec3::ZERO,
+        ns: 1.0,
+        opacity: 1.0,
+        ..Material::default()
+    };
     let mut s =
         scene(64, Vec3::ONE, vec![], vec![object(crate::support::square(0.0, 0.0, 1.0, -3.0, m), None)]);
     s.camera.projection = Projection::Orthographic { height: 4.0, near: 1.0, far: 10.0 };

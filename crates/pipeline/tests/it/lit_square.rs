@@ -50,6 +50,7 @@ fn check_centre(mode: ShadingMode, expected: DVec3) {
         ks: Vec3::from_array(KS.map(|x| x as f32)),
         ns: NS as f32,
         opacity: 1.0,
+        ..Material::default()
     };
     let light = Light::Point {
         position: Vec3::from_array(LIGHT.map(|x| x as f32)),

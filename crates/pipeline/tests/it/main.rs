@@ -12,3 +12,4 @@ mod ssaa;
 mod support;
 mod texture;
 mod transparency;
+mod vertex_colors;

@@ -21,6 +21,7 @@ pub(crate) fn mesh(
         triangles,
         material,
         uvs: Vec::new(),
+        colors: Vec::new(),
         diffuse_map: None,
     })
 }

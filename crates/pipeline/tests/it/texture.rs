@@ -37,7 +37,7 @@ fn square(half: f32, z: f32) -> (Vec<Vec3>, Vec<Vec2>) {
 }
 
 fn unlit() -> Material {
-    Material { ka: Vec3::ONE, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0 }
+    Material { ka: Vec3::ONE, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0, ..Material::default() }
 }
 
 /// Rows top to bottom: red, green / blue, white.
@@ -71,7 +71,14 @@ fn the_texel_modulates_ambient_and_diffuse_but_not_specular() {
     // c = texel ⊙ 0.6 + 0.25 for texel (0.2, 0.4, 0.8) → (0.37, 0.49, 0.73).
     let texel = [51, 102, 204, 255]; // 0.2, 0.4, 0.8
     let texture = Texture::from_rgba8(1, 1, &texel).expect("valid");
-    let m = Material { ka: Vec3::ONE, kd: Vec3::splat(0.5), ks: Vec3::splat(0.25), ns: 0.0, opacity: 1.0 };
+    let m = Material {
+        ka: Vec3::ONE,
+        kd: Vec3::splat(0.5),
+        ks: Vec3::splat(0.25),
+        ns: 0.0,
+        opacity: 1.0,
+        ..Material::default()
+    };
     let (p, uv) = square(1.0, -2.0);
     let light = Light::Directional { direction: Vec3::NEG_Z, color: Vec3::ONE };
     let s = scene(
@@ -82,6 +89,32 @@ fn the_texel_modulates_ambient_and_diffuse_but_not_specular() {
     );
     // floor(0.37·255 + 0.5) = 94, floor(0.49·255 + 0.5) = 125, floor(0.73·255 + 0.5) = 186.
     assert_eq!(draw(&s).pixel(32, 30), [94, 125, 186]);
+}
+
+#[test]
+fn emission_is_added_before_the_clamp_and_not_modulated_by_the_texture() {
+    // ke = (0.2, 0.4, 0.6) alone, under a head-on light and ambient that a
+    // zero ka, kd and ks ignore: I = ke → floor(ke·255 + 0.5) = (51, 102, 153).
+    // With ka = 0.5 and ambient 1 the red channel is 0.2 + 0.5 = 0.7 → 179.
+    // Textured with a black texel, ka and kd vanish but ke stays.
+    let ke = Vec3::new(0.2, 0.4, 0.6);
+    let dark = Material { ke, ka: Vec3::ZERO, kd: Vec3::ZERO, ks: Vec3::ZERO, ..Material::default() };
+    let light = Light::Directional { direction: Vec3::NEG_Z, color: Vec3::ONE };
+    let black = || Texture::from_rgba8(1, 1, &[0, 0, 0, 255]).expect("valid");
+    for mode in ShadingMode::ALL {
+        let (p, uv) = square(1.0, -2.0);
+        let plain = Mesh::new("plain", p.clone(), Some(vec![Vec3::Z; 4]), vec![[0, 1, 2], [0, 2, 3]], dark);
+        let s = scene(64, Vec3::ONE, vec![light], vec![object(Arc::new(plain.expect("valid")), Some(mode))]);
+        assert_eq!(draw(&s).pixel(32, 30), [51, 102, 153], "{mode:?}: emission only");
+        let red_ambient = Material { ka: Vec3::new(0.5, 0.0, 0.0), ..dark };
+        let plain =
+            Mesh::new("plain", p.clone(), Some(vec![Vec3::Z; 4]), vec![[0, 1, 2], [0, 2, 3]], red_ambient);
+        let s = scene(64, Vec3::ONE, vec![light], vec![object(Arc::new(plain.expect("valid")), Some(mode))]);
+        assert_eq!(draw(&s).pixel(32, 30), [179, 102, 153], "{mode:?}: ke + ka·Ia");
+        let lit = Material { ka: Vec3::ONE, kd: Vec3::ONE, ..dark };
+        let s = scene(64, Vec3::ONE, vec![light], vec![object(textured(p, uv, black(), lit), Some(mode))]);
+        assert_eq!(draw(&s).pixel(32, 30), [51, 102, 153], "{mode:?}: a black texel keeps ke");
+    }
 }
 
 /// The first row (from the top, in column 32) whose colour is the texture's

@@ -15,7 +15,7 @@ const CENTRE: (u32, u32) = (16, 16);
 /// An unlit material showing `color` (ka = color under white ambient light).
 fn unlit(color: [f64; 3], opacity: f32) -> Material {
     let c = Vec3::from_array(color.map(|v| v as f32));
-    Material { ka: c, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity }
+    Material { ka: c, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity, ..Material::default() }
 }
 
 /// Squares of half-size 0.6 at the given depths and materials, in this

@@ -60,7 +60,8 @@ pub(super) fn material_from_gltf(material: &gltf::Material) -> Material {
     let ks = Vec3::splat(0.04).lerp(base, metallic) * (1.0 - roughness);
     let ns = (2.0 / roughness.powi(4) - 2.0).clamp(1.0, MAX_GLTF_SHININESS);
     let opacity = if material.alpha_mode() == gltf::material::AlphaMode::Blend { a } else { 1.0 };
-    Material { ka: base, kd: base, ks, ns, opacity }.sanitized()
+    let ke = Vec3::from(material.emissive_factor()) * material.emissive_strength().unwrap_or(1.0);
+    Material { ke, ka: base, kd: base, ks, ns, opacity }.sanitized()
 }
 
 /// The same mesh with every triangle's winding reversed.

@@ -44,8 +44,16 @@
 //!   whose lobe matches a Beckmann/GGX lobe of width α (Walter et al.
 //!   2007); the clamp keeps a mirror-smooth surface from an infinite
 //!   exponent;
-//! - opacity = baseColorFactor.a for alphaMode BLEND, 1 otherwise (MASK
-//!   warns: the cutoff is not supported yet; texture alpha is not used);
+//! - ke = emissiveFactor × KHR_materials_emissive_strength (default 1),
+//!   clamped to [0, 1] like every coefficient; an emissiveTexture is
+//!   warned about and ignored (the factor alone is used);
+//! - opacity = baseColorFactor.a for alphaMode BLEND, 1 otherwise. MASK
+//!   with a base colour texture discards samples whose texel alpha is below
+//!   alphaCutoff (default 0.5; see [`TextureMap::alpha_cutoff`]); without
+//!   one (none given, or the texture could not be used) the constant
+//!   alpha baseColorFactor.a decides for the whole primitive: below the
+//!   cutoff it draws nothing and is left out (a file whose every primitive
+//!   is left out so has no triangles, an error), otherwise it is opaque;
 //! - back faces are culled unless the material is doubleSided, and only
 //!   on closed opaque meshes (the rule of bare OBJ models).
 //!
@@ -73,9 +81,13 @@
 //! [`Light::Directional`] along the node's −z in world space. Spot → a
 //! point light, with a warning that the cone is ignored.
 //!
-//! **Warned and ignored:** COLOR_0, emission (emissiveFactor, -Texture and
-//! KHR_materials_emissive_strength), normal, occlusion and
-//! metallic–roughness textures, alpha MASK, MIRRORED_REPEAT, primitive
+//! Vertex colours: COLOR_0 (RGB; an alpha below 1 is warned about and
+//! ignored) becomes [`Mesh::colors`], a per-vertex factor on kd and ka as
+//! glTF's base colour multiplication prescribes (applied by flat and
+//! Gouraud shading; Phong shading does not apply it yet).
+//!
+//! **Warned and ignored:** COLOR_0 alpha, emissive textures, normal, occlusion and
+//! metallic–roughness textures, MIRRORED_REPEAT, primitive
 //! modes other than TRIANGLES, skins (drawn in the bind pose), morph
 //! targets (drawn without), animations (drawn at rest), extensions other
 //! than the two above, light ranges and spot cones, a node reached twice
@@ -156,6 +168,7 @@ pub fn load_gltf_with_warnings(path: &Path) -> Result<(GltfScene, Vec<String>), 
     loader.finish()
 }
 
+mod attributes;
 mod convert;
 mod resources;
 
@@ -320,9 +333,6 @@ impl Loader<'_> {
         if primitive.morph_targets().len() > 0 {
             self.warn(format!("mesh '{name}': morph targets are not supported; drawn without them"));
         }
-        if primitive.get(&gltf::Semantic::Colors(0)).is_some() {
-            self.warn(format!("mesh '{name}': vertex colours (COLOR_0) are not supported; ignored"));
-        }
         let Some(positions) = self.read_positions(primitive, &name)? else {
             self.warn(format!("mesh '{name}': primitive has no POSITION; skipped"));
             return Ok(None);
@@ -343,168 +353,28 @@ impl Loader<'_> {
         if let Some(uvs) = uvs {
             built = built.with_uvs(uvs).map_err(mesh_error)?;
         }
+        if let Some(colors) = self.read_colors(primitive, &name)? {
+            built = built.with_colors(colors).map_err(mesh_error)?;
+        }
         self.warn_about_material(&material);
+        let cutoff = material.alpha_cutoff().unwrap_or(0.5);
         if let Some(info) = base_color {
             let alpha = match material.alpha_mode() {
                 gltf::material::AlphaMode::Blend => (true, None),
-                gltf::material::AlphaMode::Mask => (false, Some(material.alpha_cutoff().unwrap_or(0.5))),
+                gltf::material::AlphaMode::Mask => (false, Some(cutoff)),
                 gltf::material::AlphaMode::Opaque => (false, None),
             };
             built = self.attach_base_color(built, &info, uv_set, alpha)?;
         }
+        if material.alpha_mode() == gltf::material::AlphaMode::Mask && built.diffuse_map.is_none() {
+            // MASK on the constant alpha: every sample has the factor's alpha.
+            let alpha = material.pbr_metallic_roughness().base_color_factor()[3];
+            if alpha < cutoff {
+                return Ok(None);
+            }
+        }
         let cull = !material.double_sided() && default_culling(&built, built.material.opacity);
         Ok(Some((built, cull)))
-    }
-
-    fn read_positions(
-        &self,
-        primitive: &gltf::Primitive,
-        name: &str,
-    ) -> Result<Option<Vec<Vec3>>, SceneError> {
-        let Some(accessor) = primitive.get(&gltf::Semantic::Positions) else { return Ok(None) };
-        self.check_accessor(&accessor, name, "POSITION", &[(Dimensions::Vec3, DataType::F32)])?;
-        let read = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice)).read_positions();
-        let positions: Vec<Vec3> = read.map(|it| it.map(Vec3::from).collect()).unwrap_or_default();
-        self.check_count(&accessor, name, "POSITION", positions.len())?;
-        Ok(Some(positions))
-    }
-
-    /// The normals, when the primitive has one per vertex.
-    fn read_normals(
-        &self,
-        primitive: &gltf::Primitive,
-        name: &str,
-        vertices: usize,
-    ) -> Result<Option<Vec<Vec3>>, SceneError> {
-        let Some(accessor) = primitive.get(&gltf::Semantic::Normals) else { return Ok(None) };
-        self.check_accessor(&accessor, name, "NORMAL", &[(Dimensions::Vec3, DataType::F32)])?;
-        let read = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice)).read_normals();
-        let normals: Vec<Vec3> = read.map(|it| it.map(Vec3::from).collect()).unwrap_or_default();
-        self.check_count(&accessor, name, "NORMAL", normals.len())?;
-        Ok((normals.len() == vertices).then_some(normals))
-    }
-
-    /// Texture coordinates of a set, flipped to t = 1 − v.
-    fn read_uvs(
-        &self,
-        primitive: &gltf::Primitive,
-        name: &str,
-        set: u32,
-    ) -> Result<Option<Vec<Vec2>>, SceneError> {
-        let Some(accessor) = primitive.get(&gltf::Semantic::TexCoords(set)) else { return Ok(None) };
-        let what = format!("TEXCOORD_{set}");
-        let types = [DataType::F32, DataType::U8, DataType::U16].map(|t| (Dimensions::Vec2, t));
-        self.check_accessor(&accessor, name, &what, &types)?;
-        let read = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice)).read_tex_coords(set);
-        let uvs: Vec<Vec2> =
-            read.map(|r| r.into_f32().map(|[s, v]| Vec2::new(s, 1.0 - v)).collect()).unwrap_or_default();
-        self.check_count(&accessor, name, &what, uvs.len())?;
-        Ok(Some(uvs))
-    }
-
-    /// Triangles from the indices, or from consecutive vertices for a
-    /// non-indexed primitive; a trailing incomplete triangle is dropped.
-    fn read_triangles(
-        &self,
-        primitive: &gltf::Primitive,
-        name: &str,
-        vertices: usize,
-    ) -> Result<Vec<[u32; 3]>, SceneError> {
-        let indices: Vec<u32> = match primitive.indices() {
-            Some(accessor) => {
-                let types = [DataType::U8, DataType::U16, DataType::U32].map(|t| (Dimensions::Scalar, t));
-                self.check_accessor(&accessor, name, "indices", &types)?;
-                let reader = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice));
-                let indices: Vec<u32> =
-                    reader.read_indices().map(|r| r.into_u32().collect()).unwrap_or_default();
-                self.check_count(&accessor, name, "indices", indices.len())?;
-                indices
-            }
-            None => {
-                let count = u32::try_from(vertices)
-                    .map_err(|_| self.error(format!("mesh '{name}': {vertices} vertices are too many")))?;
-                (0..count).collect()
-            }
-        };
-        Ok(indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect())
-    }
-
-    /// Checks an accessor's type and that its data lies inside its buffer,
-    /// so that reading it cannot fail or panic.
-    fn check_accessor(
-        &self,
-        accessor: &gltf::Accessor,
-        mesh: &str,
-        what: &str,
-        types: &[(Dimensions, DataType)],
-    ) -> Result<(), SceneError> {
-        let fail =
-            |why: String| self.error(format!("mesh '{mesh}': {what} accessor {}: {why}", accessor.index()));
-        let kind = (accessor.dimensions(), accessor.data_type());
-        if !types.contains(&kind) {
-            return Err(fail(format!("type {:?} of {:?} is not allowed here", kind.0, kind.1)));
-        }
-        if accessor.count() == 0 {
-            return Err(fail("count is 0".into()));
-        }
-        let size = accessor.size();
-        if let Some(view) = accessor.view() {
-            self.check_range(&view, accessor.offset(), accessor.count(), size).map_err(&fail)?;
-        }
-        if let Some(sparse) = accessor.sparse() {
-            if sparse.count() == 0 {
-                return Err(fail("sparse count is 0".into()));
-            }
-            let (indices, values) = (sparse.indices(), sparse.values());
-            let index_size = indices.index_type().size();
-            self.check_range(&indices.view(), indices.offset(), sparse.count(), index_size).map_err(&fail)?;
-            self.check_range(&values.view(), values.offset(), sparse.count(), size).map_err(&fail)?;
-        }
-        Ok(())
-    }
-
-    /// `count` elements of `size` bytes from `offset` fit in the view, and
-    /// the view in its buffer.
-    fn check_range(
-        &self,
-        view: &gltf::buffer::View,
-        offset: usize,
-        count: usize,
-        size: usize,
-    ) -> Result<(), String> {
-        let stride = view.stride().unwrap_or(size);
-        if stride < size {
-            return Err(format!("byteStride {stride} is smaller than an element ({size} bytes)"));
-        }
-        let end = (count - 1)
-            .checked_mul(stride)
-            .and_then(|n| n.checked_add(offset))
-            .and_then(|n| n.checked_add(size));
-        if end.is_none_or(|end| end > view.length()) {
-            return Err(format!("{count} elements do not fit in buffer view {}", view.index()));
-        }
-        let buffer_len = self.buffers.get(view.buffer().index()).map_or(0, Vec::len);
-        if view.offset().checked_add(view.length()).is_none_or(|end| end > buffer_len) {
-            return Err(format!("buffer view {} reaches beyond its buffer", view.index()));
-        }
-        Ok(())
-    }
-
-    fn check_count(
-        &self,
-        accessor: &gltf::Accessor,
-        mesh: &str,
-        what: &str,
-        read: usize,
-    ) -> Result<(), SceneError> {
-        if read == accessor.count() {
-            return Ok(());
-        }
-        let index = accessor.index();
-        Err(self.error(format!(
-            "mesh '{mesh}': {what} accessor {index}: read {read} of {} elements",
-            accessor.count()
-        )))
     }
 
     /// Warns once per material about what the mapping leaves out.
@@ -515,8 +385,8 @@ impl Loader<'_> {
         let name = material_name(material);
         let pbr = material.pbr_metallic_roughness();
         let mut ignored = Vec::new();
-        if material.emissive_factor() != [0.0; 3] || material.emissive_texture().is_some() {
-            ignored.push("emission");
+        if material.emissive_texture().is_some() {
+            ignored.push("emissive texture (emissiveFactor alone is used)");
         }
         if material.normal_texture().is_some() {
             ignored.push("normal texture");
@@ -529,13 +399,6 @@ impl Loader<'_> {
         }
         if !ignored.is_empty() {
             self.warn(format!("material '{name}': {} not supported; ignored", ignored.join(", ")));
-        }
-        if material.alpha_mode() == gltf::material::AlphaMode::Mask
-            && material.pbr_metallic_roughness().base_color_texture().is_none()
-        {
-            self.warn(format!(
-                "material '{name}': alphaMode MASK without a base colour texture is drawn opaque"
-            ));
         }
     }
 

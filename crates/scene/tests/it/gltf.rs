@@ -274,7 +274,9 @@ fn unsupported_features_warn_and_still_load() {
     let path = quad_gltf(
         "unsupported",
         r#""extensionsUsed": ["KHR_texture_transform"],
-        "materials": [{"name": "glow", "emissiveFactor": [1, 0, 0], "alphaMode": "MASK"}],
+        "materials": [{"name": "glow", "emissiveFactor": [1, 0, 0], "emissiveTexture": {"index": 0},
+            "alphaMode": "MASK"}],
+        "textures": [{"source": 0}], "images": [{"uri": "never-read.png"}],
         "nodes": [{"mesh": 0}, {"mesh": 1}],
         "scenes": [{"nodes": [0, 1]}]"#,
     );
@@ -288,13 +290,14 @@ fn unsupported_features_warn_and_still_load() {
     edit(&path, r#""TEXCOORD_0": 1}"#, r#""TEXCOORD_0": 1, "COLOR_0": 0}"#);
     let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
     assert_eq!(scene.objects.len(), 1, "the lines are skipped");
+    assert_eq!(scene.objects[0].material().ke, Vec3::new(1.0, 0.0, 0.0), "the factor without the texture");
+    let corners = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
+    assert_eq!(scene.objects[0].mesh.colors, corners, "COLOR_0 read from the POSITION accessor");
     let expected = [
         "extension 'KHR_texture_transform' is not supported",
         "mesh 'lines': primitive mode Lines is not supported; skipped",
         "skins are not supported",
-        "mesh 'quad': vertex colours (COLOR_0) are not supported",
-        "material 'glow': emission not supported",
-        "material 'glow': alphaMode MASK without a base colour texture is drawn opaque",
+        "material 'glow': emissive texture (emissiveFactor alone is used) not supported",
     ];
     assert_eq!(warnings.len(), expected.len(), "{warnings:?}");
     for part in expected {
@@ -303,6 +306,85 @@ fn unsupported_features_warn_and_still_load() {
             "{part:?} not in {warnings:?}"
         );
     }
+}
+
+#[test]
+fn mask_without_a_texture_applies_to_the_constant_alpha() {
+    // Material 0: alpha 0.3 below the default cutoff 0.5 → the quad draws
+    // nothing. Material 1: the same alpha over a cutoff of 0.25 → opaque.
+    // Material 2: a base colour texture whose image is missing, alpha 0.3
+    // → drawn untextured, so the constant alpha decides: nothing.
+    let path = quad_gltf(
+        "mask",
+        r#""materials": [
+            {"name": "hidden", "alphaMode": "MASK", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 0.3]}},
+            {"name": "shown", "alphaMode": "MASK", "alphaCutoff": 0.25,
+             "pbrMetallicRoughness": {"baseColorFactor": [0, 1, 0, 0.3]}},
+            {"name": "lost", "alphaMode": "MASK",
+             "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 1, 0.3], "baseColorTexture": {"index": 0}}}
+        ],
+        "textures": [{"source": 0}], "images": [{"uri": "missing.png"}],
+        "nodes": [{"mesh": 0}, {"mesh": 1}, {"mesh": 2}], "scenes": [{"nodes": [0, 1, 2]}]"#,
+    );
+    let quad_with = |m: u32| {
+        format!(
+            r#"{{"name": "q{m}", "primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1}}, "indices": 2, "material": {m}}}]}}, "#
+        )
+    };
+    edit(&path, r#""meshes": ["#, &format!(r#""meshes": [{}{}"#, quad_with(1), quad_with(2)));
+    let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    check_message(&warnings[0], &["missing.png"]);
+    let names: Vec<&str> = scene.objects.iter().map(|o| o.mesh.name.as_str()).collect();
+    assert_eq!(names, ["q1"], "only the material whose alpha reaches its cutoff is drawn");
+    let m = scene.objects[0].material();
+    assert_eq!((m.kd, m.opacity), (Vec3::new(0.0, 1.0, 0.0), 1.0), "drawn opaque");
+    assert!(scene.objects[0].mesh.diffuse_map.is_none());
+}
+
+#[test]
+fn vertex_color_test_reads_color_0_as_rgb() {
+    let (scene, warnings) =
+        load_gltf_with_warnings(&repo("assets/gltf/VertexColorTest/glTF-Binary/VertexColorTest.glb"))
+            .unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let test = scene.objects.iter().find(|o| o.mesh.name.starts_with("VertexColorTestMesh")).unwrap();
+    let label = scene.objects.iter().find(|o| o.mesh.name.starts_with("LabelMesh")).unwrap();
+    assert!(label.mesh.colors.is_empty(), "no COLOR_0, no colours");
+    assert_eq!(test.mesh.colors.len(), test.mesh.vertex_count());
+    // The test row is tinted pure red, green and blue, the reference row
+    // white (the file's backing panel has greys near 0.5 and 1 too).
+    for c in [Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE, Vec3::splat(0.501_960_8)] {
+        assert!(test.mesh.colors.contains(&c), "{c} missing from {:?}", test.mesh.colors);
+    }
+    assert!(test.mesh.colors.iter().all(|c| c.cmpge(Vec3::ZERO).all() && c.cmple(Vec3::ONE).all()));
+}
+
+#[test]
+fn emissive_factor_times_strength_becomes_ke() {
+    let path = quad_gltf(
+        "emissive",
+        r#""extensionsUsed": ["KHR_materials_emissive_strength"],
+        "materials": [
+            {"emissiveFactor": [0.25, 0.5, 0.125],
+             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 3}}},
+            {"emissiveFactor": [0.25, 0.5, 0.125]}
+        ],
+        "nodes": [{"mesh": 0}, {"mesh": 1}], "scenes": [{"nodes": [0, 1]}]"#,
+    );
+    edit(
+        &path,
+        r#""meshes": ["#,
+        r#""meshes": [{"name": "plain", "primitives": [{"attributes": {"POSITION": 0}, "indices": 2, "material": 1}]}, "#,
+    );
+    edit(&path, r#""nodes": [{"mesh": 0}, {"mesh": 1}]"#, r#""nodes": [{"mesh": 1}, {"mesh": 0}]"#);
+    let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    // × 3 gives (0.75, 1.5, 0.375); ke is clamped to [0, 1] like every coefficient.
+    assert_eq!(scene.objects[0].material().ke, Vec3::new(0.75, 1.0, 0.375));
+    assert_eq!(scene.objects[1].material().ke, Vec3::new(0.25, 0.5, 0.125), "no strength: the factor");
+    let plain = load_gltf(&repo("assets/gltf/Box/glTF-Binary/Box.glb")).unwrap();
+    assert_eq!(plain.objects[0].material().ke, Vec3::ZERO, "no emissiveFactor: no emission");
 }
 
 /// The quad with a base colour texture whose image is `uri`.

@@ -2,6 +2,8 @@
 //! built from 8-bit image data, read with nearest, bilinear or trilinear
 //! filtering and repeat or clamp-to-edge wrapping. Pure functions: decoding
 //! image files happens in the loaders, which hand over RGBA8 rows.
+//! [`Texture::sample_x8`] (module `x8`) samples eight lanes at once, each
+//! lane bit for bit equal to [`Texture::sample`].
 //!
 //! Conventions:
 //! - s = 0 at the left of the image and t = 0 at the bottom (OBJ, OpenGL).
@@ -416,6 +418,8 @@ fn push_coarser_level(texels: &mut Vec<Vec4>, finer: Level) -> Level {
     }
     coarser
 }
+
+mod x8;
 
 #[cfg(test)]
 mod tests;

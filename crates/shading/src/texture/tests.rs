@@ -429,3 +429,58 @@ proptest! {
         }
     }
 }
+
+/// Any f32 the sampler may meet: ordinary coordinates, exact texel
+/// boundaries and centres, huge values, infinities and NaN.
+fn any_coordinate() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        4 => -3.0f32..3.0,
+        1 => (-64i32..64, 1u32..=14).prop_map(|(k, d)| k as f32 / d as f32),
+        1 => prop_oneof![
+            Just(f32::NAN), Just(f32::INFINITY), Just(f32::NEG_INFINITY), Just(f32::MAX), Just(-f32::MAX),
+            Just(3.0e9f32), Just(-3.0e9f32), Just(2.1e9f32), Just(-2.1e9f32), Just(1.0e30f32),
+        ],
+        1 => any::<f32>(),
+        1 => -1.0e7f32..1.0e7,
+    ]
+}
+
+fn any_lod() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        4 => -1.0f32..5.0,
+        1 => (0u32..5).prop_map(|l| l as f32),
+        1 => prop_oneof![Just(f32::NAN), Just(f32::INFINITY), Just(f32::NEG_INFINITY), Just(-0.0f32)],
+        1 => any::<f32>(),
+    ]
+}
+
+fn any_filter() -> impl Strategy<Value = Filter> {
+    prop_oneof![Just(Filter::Nearest), Just(Filter::Bilinear), Just(Filter::Trilinear)]
+}
+
+fn odd_texture() -> impl Strategy<Value = Texture> {
+    (1u32..=13, 1u32..=13, prop_oneof![Just(1u32), Just(16), Just(33)])
+        .prop_map(|(w, h, scale)| (w * scale, h))
+        .prop_flat_map(|(w, h)| (Just(w), Just(h), prop::collection::vec(any::<u8>(), (w * h * 4) as usize)))
+        .prop_map(|(w, h, pixels)| Texture::from_rgba8(w, h, &pixels).unwrap())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn eight_lanes_match_the_scalar_sampler_bit_for_bit(
+        tex in odd_texture(), filter in any_filter(), wrap_s in any_wrap(), wrap_t in any_wrap(),
+        s in prop::array::uniform8(any_coordinate()), t in prop::array::uniform8(any_coordinate()),
+        lod in prop::array::uniform8(any_lod()),
+    ) {
+        use wide::f32x8;
+        let sm = Sampler { filter, wrap_s, wrap_t };
+        let got = tex.sample_x8(&sm, f32x8::from(s), f32x8::from(t), f32x8::from(lod)).map(|c| c.to_array());
+        for k in 0..8 {
+            let want = tex.sample(&sm, s[k], t[k], lod[k]).to_array().map(f32::to_bits);
+            let lane = [got[0][k], got[1][k], got[2][k], got[3][k]].map(f32::to_bits);
+            prop_assert_eq!(lane, want, "lane {} of {:?}: s {}, t {}, lod {}", k, sm, s[k], t[k], lod[k]);
+        }
+    }
+}
