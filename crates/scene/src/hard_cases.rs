@@ -100,6 +100,7 @@ fn flat_objects(triangles: Vec<([Vec3; 3], Vec3)>) -> Vec<Object> {
                 material: plain(color),
                 uvs: Vec::new(),
                 diffuse_map: None,
+                colors: Vec::new(),
             };
             Object {
                 mesh: Arc::new(mesh),
@@ -163,6 +164,7 @@ pub fn fan(n: u32) -> Scene {
         material: plain(PALETTE[0]),
         uvs: Vec::new(),
         diffuse_map: None,
+        colors: Vec::new(),
     };
     let object = Object {
         mesh: Arc::new(mesh),
@@ -257,6 +259,7 @@ pub fn t_junction() -> Scene {
         material: plain(PALETTE[3]),
         uvs: Vec::new(),
         diffuse_map: None,
+        colors: Vec::new(),
     };
     let object = Object {
         mesh: Arc::new(mesh),

@@ -17,6 +17,7 @@ const LIGHT_COLOR: Vec3 = Vec3::new(1.0, 0.85, 0.7);
 const ATTENUATION: Attenuation = Attenuation { a0: 1.0, a1: 0.2, a2: 0.5 };
 const AMBIENT: Vec3 = Vec3::new(0.15, 0.1, 0.05);
 const MATERIAL: Material = Material {
+    ke: Vec3::ZERO,
     ka: Vec3::new(0.3, 0.4, 0.5),
     kd: Vec3::new(0.7, 0.45, 0.3),
     ks: Vec3::new(0.5, 0.5, 0.5),
@@ -286,8 +287,14 @@ fn white_texture_leaves_gouraud_unchanged_even_when_clipped() {
     };
     let positions = vec![Vec3::new(-2.0, -1.0, -3.0), Vec3::new(2.0, -1.0, -3.0), Vec3::new(0.0, -1.0, 2.0)];
     let normals = vec![Vec3::new(-0.8, 0.6, 0.0), Vec3::new(0.8, 0.6, 0.0), Vec3::new(0.0, 0.6, 0.8)];
-    let material =
-        Material { ka: Vec3::ZERO, kd: Vec3::splat(0.4), ks: Vec3::splat(0.3), ns: 8.0, opacity: 1.0 };
+    let material = Material {
+        ka: Vec3::ZERO,
+        kd: Vec3::splat(0.4),
+        ks: Vec3::splat(0.3),
+        ns: 8.0,
+        opacity: 1.0,
+        ke: Vec3::ZERO,
+    };
     let plain = mesh(positions, normals, vec![[0, 1, 2]], material);
     let mut textured = (*plain).clone();
     textured.uvs = vec![glam::Vec2::ZERO; 3];

@@ -93,7 +93,7 @@ fn vertex() -> impl Strategy<Value = Vec3> {
 
 fn material() -> impl Strategy<Value = Material> {
     (color(), color(), color(), prop::sample::select(vec![1.0f32, 5.0, 16.0, 40.5]))
-        .prop_map(|(ka, kd, ks, ns)| Material { ka, kd, ks, ns, opacity: 1.0 })
+        .prop_map(|(ka, kd, ks, ns)| Material { ka, kd, ks, ns, opacity: 1.0, ke: Vec3::ZERO })
 }
 
 fn shading() -> impl Strategy<Value = Option<ShadingMode>> {
@@ -171,8 +171,16 @@ fn opaque_object() -> impl Strategy<Value = Object> {
                 uvs.extend(t);
             }
             let triangles = (0..positions.len() as u32 / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
-            let mesh =
-                Mesh { name: "random".into(), positions, normals, triangles, material, uvs, diffuse_map };
+            let mesh = Mesh {
+                name: "random".into(),
+                positions,
+                normals,
+                triangles,
+                material,
+                uvs,
+                diffuse_map,
+                colors: Vec::new(),
+            };
             object(mesh, shading, cull, world_from_object)
         })
 }
@@ -203,6 +211,7 @@ fn transparent_quad() -> impl Strategy<Value = Object> {
                 material: Material { opacity, ..material },
                 uvs: vec![],
                 diffuse_map: None,
+                colors: Vec::new(),
             };
             object(mesh, shading, false, Mat4::IDENTITY)
         })
