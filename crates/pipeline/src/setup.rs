@@ -217,6 +217,16 @@ pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut P
     } else {
         tri
     };
+    // Gouraud lit here (textured, or with vertex colours) lights the
+    // original vertices before clipping, so clipped vertices interpolate
+    // the lit values in clip space like every attribute (SPEC §2, §6).
+    let lit: [ClipVertex; 3];
+    let tri = if ctx.shading == ShadingMode::Gouraud && (ctx.texture.is_some() || ctx.vertex_colors) {
+        lit = tri.map(|v| lit_in_setup(v, ctx));
+        [&lit[0], &lit[1], &lit[2]]
+    } else {
+        tri
+    };
     let flat = match ctx.shading {
         ShadingMode::Flat => flat_parts(&tri, back, ctx),
         _ => LitParts::default(),
@@ -294,6 +304,20 @@ fn vertex_parts(v: &ClipVertex, ctx: &SetupContext<'_>) -> LitParts {
         parts.ambient_diffuse *= v.color;
     }
     parts
+}
+
+/// A vertex of a Gouraud triangle lit in setup. Untextured: `color` becomes
+/// the clamped lit colour, as the vertex stage makes it for meshes without
+/// vertex colours. Textured: `color` and `normal` carry the unclamped
+/// ambient+diffuse and specular parts (the normal is not needed once lit),
+/// which the textured kernel combines with the texel and clamps.
+fn lit_in_setup(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
+    let parts = vertex_parts(v, ctx);
+    if ctx.texture.is_some() {
+        ClipVertex { color: parts.ambient_diffuse, normal: parts.specular, ..*v }
+    } else {
+        ClipVertex { color: parts.color(), ..*v }
+    }
 }
 
 /// True when the triangle's front (counter-clockwise) side faces away from
@@ -379,8 +403,7 @@ fn untextured(
         ShadingMode::Flat => Shader::Flat { color: flat },
         ShadingMode::Gouraud => {
             let v = std::array::from_fn(|k| {
-                let lit = if ctx.vertex_colors { vertex_parts(tri[k], ctx).color() } else { tri[k].color };
-                let c = lit * q[k];
+                let c = tri[k].color * q[k];
                 [q[k], c.x, c.y, c.z]
             });
             Shader::Gouraud { planes: AttributePlanes::new(basis, v) }
@@ -411,13 +434,8 @@ fn textured(
             TexturedKind::Flat { ambient_diffuse: flat.ambient_diffuse, specular: flat.specular },
             [[Vec3::ZERO; 2]; 3],
         ),
-        ShadingMode::Gouraud => (
-            TexturedKind::Gouraud,
-            tri.map(|v| {
-                let parts = vertex_parts(v, ctx);
-                [parts.ambient_diffuse, parts.specular]
-            }),
-        ),
+        // Lit before clipping: see `lit_in_setup`.
+        ShadingMode::Gouraud => (TexturedKind::Gouraud, tri.map(|v| [v.color, v.normal])),
         ShadingMode::Phong => (TexturedKind::Phong, tri.map(|v| [v.normal, v.eye])),
     };
     let values = std::array::from_fn(|k| {

@@ -208,3 +208,51 @@ fn alpha_mask_discards_samples_below_the_cutoff_before_depth() {
         assert_eq!(draw(&s).pixel(32, 32), want, "texel alpha {alpha}/255");
     }
 }
+
+#[test]
+fn a_white_texture_leaves_a_clipped_gouraud_triangle_unchanged() {
+    // A triangle reaching behind the eye, lit by a near point light with a
+    // highlight: clipping must interpolate the lit parts of the original
+    // vertices (SPEC §2), not light the new vertices, with or without a
+    // texture. Found by the f64 truth's property test: relighting the
+    // clipped vertices put pixel (24, 40) at 30 instead of 89.
+    let positions = vec![Vec3::new(-2.0, -1.0, -3.0), Vec3::new(2.0, -1.0, -3.0), Vec3::new(0.0, -1.0, 2.0)];
+    let normals = vec![Vec3::new(-0.8, 0.6, 0.0), Vec3::new(0.8, 0.6, 0.0), Vec3::new(0.0, 0.6, 0.8)];
+    let material = Material {
+        ka: Vec3::ZERO,
+        kd: Vec3::splat(0.8),
+        ks: Vec3::splat(0.5),
+        ns: 8.0,
+        ..Material::default()
+    };
+    let plain =
+        Mesh::new("clipped", positions, Some(normals), vec![[0, 1, 2]], material).expect("valid mesh");
+    let white =
+        plain.clone().with_uvs(vec![Vec2::ZERO; 3]).expect("valid uvs").with_diffuse_map(TextureMap {
+            texture: Arc::new(Texture::solid(glam::Vec4::ONE)),
+            sampler: Sampler::default(),
+            alpha_blend: false,
+            alpha_cutoff: None,
+        });
+    let light = Light::Point {
+        position: Vec3::new(0.0, 0.0, -1.0),
+        color: Vec3::ONE,
+        attenuation: Default::default(),
+    };
+    let draw_mesh = |mesh: Mesh| {
+        let mut o = object(Arc::new(mesh), Some(ShadingMode::Gouraud));
+        o.cull_back_faces = false;
+        let mut s = scene(48, Vec3::ZERO, vec![light], vec![o]);
+        s.camera.target = Vec3::new(0.0, -0.5, -1.0);
+        s.camera.projection =
+            zline_scene::Projection::Perspective { fovy_degrees: 60.0, near: 0.5, far: 20.0 };
+        draw(&s)
+    };
+    let (plain, white) = (draw_mesh(plain), draw_mesh(white));
+    assert!(plain.pixel(24, 40)[0] > 60, "the test scene lights pixel (24, 40): {:?}", plain.pixel(24, 40));
+    let worst = plain.to_rgb().iter().zip(white.to_rgb()).map(|(a, b)| a.abs_diff(b)).max();
+    // Textured and untextured Gouraud interpolate different quantities (the
+    // parts before the clamp vs the clamped colour), equal here since no
+    // channel exceeds 1; f32 rounding may still differ by one step.
+    assert!(worst <= Some(1), "textured and untextured differ by {worst:?}");
+}
