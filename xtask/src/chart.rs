@@ -35,46 +35,64 @@ type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 
 fn plot(root: &Area<'_>, points: &[Point]) -> Result<(), Box<dyn std::error::Error>> {
     root.fill(&WHITE)?;
-    let (t_lo, t_hi) = bounds(points.iter().map(|p| p.ms));
-    let (_, e_hi) = bounds(points.iter().map(|p| p.rmse));
-    let mut chart = ChartBuilder::on(root)
-        .caption("zline: time against error (benchmark scenes)", ("sans-serif", 30))
+    let (plot_area, legend_area) = root.split_horizontally(SIZE.0 - 300);
+    let (_, t_hi) = bounds(points.iter().map(|p| p.ms));
+    let (e_lo, e_hi) = bounds(points.iter().map(|p| p.rmse.max(1e-3)));
+    let mut chart = ChartBuilder::on(&plot_area)
+        .caption("zline: time against error (benchmark scenes)", ("sans-serif", 28))
         .margin(20)
         .x_label_area_size(50)
         .y_label_area_size(70)
-        .build_cartesian_2d((t_lo * 0.8..t_hi * 1.25).log_scale(), 0.0..e_hi * 1.1)?;
+        .build_cartesian_2d(0.0..t_hi * 1.1, (e_lo * 0.6..e_hi * 1.6).log_scale())?;
     chart
         .configure_mesh()
-        .x_desc("total median frame time over the benchmark scenes, ms (log scale)")
-        .y_desc("mean RMSE vs Phong 4x4 SSAA f64 truth, 8-bit steps")
+        .x_desc("total median frame time, ms")
+        .y_desc("mean RMSE vs the best image, 8-bit steps (log)")
         .label_style(("sans-serif", 16))
         .axis_desc_style(("sans-serif", 18))
         .draw()?;
-    let mut front: Vec<(f64, f64)> = points.iter().filter(|p| p.pareto).map(|p| (p.ms, p.rmse)).collect();
+    let mut front: Vec<(f64, f64)> =
+        points.iter().filter(|p| p.pareto).map(|p| (p.ms, p.rmse.max(1e-3))).collect();
     front.sort_by(|a, b| a.0.total_cmp(&b.0));
-    chart
-        .draw_series(LineSeries::new(front, RGBColor(150, 150, 150).stroke_width(2)))?
-        .label("Pareto front")
-        .legend(|(x, y)| {
-            PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(150, 150, 150).stroke_width(2))
-        });
-    for p in points {
-        let color = if p.name.contains("adaptive") {
-            RGBColor(200, 40, 40)
-        } else if p.name.contains("ssaa") {
-            RGBColor(40, 110, 200)
-        } else {
-            RGBColor(30, 30, 30)
-        };
-        chart.draw_series(std::iter::once(Circle::new((p.ms, p.rmse), 5, color.filled())))?;
-        chart.draw_series(std::iter::once(Text::new(
-            p.name.to_string(),
-            (p.ms, p.rmse),
-            ("sans-serif", 15).into_font().color(&color),
-        )))?;
+    chart.draw_series(LineSeries::new(front, RGBColor(150, 150, 150).stroke_width(2)))?;
+    for (k, p) in points.iter().enumerate() {
+        let color = color_of(p);
+        let at = (p.ms, p.rmse.max(1e-3));
+        chart.draw_series(std::iter::once(Circle::new(at, 5, color.filled())))?;
+        // Numbers alternate above and below their point so neighbours with
+        // equal error stay readable; the legend names them.
+        let dy = if k % 2 == 0 { -22 } else { 6 };
+        chart.draw_series(std::iter::once(
+            EmptyElement::at(at)
+                + Text::new(format!("{}", k + 1), (-4, dy), ("sans-serif", 15).into_font().color(&color)),
+        ))?;
     }
-    chart.configure_series_labels().border_style(BLACK).background_style(WHITE).draw()?;
+    legend_area.draw(&Text::new("settings (grey line: Pareto front)", (10, 60), ("sans-serif", 16)))?;
+    for (k, p) in points.iter().enumerate() {
+        let y = 90 + 24 * k as i32;
+        let mark = if p.pareto { " *" } else { "" };
+        legend_area.draw(&Text::new(
+            format!("{:>2}  {}{mark}", k + 1, p.name),
+            (10, y),
+            ("sans-serif", 16).into_font().color(&color_of(p)),
+        ))?;
+    }
+    legend_area.draw(&Text::new(
+        "* on the Pareto front",
+        (10, 100 + 24 * points.len() as i32),
+        ("sans-serif", 14),
+    ))?;
     Ok(())
+}
+
+fn color_of(p: &Point) -> RGBColor {
+    if p.name.contains("adaptive") {
+        RGBColor(200, 40, 40)
+    } else if p.name.contains("ssaa") {
+        RGBColor(40, 110, 200)
+    } else {
+        RGBColor(30, 30, 30)
+    }
 }
 
 fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
