@@ -30,11 +30,28 @@
 //!    max(ks)·max(Il)·f bound ≤ τ/255: the triangle uses its material
 //!    without specular.
 //!
-//! Phong's normal and position interpolation keeps its perspective divide
-//! and textured triangles keep their texture coordinates' divide: a bound
-//! on how a shifted normal or texture coordinate moves the lit colour or the
-//! texel (nearest filtering jumps a whole texel) would need the lights' and
-//! the texture's Lipschitz constants, and these shortcuts are not taken.
+//! 4. **Phong → lit once** (untextured or textured, no vertex colours).
+//!    Once specular is dropped, the colour is ke + ka·Ia + Σ f·Il·kd·g with
+//!    g = max(0, N·L) ∈ [0, 1]; lighting the triangle once at the centroid c
+//!    (with the normalized mean of the vertex normals) moves it by at most
+//!    max(kd)·Σ max(Il)·(Δf + f_max·(ΔN + ΔL)), because |f·g − f'·g'| ≤
+//!    |f − f'| + f_max·|g − g'|, max(0, ·) is 1-Lipschitz and |N·L − N'·L'|
+//!    ≤ |N − N'| + |L − L'| for unit vectors. The interpolated normal stays
+//!    in the spherical triangle of the vertex normals, whose diameter is the
+//!    largest chord between two of them (ΔN; taken only when that chord is
+//!    at most 1, well inside a hemisphere); for a point light at distances
+//!    dᵢ from the vertices, every point lies within [min dᵢ − ℓ, min dᵢ + ℓ],
+//!    so ΔL ≤ 2ℓ/(min dᵢ − ℓ) (from |u/|u| − v/|v|| ≤ 2|u − v|/|u|) and
+//!    Δf ≤ f(min dᵢ − ℓ) − f(min dᵢ + ℓ); directional lights have ΔL = Δf =
+//!    0. Taken when this plus shortcut 3's bound is ≤ τ/255: the triangle is
+//!    drawn flat (textured: its texel still modulates the one lit value;
+//!    texels are ≤ 1, so the bound holds).
+//!
+//! Otherwise Phong keeps its per-sample normal and position, and textured
+//! triangles keep their texture coordinates' divide: a bound on how a
+//! shifted texture coordinate moves the texel (nearest filtering jumps a
+//! whole texel) would need the texture's Lipschitz constant, and that
+//! shortcut is not taken.
 //!
 //! The bounds are evaluated in f32; their own rounding (relative ~10⁻⁷) is
 //! far below any useful τ.
@@ -115,20 +132,68 @@ impl Adaptive {
     /// anywhere on the triangle with eye-space vertices `eye`, for a
     /// material whose largest ks channel is `ks`.
     pub fn specular_negligible(&self, ks: f32, eye: [Vec3; 3]) -> bool {
-        if ks <= 0.0 {
-            return true;
+        self.specular_bound(ks, eye) <= self.tolerance
+    }
+
+    /// Shortcut 4 (after 3): true when lighting the triangle once, without
+    /// specular, stays within the tolerance; `kd` and `ks` are the largest
+    /// channels, `normal` and `eye` the vertices' normals and positions.
+    pub fn lit_once(&self, kd: f32, ks: f32, normal: [Vec3; 3], eye: [Vec3; 3]) -> bool {
+        let specular = self.specular_bound(ks, eye);
+        if specular > self.tolerance {
+            return false; // (NaN fails the final comparison)
         }
-        let longest =
-            (eye[0] - eye[1]).length().max((eye[1] - eye[2]).length()).max((eye[2] - eye[0]).length());
+        let n = normal.map(Vec3::normalize_or_zero);
+        if n.contains(&Vec3::ZERO) {
+            return false;
+        }
+        let spread = (n[0] - n[1]).length().max((n[1] - n[2]).length()).max((n[2] - n[0]).length());
+        if spread > 1.0 {
+            return false;
+        }
+        let longest = longest_edge(eye);
+        let mut variation = self.directional * spread;
+        for &(position, intensity, attenuation) in &self.point {
+            let nearest = nearest_distance(eye, position);
+            let (near, far) = (nearest - longest, nearest + longest);
+            if near.is_nan() || near <= 0.0 || !monotone(&attenuation) {
+                return false;
+            }
+            let (f_near, f_far) = (attenuation.factor(near), attenuation.factor(far));
+            variation += intensity * ((f_near - f_far) + f_near * (spread + 2.0 * longest / near));
+        }
+        specular + kd.max(0.0) * variation <= self.tolerance
+    }
+
+    /// Shortcut 3's bound: the largest specular term on the triangle.
+    fn specular_bound(&self, ks: f32, eye: [Vec3; 3]) -> f32 {
+        if ks <= 0.0 {
+            return 0.0;
+        }
+        let longest = longest_edge(eye);
         let mut bound = self.directional;
         for &(position, intensity, attenuation) in &self.point {
-            let nearest = eye.iter().map(|p| (*p - position).length()).fold(f32::INFINITY, f32::min);
-            let d = (nearest - longest).max(0.0);
-            let monotone = attenuation.a1 >= 0.0 && attenuation.a2 >= 0.0;
-            bound += intensity * if monotone { attenuation.factor(d) } else { 1.0 };
+            let d = (nearest_distance(eye, position) - longest).max(0.0);
+            bound += intensity * if monotone(&attenuation) { attenuation.factor(d) } else { 1.0 };
         }
-        ks * bound <= self.tolerance
+        ks * bound
     }
+}
+
+/// The triangle's longest edge: every point of it lies within this distance
+/// of each vertex.
+fn longest_edge(p: [Vec3; 3]) -> f32 {
+    (p[0] - p[1]).length().max((p[1] - p[2]).length()).max((p[2] - p[0]).length())
+}
+
+/// The distance from `light` to the nearest vertex.
+fn nearest_distance(p: [Vec3; 3], light: Vec3) -> f32 {
+    p.iter().map(|v| (*v - light).length()).fold(f32::INFINITY, f32::min)
+}
+
+/// True when f(d) does not increase with d (a1, a2 ≥ 0).
+fn monotone(a: &Attenuation) -> bool {
+    a.a1 >= 0.0 && a.a2 >= 0.0
 }
 
 #[cfg(test)]
@@ -178,5 +243,30 @@ mod tests {
         let sun = Light::Directional { direction: Vec3::NEG_Z, color: Vec3::splat(0.5) };
         assert!(!adaptive(1.0, vec![far, sun]).specular_negligible(0.1, tri));
         assert!(adaptive(1.0, vec![far, sun]).specular_negligible(0.005, tri));
+    }
+
+    #[test]
+    fn lit_once_needs_no_specular_close_normals_and_far_point_lights() {
+        let tri = [Vec3::new(0.0, 0.0, -5.0), Vec3::new(1.0, 0.0, -5.0), Vec3::new(0.0, 1.0, -5.0)];
+        let same = [Vec3::Z; 3];
+        let sun = Light::Directional { direction: Vec3::NEG_Z, color: Vec3::ONE };
+        // Equal normals under a directional light: the diffuse term is constant.
+        assert!(adaptive(0.0, vec![sun]).lit_once(0.8, 0.0, same, tri));
+        // ... unless specular may show.
+        assert!(!adaptive(1.0, vec![sun]).lit_once(0.8, 0.5, same, tri));
+        // Normals 0.1 apart (chord): variation ≤ 0.8·0.1 = 20 steps.
+        let spread = [Vec3::Z, Vec3::new(0.1, 0.0, 1.0).normalize(), Vec3::Z];
+        assert!(!adaptive(8.0, vec![sun]).lit_once(0.8, 0.0, spread, tri));
+        assert!(adaptive(25.0, vec![sun]).lit_once(0.8, 0.0, spread, tri));
+        // A point light next to the triangle changes L across it.
+        let bulb = Light::Point {
+            position: Vec3::new(0.5, 0.5, -4.0),
+            color: Vec3::ONE,
+            attenuation: Attenuation::NONE,
+        };
+        assert!(!adaptive(8.0, vec![bulb]).lit_once(0.8, 0.0, same, tri));
+        // Zero or NaN normals take no shortcut.
+        assert!(!adaptive(255.0, vec![sun]).lit_once(0.8, 0.0, [Vec3::ZERO, Vec3::Z, Vec3::Z], tri));
+        assert!(!adaptive(255.0, vec![sun]).lit_once(0.8, 0.0, [Vec3::NAN, Vec3::Z, Vec3::Z], tri));
     }
 }

@@ -131,10 +131,9 @@ impl Renderer {
                 material: (&materials[index], index as u32),
                 lighting: &lighting,
                 adaptive: adaptive.as_ref(),
-                diffuse_only: if adaptive.is_some() {
-                    (scene.objects.len() + index) as u32
-                } else {
-                    index as u32
+                diffuse_only: {
+                    let i = if adaptive.is_some() { scene.objects.len() + index } else { index };
+                    (&materials[i], i as u32)
                 },
                 texture,
                 orthographic: matches!(scene.camera.projection, Projection::Orthographic { .. }),

@@ -181,7 +181,7 @@ pub struct SetupContext<'a> {
     pub adaptive: Option<&'a Adaptive>,
     /// Index of the object's material without specular in the frame's
     /// table (used by the adaptive mode; equal to `material.1` when off).
-    pub diffuse_only: u32,
+    pub diffuse_only: (&'a PreparedMaterial, u32),
     /// The object's diffuse texture (index into the frame's table), when it
     /// has one and texture coordinates.
     pub texture: Option<u32>,
@@ -360,6 +360,7 @@ fn emit(
     };
     let depth = DepthPlane::new(&basis, std::array::from_fn(|k| ctx.depth.value(tri[k], &p[k])));
     let (mut perspective, mut material, mut flat_color) = (ctx.perspective, ctx.material.1, None);
+    let mut lit_once = None;
     if let Some(adaptive) = ctx.adaptive {
         match (ctx.shading, ctx.texture) {
             (ShadingMode::Gouraud, None) => {
@@ -370,19 +371,31 @@ fn emit(
                 }
             }
             (ShadingMode::Phong, _) => {
-                let ks = ctx.material.0.material.ks.max_element();
-                if ctx.material.0.specular && adaptive.specular_negligible(ks, tri.map(|v| v.eye)) {
-                    material = ctx.diffuse_only;
+                let m = &ctx.material.0.material;
+                let (kd, ks, eye) = (m.kd.max_element(), m.ks.max_element(), tri.map(|v| v.eye));
+                if !ctx.vertex_colors && adaptive.lit_once(kd, ks, tri.map(|v| v.normal), eye) {
+                    let normal = (tri[0].normal.normalize_or_zero()
+                        + tri[1].normal.normalize_or_zero()
+                        + tri[2].normal.normalize_or_zero())
+                    .normalize_or_zero();
+                    let centroid = (eye[0] + eye[1] + eye[2]) / 3.0;
+                    lit_once =
+                        Some(ctx.lighting.shade_parts(ctx.diffuse_only.0, centroid, normal, Vec3::ZERO));
+                } else if ctx.material.0.specular && adaptive.specular_negligible(ks, eye) {
+                    material = ctx.diffuse_only.1;
                 }
             }
             _ => {}
         }
     }
     let q = if perspective { p.map(|v| v.inv_w) } else { [1.0; 3] };
-    let shader = match (ctx.texture, flat_color) {
-        (_, Some(color)) => Shader::Flat { color },
-        (Some(texture), None) => textured(tri, q, flat, &basis, (texture, material), ctx, out),
-        (None, None) => untextured(tri, q, flat.color(), &basis, material, ctx),
+    let shader = match (ctx.texture, flat_color, lit_once) {
+        (_, Some(color), _) => Shader::Flat { color },
+        (None, None, Some(parts)) => Shader::Flat { color: parts.color() },
+        (Some(texture), None, lit_once) => {
+            textured(tri, q, (flat, lit_once), &basis, (texture, material), ctx, out)
+        }
+        (None, None, None) => untextured(tri, q, flat.color(), &basis, material, ctx),
     };
     let kt = 1.0 - ctx.material.0.material.opacity;
     let sort_depth = ((p[0].z + p[1].z + p[2].z) / 3.0) as f32;
@@ -423,13 +436,18 @@ fn untextured(
 fn textured(
     tri: [&ClipVertex; 3],
     q: [f32; 3],
-    flat: LitParts,
+    (flat, lit_once): (LitParts, Option<LitParts>),
     basis: &PlaneBasis,
     (texture, material): (u32, u32),
     ctx: &SetupContext<'_>,
     out: &mut PrimitiveChunk,
 ) -> Shader {
-    let (kind, pairs): (TexturedKind, [[Vec3; 2]; 3]) = match ctx.shading {
+    // The adaptive mode's Phong lit once is drawn as textured flat.
+    let (shading, flat) = match lit_once {
+        Some(parts) => (ShadingMode::Flat, parts),
+        None => (ctx.shading, flat),
+    };
+    let (kind, pairs): (TexturedKind, [[Vec3; 2]; 3]) = match shading {
         ShadingMode::Flat => (
             TexturedKind::Flat { ambient_diffuse: flat.ambient_diffuse, specular: flat.specular },
             [[Vec3::ZERO; 2]; 3],

@@ -18,8 +18,13 @@ fn max_difference(a: &zline_pipeline::Image, b: &zline_pipeline::Image) -> u8 {
 }
 
 fn test_scene(mode: ShadingMode, light: Vec3, color: Vec3, a2: f32, distance: f32) -> Scene {
+    shiny_scene(mode, light, color, a2, distance, 0.6)
+}
+
+/// `test_scene` with the sphere's ks.
+fn shiny_scene(mode: ShadingMode, light: Vec3, color: Vec3, a2: f32, distance: f32, ks: f32) -> Scene {
     let mut sphere = uv_sphere(24, 48, 1.0);
-    sphere.material = Material::plastic(Vec3::new(0.7, 0.4, 0.2), 0.6, 40.0);
+    sphere.material = Material::plastic(Vec3::new(0.7, 0.4, 0.2), ks, 40.0);
     let sphere = Object {
         world_from_object: Mat4::from_translation(Vec3::new(0.8, 0.0, -distance)),
         ..object(Arc::new(sphere), Some(mode))
@@ -52,9 +57,10 @@ proptest! {
         a2 in prop_oneof![Just(0.0f32), 0.0f32..2.0],
         distance in 2.5f32..12.0,
         tolerance in prop_oneof![Just(0.25f32), Just(0.5), Just(1.0), Just(2.0), Just(4.0), Just(8.0)],
+        ks in prop_oneof![Just(0.0f32), Just(0.6)],
     ) {
         let mode = if phong { ShadingMode::Phong } else { ShadingMode::Gouraud };
-        let mut s = test_scene(mode, Vec3::from(light), Vec3::from(color), a2, distance);
+        let mut s = shiny_scene(mode, Vec3::from(light), Vec3::from(color), a2, distance, ks);
         if linear {
             s.settings.interpolation = Interpolation::ScreenLinear;
         }
@@ -96,5 +102,31 @@ fn a_negligible_specular_is_dropped_and_a_visible_one_kept() {
         }
         s.settings.adaptive_tolerance = Some(1.0);
         assert_eq!(draw(&s) == draw(&matte), dropped, "light at {light}");
+    }
+}
+
+#[test]
+fn phong_lit_once_on_a_fine_matte_sphere_stays_within_the_tolerance() {
+    // 200 × 400 segments: neighbouring normals ~0.016 apart, so under a
+    // white directional light the bound of shortcut 4 is ≈ 0.7·0.016 ≈ 3
+    // steps: taken from τ ≈ 3 on, where it must change the image; below it
+    // the image is the full one.
+    let mut sphere = uv_sphere(200, 400, 1.0);
+    sphere.material = Material::plastic(Vec3::new(0.7, 0.4, 0.2), 0.0, 1.0);
+    let sphere = Object {
+        world_from_object: Mat4::from_translation(Vec3::new(0.0, 0.0, -3.0)),
+        ..object(Arc::new(sphere), Some(ShadingMode::Phong))
+    };
+    let sun = Light::Directional { direction: Vec3::new(-0.3, -0.5, -1.0), color: Vec3::ONE };
+    let mut s = scene(96, Vec3::splat(0.1), vec![sun], vec![sphere]);
+    let full = draw(&s);
+    for tolerance in [0.5f32, 1.0, 2.0, 4.0, 8.0] {
+        s.settings.adaptive_tolerance = Some(tolerance);
+        let adaptive = draw(&s);
+        let diff = max_difference(&full, &adaptive);
+        assert!(diff <= tolerance.floor() as u8 + 1, "τ = {tolerance}: difference {diff}");
+        if tolerance >= 4.0 {
+            assert!(adaptive != full, "τ = {tolerance}: shortcut 4 not taken");
+        }
     }
 }
