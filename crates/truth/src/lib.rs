@@ -39,9 +39,11 @@
 //! within about 1/512 pixel of an edge or a depth intersection may differ,
 //! and colours by rounding; it sorts transparent triangles by mean depth,
 //! the truth sorts fragments per sample (they differ where transparent
-//! surfaces intersect); and it relights the new vertices of a clipped
-//! textured Gouraud triangle, where the truth interpolates their lit parts
-//! (SPEC §2).
+//! surfaces intersect); it relights the new vertices of a clipped Gouraud
+//! triangle that is textured or has vertex colours, where the truth
+//! interpolates their lit parts (SPEC §2); and it does not yet apply vertex
+//! colours with Phong shading, where the truth multiplies ka and kd by the
+//! colour interpolated to each sample.
 
 mod camera;
 mod clip;

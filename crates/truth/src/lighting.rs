@@ -3,15 +3,18 @@
 //! for orthographic cameras too, and so does the truth):
 //!
 //! ```text
-//! I = ka·Ia + Σ_i f(d_i) · Il_i · [ kd·max(0, N·L_i) + ks·max(0, N·H_i)^ns ]
+//! I = ke + ka·Ia + Σ_i f(d_i) · Il_i · [ kd·max(0, N·L_i) + ks·max(0, N·H_i)^ns ]
 //! ```
 //!
-//! with f(d) = min(1, 1/(a0 + a1·d + a2·d²)) (1 where the denominator is
-//! ≤ 1, as `Attenuation::factor` states), f = 1 and a constant L for
-//! directional lights, and no specular term where N·L ≤ 0 or N·H ≤ 0. A
-//! point light at the surface point itself contributes nothing; a zero
-//! L + V leaves the specular term at 0. Materials are `sanitized` first, as
-//! the fast renderer does.
+//! with ke the material's emission (`Material::ke`, 0 by default), kept
+//! with the specular term because no texel or vertex colour modulates it
+//! (as the fast renderer's `LitParts` keep it);
+//! f(d) = min(1, 1/(a0 + a1·d + a2·d²)) (1 where the denominator is ≤ 1, as
+//! `Attenuation::factor` states), f = 1 and a constant L for directional
+//! lights, and no specular term where N·L ≤ 0 or N·H ≤ 0. A point light at
+//! the surface point itself contributes nothing; a zero L + V leaves the
+//! specular term at 0. Materials are `sanitized` first, as the fast
+//! renderer does.
 
 use glam::{DMat4, DVec3};
 use zline_shading::{Light, Material};
@@ -19,6 +22,7 @@ use zline_shading::{Light, Material};
 /// A material's coefficients in f64.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct MaterialF64 {
+    pub(crate) ke: DVec3,
     pub(crate) ka: DVec3,
     pub(crate) kd: DVec3,
     pub(crate) ks: DVec3,
@@ -31,6 +35,7 @@ impl MaterialF64 {
     pub(crate) fn new(m: &Material) -> MaterialF64 {
         let m = m.sanitized();
         MaterialF64 {
+            ke: m.ke.as_dvec3(),
             ka: m.ka.as_dvec3(),
             kd: m.kd.as_dvec3(),
             ks: m.ks.as_dvec3(),
@@ -54,12 +59,13 @@ pub(crate) struct EyeLights {
     lights: Vec<EyeLight>,
 }
 
-/// The two parts of a lit colour (SPEC §7 keeps them apart), unclamped.
+/// The two parts of a lit colour (SPEC §7 keeps them apart), unclamped: a
+/// texel or a vertex colour multiplies the first only.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Parts {
     /// ka·Ia + Σ f·Il·kd·max(0, N·L).
     pub(crate) ambient_diffuse: DVec3,
-    /// Σ f·Il·ks·max(0, N·H)^ns.
+    /// ke + Σ f·Il·ks·max(0, N·H)^ns: the emission and the specular term.
     pub(crate) specular: DVec3,
     /// The smallest |N·L| over the lights whose specular term can switch
     /// on or off there (ks > 0); +∞ without such lights. The model is
@@ -139,7 +145,7 @@ impl EyeLights {
         }
         Parts {
             ambient_diffuse: m.ka * self.ambient + m.kd * diffuse,
-            specular: m.ks * specular,
+            specular: m.ke + m.ks * specular,
             switch_margin,
         }
     }
@@ -164,6 +170,7 @@ mod tests {
     #[test]
     fn head_on_point_light_and_attenuation() {
         let m = MaterialF64 {
+            ke: DVec3::ZERO,
             ka: DVec3::ZERO,
             kd: DVec3::splat(0.5),
             ks: DVec3::splat(0.25),
@@ -187,5 +194,14 @@ mod tests {
         let lights = EyeLights::new(Vec3::splat(0.25), &[light], &DMat4::IDENTITY);
         let p = lights.shade(&m, DVec3::new(0.0, 0.0, -5.0), DVec3::Z);
         assert_eq!((p.ambient_diffuse, p.specular), (DVec3::splat(0.25), DVec3::ZERO));
+    }
+
+    #[test]
+    fn emission_joins_the_specular_part_even_unlit() {
+        let m = MaterialF64 { ke: DVec3::new(0.1, 0.2, 0.3), ..MaterialF64::new(&Material::DEFAULT) };
+        let light = Light::Directional { direction: Vec3::Z, color: Vec3::ONE };
+        let lights = EyeLights::new(Vec3::ZERO, &[light], &DMat4::IDENTITY);
+        let p = lights.shade(&m, DVec3::new(0.0, 0.0, -5.0), DVec3::Z);
+        assert_eq!((p.ambient_diffuse, p.specular), (DVec3::ZERO, m.ke));
     }
 }

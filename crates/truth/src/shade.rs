@@ -19,6 +19,15 @@
 //! - Phong: eye position and normal interpolated, the normal renormalized
 //!   (a zero normal stays zero), the lighting model per sample.
 //!
+//! Vertex colours (`Mesh::colors`), like a texel, multiply the
+//! ambient+diffuse part (ka and kd), never the emission or the specular
+//! term: flat shading by the mean of the original triangle's three corner
+//! colours (the colour at its centroid), Gouraud shading by each vertex's
+//! colour before that vertex's part is clamped or interpolated, Phong
+//! shading by the colour interpolated to the sample with the same weights
+//! as every other attribute. A mesh whose colour list is shorter than its
+//! positions gives the missing vertices white.
+//!
 //! With a texture, c = clamp(texel ⊙ (ambient+diffuse) + specular); the
 //! texture coordinates' derivatives for the level of detail are exact
 //! (quotient rule for perspective-correct s = S/Q) in sample space.
@@ -139,14 +148,25 @@ impl Frame<'_> {
         let side = if s.prim.back { -1.0 } else { 1.0 };
         let normal = |k: usize| self.vertex(s, k).normal * side;
         let eye = |k: usize| self.vertex(s, k).eye;
+        let colors = &s.object.mesh.colors;
+        let tint = (!colors.is_empty())
+            .then(|| [0, 1, 2].map(|k| colors.get(s.vertices[k]).map_or(DVec3::ONE, |c| c.as_dvec3())));
+        let tinted = |mut parts: Parts, color: Option<DVec3>| {
+            if let Some(c) = color {
+                parts.ambient_diffuse *= c;
+            }
+            parts
+        };
         let parts = match s.object.mode {
             ShadingMode::Flat => {
                 let v = [0, 1, 2].map(|k| self.vertex(s, k));
                 let n = face_cross(&v).normalize_or_zero() * side;
-                lights.shade(m, (eye(0) + eye(1) + eye(2)) / 3.0, n)
+                let mean = tint.map(|c| (c[0] + c[1] + c[2]) / 3.0);
+                tinted(lights.shade(m, (eye(0) + eye(1) + eye(2)) / 3.0, n), mean)
             }
             ShadingMode::Gouraud => {
-                let at_vertices = [0, 1, 2].map(|k| lights.shade(m, eye(k), normal(k)));
+                let at_vertices =
+                    [0, 1, 2].map(|k| tinted(lights.shade(m, eye(k), normal(k)), tint.map(|c| c[k])));
                 if texel.is_none() {
                     let color = blend3(&s.attr, |k| at_vertices[k].color());
                     let margin = at_vertices.iter().map(|p| p.switch_margin).fold(f64::INFINITY, f64::min);
@@ -156,7 +176,8 @@ impl Frame<'_> {
             }
             ShadingMode::Phong => {
                 let n = blend3(&s.attr, normal).normalize_or_zero();
-                lights.shade(m, blend3(&s.attr, eye), n)
+                let color = tint.map(|c| blend3(&s.attr, |k| c[k]));
+                tinted(lights.shade(m, blend3(&s.attr, eye), n), color)
             }
         };
         let color = match texel {
