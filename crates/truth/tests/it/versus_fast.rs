@@ -42,11 +42,9 @@
 //!   discontinuous at texel boundaries, which the diagnostics do not
 //!   report.
 //!
-//! Known differences, kept out of these scenes (reported, not bounded): the
-//! fast renderer relights the new vertices of a clipped Gouraud triangle
-//! that is textured or vertex-coloured instead of interpolating their lit
-//! parts (SPEC §2, §6–7), see [`untexture_clipped_gouraud`]; and it does not
-//! yet apply vertex colours with Phong shading, see [`uncolor_phong`].
+//! Known difference, kept out of these scenes (reported, not bounded): the
+//! fast renderer does not yet apply vertex colours with Phong shading, see
+//! [`uncolor_phong`].
 
 use std::sync::Arc;
 
@@ -291,7 +289,6 @@ prop_compose! {
     ) -> Scene {
         objects.extend(glass);
         uncolor_phong(&mut objects, shading);
-        untexture_clipped_gouraud(&mut objects, &camera, shading);
         let interpolation = if linear { Interpolation::ScreenLinear } else { Interpolation::PerspectiveCorrect };
         Scene {
             camera,
@@ -316,29 +313,6 @@ fn uncolor_phong(objects: &mut [Object], default: ShadingMode) {
     for object in objects {
         if object.shading.unwrap_or(default) == ShadingMode::Phong && !object.mesh.colors.is_empty() {
             Arc::make_mut(&mut object.mesh).colors.clear();
-        }
-    }
-}
-
-/// Removes the texture and the vertex colours of Gouraud objects with a
-/// vertex outside the near or far plane: the fast renderer relights the new
-/// vertices of such clipped textured or vertex-coloured triangles (both lit
-/// in its setup) where SPEC §2 interpolates their lit parts (a known
-/// difference, reported, which these tests would otherwise find).
-fn untexture_clipped_gouraud(objects: &mut [Object], camera: &Camera, default: ShadingMode) {
-    let (near, far) = match camera.projection {
-        Projection::Perspective { near, far, .. } | Projection::Orthographic { near, far, .. } => (near, far),
-    };
-    for object in objects {
-        let eye_from_object = camera.eye_from_world() * object.world_from_object;
-        let clipped = object.mesh.positions.iter().any(|&p| {
-            let depth = -eye_from_object.transform_point3(p).z;
-            depth < near * 1.01 || depth > far * 0.99
-        });
-        if clipped && object.shading.unwrap_or(default) == ShadingMode::Gouraud {
-            let mesh = Arc::make_mut(&mut object.mesh);
-            mesh.diffuse_map = None;
-            mesh.colors.clear();
         }
     }
 }
