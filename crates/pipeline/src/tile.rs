@@ -23,7 +23,7 @@ use zline_shading::{Filter, PreparedLights, PreparedMaterial, Vec3x8};
 
 use crate::bin::{PrimitiveChunk, PrimitiveRef};
 use crate::fog::FogPass;
-use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader, TexturedKind, TexturedPlanes};
+use crate::setup::{GouraudPlanes, Primitive, Shader, TexturedKind, TexturedPlanes};
 
 /// NC depth initialised to the far plane (SPEC §4).
 pub const DEPTH_CLEAR: f32 = 1.0;
@@ -264,27 +264,63 @@ impl TileTarget {
                 p.edges.scan(clip, |s| n += self.gouraud::<false, T>(&p.depth, &planes, s));
             }
             (Shader::Textured { index }, persp) => {
-                let t = &chunk.textured[index as usize];
-                let (map, m) = (&ctx.textures[t.texture as usize], &ctx.materials[t.material as usize]);
-                self.cutoff = map.alpha_cutoff;
-                if persp {
-                    p.edges
-                        .scan(clip, |s| n += self.textured::<true, T>(&p.depth, t, map, m, ctx.lighting, s));
-                } else {
-                    p.edges
-                        .scan(clip, |s| n += self.textured::<false, T>(&p.depth, t, map, m, ctx.lighting, s));
-                }
-                self.cutoff = None;
+                n += self.draw_textured::<9, T>(p, &chunk.textured[index as usize], persp, ctx);
+            }
+            (Shader::TexturedColored { index }, persp) => {
+                n += self.draw_textured::<12, T>(p, &chunk.textured_colored[index as usize], persp, ctx);
             }
             (Shader::Phong { planes, material }, persp) => {
-                let (m, l) = (&ctx.materials[material as usize], ctx.lighting);
-                if persp {
-                    p.edges.scan(clip, |s| n += self.phong::<true, T>(&p.depth, &planes, s, m, l));
-                } else {
-                    p.edges.scan(clip, |s| n += self.phong::<false, T>(&p.depth, &planes, s, m, l));
-                }
+                n += self.draw_phong::<7, T>(p, &planes, material, persp, ctx);
+            }
+            (Shader::ColoredPhong { index }, persp) => {
+                let c = &chunk.colored_phong[index as usize];
+                n += self.draw_phong::<10, T>(p, &c.planes, c.material, persp, ctx);
             }
         }
+        n
+    }
+
+    /// Draws a Phong primitive: seven planes, or ten with vertex colours.
+    #[inline(always)]
+    fn draw_phong<const N: usize, const T: bool>(
+        &mut self,
+        p: &Primitive,
+        planes: &AttributePlanes<N>,
+        material: u32,
+        persp: bool,
+        ctx: &ShadeContext<'_>,
+    ) -> u64 {
+        let (m, l) = (&ctx.materials[material as usize], ctx.lighting);
+        let mut n = 0;
+        if persp {
+            p.edges.scan(self.rect, |s| n += self.phong::<N, true, T>(&p.depth, planes, s, m, l));
+        } else {
+            p.edges.scan(self.rect, |s| n += self.phong::<N, false, T>(&p.depth, planes, s, m, l));
+        }
+        n
+    }
+
+    /// Draws a textured primitive: nine planes, or twelve for Phong with
+    /// vertex colours.
+    #[inline(always)]
+    fn draw_textured<const N: usize, const T: bool>(
+        &mut self,
+        p: &Primitive,
+        t: &TexturedPlanes<N>,
+        persp: bool,
+        ctx: &ShadeContext<'_>,
+    ) -> u64 {
+        let (map, m) = (&ctx.textures[t.texture as usize], &ctx.materials[t.material as usize]);
+        let mut n = 0;
+        self.cutoff = map.alpha_cutoff;
+        if persp {
+            p.edges
+                .scan(self.rect, |s| n += self.textured::<N, true, T>(&p.depth, t, map, m, ctx.lighting, s));
+        } else {
+            p.edges
+                .scan(self.rect, |s| n += self.textured::<N, false, T>(&p.depth, t, map, m, ctx.lighting, s));
+        }
+        self.cutoff = None;
         n
     }
 
@@ -362,32 +398,43 @@ impl TileTarget {
     }
 
     /// SPEC §6 Phong: normal and eye position interpolated, the normal
-    /// re-normalized per sample, the lighting model per sample.
-    fn phong<const PERSPECTIVE: bool, const T: bool>(
+    /// re-normalized per sample, the lighting model per sample. With ten
+    /// planes (`N` = 10) the vertex colour c is interpolated too and
+    /// multiplies ka and kd like a texel: c ⊙ (ambient+diffuse) + specular,
+    /// clamped.
+    fn phong<const N: usize, const PERSPECTIVE: bool, const T: bool>(
         &mut self,
         depth: &DepthPlane,
-        planes: &PhongPlanes,
+        planes: &AttributePlanes<N>,
         span: Span,
         material: &PreparedMaterial,
         lighting: &PreparedLights,
     ) -> u64 {
-        self.blocks::<7, T>(depth, planes, span, |a| {
+        self.blocks::<N, T>(depth, planes, span, |a| {
             let w = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
             let normal = Vec3x8 { x: a[1] * w, y: a[2] * w, z: a[3] * w }.normalize_or_zero();
             let eye = Vec3x8 { x: a[4] * w, y: a[5] * w, z: a[6] * w };
-            (lighting.shade_x8(material, eye, normal), f32x8::ONE)
+            if N == 10 {
+                let tint = Vec3x8 { x: a[7] * w, y: a[8] * w, z: a[9] * w };
+                let (ambient_diffuse, specular) = lighting.shade_parts_x8(material, eye, normal);
+                ((tint * ambient_diffuse + specular).clamp01(), f32x8::ONE)
+            } else {
+                (lighting.shade_x8(material, eye, normal), f32x8::ONE)
+            }
         })
     }
 
     /// SPEC §7: texture coordinates interpolated (perspective-correct or
     /// not), the texel sampled with the map's sampler — the level of detail
     /// from the exact per-sample derivatives of s and t — and
-    /// c = texel ⊙ (ambient+diffuse) + specular, clamped.
+    /// c = texel ⊙ (ambient+diffuse) + specular, clamped. With twelve
+    /// planes (`N` = 12, Phong with vertex colours) the interpolated vertex
+    /// colour multiplies ambient+diffuse too.
     #[allow(clippy::too_many_arguments, reason = "one kernel's inputs, passed through unchanged")]
-    fn textured<const PERSPECTIVE: bool, const T: bool>(
+    fn textured<const N: usize, const PERSPECTIVE: bool, const T: bool>(
         &mut self,
         depth: &DepthPlane,
-        t: &TexturedPlanes,
+        t: &TexturedPlanes<N>,
         map: &TextureMap,
         material: &PreparedMaterial,
         lighting: &PreparedLights,
@@ -398,7 +445,7 @@ impl TileTarget {
         let trilinear = map.sampler.filter == Filter::Trilinear;
         let blend_alpha = (T && map.alpha_blend) || map.alpha_cutoff.is_some();
         let kind = t.kind;
-        self.blocks::<9, T>(depth, &t.planes, span, |a| {
+        self.blocks::<N, T>(depth, &t.planes, span, |a| {
             let inv = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
             let (s, tt) = (a[1] * inv, a[2] * inv);
             let lods = if trilinear {
@@ -434,6 +481,7 @@ impl TileTarget {
                     lighting.shade_parts_x8(material, pair(6), pair(3).normalize_or_zero())
                 }
             };
+            let ambient_diffuse = if N == 12 { pair(9) * ambient_diffuse } else { ambient_diffuse };
             let alpha = if blend_alpha { texel_alpha } else { f32x8::ONE };
             ((texel * ambient_diffuse + specular).clamp01(), alpha)
         })
