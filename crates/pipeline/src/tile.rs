@@ -23,7 +23,10 @@ use zline_shading::{Filter, PreparedLights, PreparedMaterial, Vec3x8};
 
 use crate::bin::{PrimitiveChunk, PrimitiveRef};
 use crate::fog::FogPass;
-use crate::setup::{GouraudPlanes, Primitive, Shader, TexturedKind, TexturedPlanes};
+use crate::setup::{
+    ColoredPhongAttributes, ColoredPhongPlanes, GouraudPlanes, PhongPlanes, Primitive, Shader, TexturedKind,
+    TexturedPlanes,
+};
 
 /// NC depth initialised to the far plane (SPEC §4).
 pub const DEPTH_CLEAR: f32 = 1.0;
@@ -264,61 +267,76 @@ impl TileTarget {
                 p.edges.scan(clip, |s| n += self.gouraud::<false, T>(&p.depth, &planes, s));
             }
             (Shader::Textured { index }, persp) => {
-                n += self.draw_textured::<9, T>(p, &chunk.textured[index as usize], persp, ctx);
-            }
-            (Shader::TexturedColored { index }, persp) => {
-                n += self.draw_textured::<12, T>(p, &chunk.textured_colored[index as usize], persp, ctx);
+                let t = &chunk.textured[index as usize];
+                let (map, m) = (&ctx.textures[t.texture as usize], &ctx.materials[t.material as usize]);
+                self.cutoff = map.alpha_cutoff;
+                if persp {
+                    p.edges.scan(clip, |s| {
+                        n += self.textured::<9, true, T>(&p.depth, t, map, m, ctx.lighting, s)
+                    });
+                } else {
+                    p.edges.scan(clip, |s| {
+                        n += self.textured::<9, false, T>(&p.depth, t, map, m, ctx.lighting, s)
+                    });
+                }
+                self.cutoff = None;
             }
             (Shader::Phong { planes, material }, persp) => {
-                n += self.draw_phong::<7, T>(p, &planes, material, persp, ctx);
+                let (m, l) = (&ctx.materials[material as usize], ctx.lighting);
+                if persp {
+                    p.edges.scan(clip, |s| n += self.phong::<true, T>(&p.depth, &planes, s, m, l));
+                } else {
+                    p.edges.scan(clip, |s| n += self.phong::<false, T>(&p.depth, &planes, s, m, l));
+                }
             }
             (Shader::ColoredPhong { index }, persp) => {
-                let c = &chunk.colored_phong[index as usize];
-                n += self.draw_phong::<10, T>(p, &c.planes, c.material, persp, ctx);
+                n += self.draw_colored_phong::<T>(p, &chunk.colored_phong[index as usize], persp, ctx);
+            }
+            (Shader::TexturedColored { index }, persp) => {
+                n += self.draw_textured_colored::<T>(p, &chunk.textured_colored[index as usize], persp, ctx);
             }
         }
         n
     }
 
-    /// Draws a Phong primitive: seven planes, or ten with vertex colours.
-    #[inline(always)]
-    fn draw_phong<const N: usize, const T: bool>(
+    /// Draws an untextured Phong primitive with vertex colours. Kept out of
+    /// [`Self::draw`] (not inlined) so that the kernels of primitives
+    /// without colours are compiled as if these did not exist.
+    #[inline(never)]
+    fn draw_colored_phong<const T: bool>(
         &mut self,
         p: &Primitive,
-        planes: &AttributePlanes<N>,
-        material: u32,
+        c: &ColoredPhongPlanes,
         persp: bool,
         ctx: &ShadeContext<'_>,
     ) -> u64 {
-        let (m, l) = (&ctx.materials[material as usize], ctx.lighting);
-        let mut n = 0;
+        let (m, l) = (&ctx.materials[c.material as usize], ctx.lighting);
+        let (clip, mut n) = (self.rect, 0);
         if persp {
-            p.edges.scan(self.rect, |s| n += self.phong::<N, true, T>(&p.depth, planes, s, m, l));
+            p.edges.scan(clip, |s| n += self.colored_phong::<true, T>(&p.depth, &c.planes, s, m, l));
         } else {
-            p.edges.scan(self.rect, |s| n += self.phong::<N, false, T>(&p.depth, planes, s, m, l));
+            p.edges.scan(clip, |s| n += self.colored_phong::<false, T>(&p.depth, &c.planes, s, m, l));
         }
         n
     }
 
-    /// Draws a textured primitive: nine planes, or twelve for Phong with
-    /// vertex colours.
-    #[inline(always)]
-    fn draw_textured<const N: usize, const T: bool>(
+    /// Draws a textured Phong primitive with vertex colours (out of line
+    /// like [`Self::draw_colored_phong`]).
+    #[inline(never)]
+    fn draw_textured_colored<const T: bool>(
         &mut self,
         p: &Primitive,
-        t: &TexturedPlanes<N>,
+        t: &TexturedPlanes<12>,
         persp: bool,
         ctx: &ShadeContext<'_>,
     ) -> u64 {
         let (map, m) = (&ctx.textures[t.texture as usize], &ctx.materials[t.material as usize]);
-        let mut n = 0;
+        let (clip, mut n) = (self.rect, 0);
         self.cutoff = map.alpha_cutoff;
         if persp {
-            p.edges
-                .scan(self.rect, |s| n += self.textured::<N, true, T>(&p.depth, t, map, m, ctx.lighting, s));
+            p.edges.scan(clip, |s| n += self.textured::<12, true, T>(&p.depth, t, map, m, ctx.lighting, s));
         } else {
-            p.edges
-                .scan(self.rect, |s| n += self.textured::<N, false, T>(&p.depth, t, map, m, ctx.lighting, s));
+            p.edges.scan(clip, |s| n += self.textured::<12, false, T>(&p.depth, t, map, m, ctx.lighting, s));
         }
         self.cutoff = None;
         n
@@ -398,29 +416,40 @@ impl TileTarget {
     }
 
     /// SPEC §6 Phong: normal and eye position interpolated, the normal
-    /// re-normalized per sample, the lighting model per sample. With ten
-    /// planes (`N` = 10) the vertex colour c is interpolated too and
-    /// multiplies ka and kd like a texel: c ⊙ (ambient+diffuse) + specular,
-    /// clamped.
-    fn phong<const N: usize, const PERSPECTIVE: bool, const T: bool>(
+    /// re-normalized per sample, the lighting model per sample.
+    fn phong<const PERSPECTIVE: bool, const T: bool>(
         &mut self,
         depth: &DepthPlane,
-        planes: &AttributePlanes<N>,
+        planes: &PhongPlanes,
         span: Span,
         material: &PreparedMaterial,
         lighting: &PreparedLights,
     ) -> u64 {
-        self.blocks::<N, T>(depth, planes, span, |a| {
+        self.blocks::<7, T>(depth, planes, span, |a| {
             let w = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
             let normal = Vec3x8 { x: a[1] * w, y: a[2] * w, z: a[3] * w }.normalize_or_zero();
             let eye = Vec3x8 { x: a[4] * w, y: a[5] * w, z: a[6] * w };
-            if N == 10 {
-                let tint = Vec3x8 { x: a[7] * w, y: a[8] * w, z: a[9] * w };
-                let (ambient_diffuse, specular) = lighting.shade_parts_x8(material, eye, normal);
-                ((tint * ambient_diffuse + specular).clamp01(), f32x8::ONE)
-            } else {
-                (lighting.shade_x8(material, eye, normal), f32x8::ONE)
-            }
+            (lighting.shade_x8(material, eye, normal), f32x8::ONE)
+        })
+    }
+
+    /// [`Self::phong`] with the vertex colour c interpolated too, multiplying
+    /// ka and kd like a texel: c ⊙ (ambient+diffuse) + specular, clamped.
+    fn colored_phong<const PERSPECTIVE: bool, const T: bool>(
+        &mut self,
+        depth: &DepthPlane,
+        planes: &ColoredPhongAttributes,
+        span: Span,
+        material: &PreparedMaterial,
+        lighting: &PreparedLights,
+    ) -> u64 {
+        self.blocks::<10, T>(depth, planes, span, |a| {
+            let w = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
+            let normal = Vec3x8 { x: a[1] * w, y: a[2] * w, z: a[3] * w }.normalize_or_zero();
+            let eye = Vec3x8 { x: a[4] * w, y: a[5] * w, z: a[6] * w };
+            let tint = Vec3x8 { x: a[7] * w, y: a[8] * w, z: a[9] * w };
+            let (ambient_diffuse, specular) = lighting.shade_parts_x8(material, eye, normal);
+            ((tint * ambient_diffuse + specular).clamp01(), f32x8::ONE)
         })
     }
 
