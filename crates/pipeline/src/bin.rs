@@ -70,6 +70,13 @@ pub struct PrimitiveChunk {
     /// Planes of the textured primitives, referenced by
     /// [`Shader::Textured`](crate::setup::Shader::Textured).
     pub textured: Vec<crate::setup::TexturedPlanes>,
+    /// Planes of the untextured Phong primitives with vertex colours,
+    /// referenced by [`Shader::ColoredPhong`](crate::setup::Shader::ColoredPhong).
+    pub colored_phong: Vec<crate::setup::ColoredPhongPlanes>,
+    /// Planes of the textured Phong primitives with vertex colours,
+    /// referenced by
+    /// [`Shader::TexturedColored`](crate::setup::Shader::TexturedColored).
+    pub textured_colored: Vec<crate::setup::TexturedPlanes<12>>,
 }
 
 /// Where a binned primitive lives: `chunks[chunk].prims[index]`.

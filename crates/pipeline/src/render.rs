@@ -225,6 +225,8 @@ impl Renderer {
         self.chunks[first..self.used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
             out.prims.clear();
             out.textured.clear();
+            out.colored_phong.clear();
+            out.textured_colored.clear();
             out.transparent = ctx.material.0.material.opacity < 1.0 || ctx.blend_texture_alpha;
             for t in tris {
                 if let Some(tri) = gather(vertices, t) {

@@ -24,6 +24,20 @@ use crate::vertex::ClipVertex;
 pub type GouraudPlanes = AttributePlanes<4>;
 /// Attributes of a Phong primitive: [1/w, normal xyz, eye position xyz].
 pub type PhongPlanes = AttributePlanes<7>;
+/// Attributes of a Phong primitive with vertex colours: [1/w, normal xyz,
+/// eye position xyz, colour rgb] (each over w when perspective-correct).
+pub type ColoredPhongAttributes = AttributePlanes<10>;
+
+/// The planes and material of one untextured Phong primitive with vertex
+/// colours, kept in the chunk's [`PrimitiveChunk::colored_phong`] so that
+/// Phong primitives without colours stay at seven planes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ColoredPhongPlanes {
+    /// The attributes.
+    pub planes: ColoredPhongAttributes,
+    /// Index into the frame's material table.
+    pub material: u32,
+}
 
 /// How a primitive's samples get their colour.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,6 +66,20 @@ pub enum Shader {
         /// Index into the frame's material table.
         material: u32,
     },
+    /// Lighting per sample with interpolated vertex colours: its planes
+    /// live in the chunk's [`PrimitiveChunk::colored_phong`].
+    ColoredPhong {
+        /// Index into the chunk's coloured Phong planes.
+        index: u32,
+    },
+    /// A textured Phong primitive with vertex colours: its planes live in
+    /// the chunk's [`PrimitiveChunk::textured_colored`] (textured flat and
+    /// Gouraud primitives fold the colours into their lit parts in setup
+    /// and use [`Shader::Textured`]).
+    TexturedColored {
+        /// Index into the chunk's textured and coloured planes.
+        index: u32,
+    },
 }
 
 /// A triangle ready for any tile: coverage, depth and shading.
@@ -72,10 +100,15 @@ pub struct Primitive {
     pub sort_depth: f32,
 }
 
-/// Attributes of a textured primitive: [1/w, s, t, then three pairs of
-/// three] — ambient+diffuse and specular parts (Gouraud) or normal and eye
-/// position (Phong); each over w when perspective-correct.
+/// Attributes of a textured primitive: [1/w, s, t, then two triples] —
+/// ambient+diffuse and specular parts (Gouraud) or normal and eye position
+/// (Phong); each over w when perspective-correct.
 pub type TexturedAttributes = AttributePlanes<9>;
+
+/// Attributes of a textured Phong primitive with vertex colours: those of
+/// [`TexturedAttributes`] (normal and eye position) followed by the colour
+/// rgb, each over w when perspective-correct.
+pub type TexturedColoredAttributes = AttributePlanes<12>;
 
 /// How a textured primitive gets its lit parts (SPEC §7: the texel
 /// modulates ka and kd, not ks: c = texel ⊙ (ambient+diffuse) + specular).
@@ -94,13 +127,15 @@ pub enum TexturedKind {
     Phong,
 }
 
-/// The planes and references of one textured primitive.
+/// The planes and references of one textured primitive: nine planes
+/// ([`TexturedAttributes`]), or twelve ([`TexturedColoredAttributes`],
+/// always [`TexturedKind::Phong`]) for Phong with vertex colours.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TexturedPlanes {
+pub struct TexturedPlanes<const N: usize = 9> {
     /// How the lit parts come about.
     pub kind: TexturedKind,
     /// The attributes.
-    pub planes: TexturedAttributes,
+    pub planes: AttributePlanes<N>,
     /// Index into the frame's texture table.
     pub texture: u32,
     /// Index into the frame's material table.
@@ -193,8 +228,10 @@ pub struct SetupContext<'a> {
     pub orthographic: bool,
     /// True when the mesh has vertex colours: [`ClipVertex::color`] holds
     /// them, a factor on ka and kd like a texel, applied by flat shading
-    /// (their mean at the centroid) and Gouraud shading (lit here in setup,
-    /// per vertex). Phong shading does not apply them yet.
+    /// (their mean at the centroid), Gouraud shading (lit here in setup,
+    /// per vertex) and Phong shading (interpolated like the normal and
+    /// multiplied per sample: [`Shader::ColoredPhong`],
+    /// [`Shader::TexturedColored`]).
     pub vertex_colors: bool,
 }
 
@@ -395,14 +432,15 @@ fn emit(
         (Some(texture), None, lit_once) => {
             textured(tri, q, (flat, lit_once), &basis, (texture, material), ctx, out)
         }
-        (None, None, None) => untextured(tri, q, flat.color(), &basis, material, ctx),
+        (None, None, None) => untextured(tri, q, flat.color(), &basis, material, ctx, out),
     };
     let kt = 1.0 - ctx.material.0.material.opacity;
     let sort_depth = ((p[0].z + p[1].z + p[2].z) / 3.0) as f32;
     out.prims.push(Primitive { edges, depth, shader, perspective, kt, sort_depth });
 }
 
-/// The shader of an untextured primitive: only the attributes its mode needs.
+/// The shader of an untextured primitive: only the attributes its mode
+/// needs (coloured Phong's planes in the chunk's side table).
 #[inline]
 fn untextured(
     tri: [&ClipVertex; 3],
@@ -411,6 +449,7 @@ fn untextured(
     basis: &PlaneBasis,
     material: u32,
     ctx: &SetupContext<'_>,
+    out: &mut PrimitiveChunk,
 ) -> Shader {
     match ctx.shading {
         ShadingMode::Flat => Shader::Flat { color: flat },
@@ -420,6 +459,14 @@ fn untextured(
                 [q[k], c.x, c.y, c.z]
             });
             Shader::Gouraud { planes: AttributePlanes::new(basis, v) }
+        }
+        ShadingMode::Phong if ctx.vertex_colors => {
+            let v = std::array::from_fn(|k| {
+                let (n, e, c) = (tri[k].normal * q[k], tri[k].eye * q[k], tri[k].color * q[k]);
+                [q[k], n.x, n.y, n.z, e.x, e.y, e.z, c.x, c.y, c.z]
+            });
+            out.colored_phong.push(ColoredPhongPlanes { planes: AttributePlanes::new(basis, v), material });
+            Shader::ColoredPhong { index: (out.colored_phong.len() - 1) as u32 }
         }
         ShadingMode::Phong => {
             let v = std::array::from_fn(|k| {
@@ -432,7 +479,8 @@ fn untextured(
 }
 
 /// The shader of a textured primitive: texture coordinates plus the parts
-/// its mode interpolates, stored in the chunk's side table.
+/// its mode interpolates (and, for Phong, the vertex colours when the mesh
+/// has them), stored in the chunk's side tables.
 fn textured(
     tri: [&ClipVertex; 3],
     q: [f32; 3],
@@ -447,6 +495,16 @@ fn textured(
         Some(parts) => (ShadingMode::Flat, parts),
         None => (ctx.shading, flat),
     };
+    if shading == ShadingMode::Phong && ctx.vertex_colors {
+        let values = std::array::from_fn(|k| {
+            let (uv, n, e, c) =
+                (tri[k].uv * q[k], tri[k].normal * q[k], tri[k].eye * q[k], tri[k].color * q[k]);
+            [q[k], uv.x, uv.y, n.x, n.y, n.z, e.x, e.y, e.z, c.x, c.y, c.z]
+        });
+        let planes = AttributePlanes::new(basis, values);
+        out.textured_colored.push(TexturedPlanes { kind: TexturedKind::Phong, planes, texture, material });
+        return Shader::TexturedColored { index: (out.textured_colored.len() - 1) as u32 };
+    }
     let (kind, pairs): (TexturedKind, [[Vec3; 2]; 3]) = match shading {
         ShadingMode::Flat => (
             TexturedKind::Flat { ambient_diffuse: flat.ambient_diffuse, specular: flat.specular },

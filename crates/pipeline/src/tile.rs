@@ -23,7 +23,10 @@ use zline_shading::{Filter, PreparedLights, PreparedMaterial, Vec3x8};
 
 use crate::bin::{PrimitiveChunk, PrimitiveRef};
 use crate::fog::FogPass;
-use crate::setup::{GouraudPlanes, PhongPlanes, Primitive, Shader, TexturedKind, TexturedPlanes};
+use crate::setup::{
+    ColoredPhongAttributes, ColoredPhongPlanes, GouraudPlanes, PhongPlanes, Primitive, Shader, TexturedKind,
+    TexturedPlanes,
+};
 
 /// NC depth initialised to the far plane (SPEC §4).
 pub const DEPTH_CLEAR: f32 = 1.0;
@@ -268,11 +271,13 @@ impl TileTarget {
                 let (map, m) = (&ctx.textures[t.texture as usize], &ctx.materials[t.material as usize]);
                 self.cutoff = map.alpha_cutoff;
                 if persp {
-                    p.edges
-                        .scan(clip, |s| n += self.textured::<true, T>(&p.depth, t, map, m, ctx.lighting, s));
+                    p.edges.scan(clip, |s| {
+                        n += self.textured::<9, true, T>(&p.depth, t, map, m, ctx.lighting, s)
+                    });
                 } else {
-                    p.edges
-                        .scan(clip, |s| n += self.textured::<false, T>(&p.depth, t, map, m, ctx.lighting, s));
+                    p.edges.scan(clip, |s| {
+                        n += self.textured::<9, false, T>(&p.depth, t, map, m, ctx.lighting, s)
+                    });
                 }
                 self.cutoff = None;
             }
@@ -284,7 +289,56 @@ impl TileTarget {
                     p.edges.scan(clip, |s| n += self.phong::<false, T>(&p.depth, &planes, s, m, l));
                 }
             }
+            (Shader::ColoredPhong { index }, persp) => {
+                n += self.draw_colored_phong::<T>(p, &chunk.colored_phong[index as usize], persp, ctx);
+            }
+            (Shader::TexturedColored { index }, persp) => {
+                n += self.draw_textured_colored::<T>(p, &chunk.textured_colored[index as usize], persp, ctx);
+            }
         }
+        n
+    }
+
+    /// Draws an untextured Phong primitive with vertex colours. Kept out of
+    /// [`Self::draw`] (not inlined) so that the kernels of primitives
+    /// without colours are compiled as if these did not exist.
+    #[inline(never)]
+    fn draw_colored_phong<const T: bool>(
+        &mut self,
+        p: &Primitive,
+        c: &ColoredPhongPlanes,
+        persp: bool,
+        ctx: &ShadeContext<'_>,
+    ) -> u64 {
+        let (m, l) = (&ctx.materials[c.material as usize], ctx.lighting);
+        let (clip, mut n) = (self.rect, 0);
+        if persp {
+            p.edges.scan(clip, |s| n += self.colored_phong::<true, T>(&p.depth, &c.planes, s, m, l));
+        } else {
+            p.edges.scan(clip, |s| n += self.colored_phong::<false, T>(&p.depth, &c.planes, s, m, l));
+        }
+        n
+    }
+
+    /// Draws a textured Phong primitive with vertex colours (out of line
+    /// like [`Self::draw_colored_phong`]).
+    #[inline(never)]
+    fn draw_textured_colored<const T: bool>(
+        &mut self,
+        p: &Primitive,
+        t: &TexturedPlanes<12>,
+        persp: bool,
+        ctx: &ShadeContext<'_>,
+    ) -> u64 {
+        let (map, m) = (&ctx.textures[t.texture as usize], &ctx.materials[t.material as usize]);
+        let (clip, mut n) = (self.rect, 0);
+        self.cutoff = map.alpha_cutoff;
+        if persp {
+            p.edges.scan(clip, |s| n += self.textured::<12, true, T>(&p.depth, t, map, m, ctx.lighting, s));
+        } else {
+            p.edges.scan(clip, |s| n += self.textured::<12, false, T>(&p.depth, t, map, m, ctx.lighting, s));
+        }
+        self.cutoff = None;
         n
     }
 
@@ -379,15 +433,37 @@ impl TileTarget {
         })
     }
 
+    /// [`Self::phong`] with the vertex colour c interpolated too, multiplying
+    /// ka and kd like a texel: c ⊙ (ambient+diffuse) + specular, clamped.
+    fn colored_phong<const PERSPECTIVE: bool, const T: bool>(
+        &mut self,
+        depth: &DepthPlane,
+        planes: &ColoredPhongAttributes,
+        span: Span,
+        material: &PreparedMaterial,
+        lighting: &PreparedLights,
+    ) -> u64 {
+        self.blocks::<10, T>(depth, planes, span, |a| {
+            let w = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
+            let normal = Vec3x8 { x: a[1] * w, y: a[2] * w, z: a[3] * w }.normalize_or_zero();
+            let eye = Vec3x8 { x: a[4] * w, y: a[5] * w, z: a[6] * w };
+            let tint = Vec3x8 { x: a[7] * w, y: a[8] * w, z: a[9] * w };
+            let (ambient_diffuse, specular) = lighting.shade_parts_x8(material, eye, normal);
+            ((tint * ambient_diffuse + specular).clamp01(), f32x8::ONE)
+        })
+    }
+
     /// SPEC §7: texture coordinates interpolated (perspective-correct or
     /// not), the texel sampled with the map's sampler — the level of detail
     /// from the exact per-sample derivatives of s and t — and
-    /// c = texel ⊙ (ambient+diffuse) + specular, clamped.
+    /// c = texel ⊙ (ambient+diffuse) + specular, clamped. With twelve
+    /// planes (`N` = 12, Phong with vertex colours) the interpolated vertex
+    /// colour multiplies ambient+diffuse too.
     #[allow(clippy::too_many_arguments, reason = "one kernel's inputs, passed through unchanged")]
-    fn textured<const PERSPECTIVE: bool, const T: bool>(
+    fn textured<const N: usize, const PERSPECTIVE: bool, const T: bool>(
         &mut self,
         depth: &DepthPlane,
-        t: &TexturedPlanes,
+        t: &TexturedPlanes<N>,
         map: &TextureMap,
         material: &PreparedMaterial,
         lighting: &PreparedLights,
@@ -398,7 +474,7 @@ impl TileTarget {
         let trilinear = map.sampler.filter == Filter::Trilinear;
         let blend_alpha = (T && map.alpha_blend) || map.alpha_cutoff.is_some();
         let kind = t.kind;
-        self.blocks::<9, T>(depth, &t.planes, span, |a| {
+        self.blocks::<N, T>(depth, &t.planes, span, |a| {
             let inv = if PERSPECTIVE { f32x8::ONE / a[0] } else { f32x8::ONE };
             let (s, tt) = (a[1] * inv, a[2] * inv);
             let lods = if trilinear {
@@ -434,6 +510,7 @@ impl TileTarget {
                     lighting.shade_parts_x8(material, pair(6), pair(3).normalize_or_zero())
                 }
             };
+            let ambient_diffuse = if N == 12 { pair(9) * ambient_diffuse } else { ambient_diffuse };
             let alpha = if blend_alpha { texel_alpha } else { f32x8::ONE };
             ((texel * ambient_diffuse + specular).clamp01(), alpha)
         })

@@ -9,7 +9,7 @@ use proptest::prelude::*;
 use zline_scene::{uv_sphere, Interpolation, Object, Scene};
 use zline_shading::{Attenuation, Light, Material, ShadingMode};
 
-use crate::support::{draw, object, scene, wavy_grid};
+use crate::support::{colored, draw, object, scene, wavy_grid};
 
 /// Largest 8-bit difference between two images of the same size.
 fn max_difference(a: &zline_pipeline::Image, b: &zline_pipeline::Image) -> u8 {
@@ -127,6 +127,39 @@ fn phong_lit_once_on_a_fine_matte_sphere_stays_within_the_tolerance() {
         assert!(diff <= tolerance.floor() as u8 + 1, "τ = {tolerance}: difference {diff}");
         if tolerance >= 4.0 {
             assert!(adaptive != full, "τ = {tolerance}: shortcut 4 not taken");
+        }
+    }
+}
+
+#[test]
+fn a_negligible_specular_is_dropped_with_vertex_colours_too() {
+    // As above, with vertex colours on both meshes (their Phong primitives
+    // keep their planes in the chunks' side table) and once with a texture.
+    let texture = zline_shading::Texture::from_rgba8(1, 1, &[230, 200, 250, 255]).expect("valid");
+    let map = zline_scene::TextureMap {
+        texture: Arc::new(texture),
+        sampler: zline_shading::Sampler::default(),
+        alpha_blend: false,
+        alpha_cutoff: None,
+    };
+    for textured in [false, true] {
+        for (light, dropped) in [(Vec3::new(0.0, 0.0, 35.0), true), (Vec3::new(1.0, 1.0, 0.0), false)] {
+            let mut s = test_scene(ShadingMode::Phong, light, Vec3::ONE, 1.0, 4.0);
+            s.lights.truncate(1);
+            for o in &mut s.objects {
+                let mut mesh = (*colored(&o.mesh)).clone();
+                if textured {
+                    let uv = mesh.positions.iter().map(|p| glam::Vec2::new(p.x, p.y)).collect();
+                    mesh = mesh.with_uvs(uv).expect("one per vertex").with_diffuse_map(map.clone());
+                }
+                o.mesh = Arc::new(mesh);
+            }
+            let mut matte = s.clone();
+            for o in &mut matte.objects {
+                o.material = Some(Material { ks: Vec3::ZERO, ..o.mesh.material });
+            }
+            s.settings.adaptive_tolerance = Some(1.0);
+            assert_eq!(draw(&s) == draw(&matte), dropped, "textured {textured}, light at {light}");
         }
     }
 }

@@ -6,7 +6,7 @@ use zline_pipeline::{render, RenderOptions};
 use zline_scene::Interpolation;
 use zline_shading::{Attenuation, Light, ShadingMode};
 
-use crate::support::{object, scene, wavy_grid};
+use crate::support::{colored, object, scene, wavy_grid};
 
 fn test_scene(mode: ShadingMode, interpolation: Interpolation) -> zline_scene::Scene {
     let lights = vec![
@@ -38,6 +38,45 @@ fn tile_size_and_thread_count_do_not_change_a_single_byte() {
                         image == reference,
                         "{mode:?} {interp:?}: tile {tile_size}, {threads} threads differ"
                     );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn vertex_colours_do_not_change_a_byte_with_tile_size_or_thread_count() {
+    // Coloured meshes (Phong keeps their planes in side tables), untextured
+    // and textured.
+    let texture =
+        zline_shading::Texture::from_rgba8(2, 1, &[250, 200, 120, 255, 90, 160, 240, 255]).expect("valid");
+    let map = zline_scene::TextureMap {
+        texture: std::sync::Arc::new(texture),
+        sampler: zline_shading::Sampler::default(),
+        alpha_blend: false,
+        alpha_cutoff: None,
+    };
+    for mode in ShadingMode::ALL {
+        for textured in [false, true] {
+            for interp in [Interpolation::PerspectiveCorrect, Interpolation::ScreenLinear] {
+                let mut s = test_scene(mode, interp);
+                let mut mesh = (*colored(&s.objects[0].mesh)).clone();
+                if textured {
+                    let uv = mesh.positions.iter().map(|p| glam::Vec2::new(p.x * 0.7, p.y * 0.4)).collect();
+                    mesh = mesh.with_uvs(uv).expect("one per vertex").with_diffuse_map(map.clone());
+                }
+                s.objects[0].mesh = std::sync::Arc::new(mesh);
+                let reference = render(&s, &RenderOptions { tile_size: 64 }).0;
+                assert!(reference != render(&test_scene(mode, interp), &RenderOptions { tile_size: 64 }).0);
+                for tile_size in [1, 7, 33] {
+                    for threads in [1, 2] {
+                        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                        let image = pool.install(|| render(&s, &RenderOptions { tile_size }).0);
+                        assert!(
+                            image == reference,
+                            "{mode:?} {interp:?} textured {textured}: tile {tile_size}, {threads} threads differ"
+                        );
+                    }
                 }
             }
         }

@@ -107,3 +107,20 @@ pub(crate) fn quantize_robust(c: glam::DVec3) -> [u8; 3] {
         s.floor() as u8
     })
 }
+
+/// `mesh` with vertex colours that vary smoothly with the position (every
+/// channel in [0.2, 1]).
+pub(crate) fn colored(mesh: &Mesh) -> Arc<Mesh> {
+    let colors = mesh
+        .positions
+        .iter()
+        .map(|p| {
+            Vec3::new(
+                0.6 + 0.4 * (2.0 * p.x).sin(),
+                0.6 + 0.4 * (3.0 * p.y).cos(),
+                0.6 + 0.4 * (p.x * p.y).sin(),
+            )
+        })
+        .collect();
+    Arc::new(mesh.clone().with_colors(colors).expect("one colour per vertex"))
+}

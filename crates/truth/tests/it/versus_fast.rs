@@ -41,10 +41,6 @@
 //! - Textures use bilinear or trilinear filtering: nearest filtering is
 //!   discontinuous at texel boundaries, which the diagnostics do not
 //!   report.
-//!
-//! Known difference, kept out of these scenes (reported, not bounded): the
-//! fast renderer does not yet apply vertex colours with Phong shading, see
-//! [`uncolor_phong`].
 
 use std::sync::Arc;
 
@@ -288,7 +284,6 @@ prop_compose! {
         linear in any::<bool>(),
     ) -> Scene {
         objects.extend(glass);
-        uncolor_phong(&mut objects, shading);
         let interpolation = if linear { Interpolation::ScreenLinear } else { Interpolation::PerspectiveCorrect };
         Scene {
             camera,
@@ -298,21 +293,6 @@ prop_compose! {
             objects,
             settings: RenderSettings { width: SIZE, height: SIZE, shading, interpolation, ..RenderSettings::default() },
             fog,
-        }
-    }
-}
-
-/// Removes the vertex colours of Phong objects. The truth multiplies ka and
-/// kd by the colour interpolated to each sample, but the fast renderer's
-/// Phong path ignores vertex colours for now (`zline_pipeline`'s setup
-/// applies `SetupContext::vertex_colors` to flat and Gouraud primitives
-/// only; its Phong planes carry no colour), so only flat and Gouraud
-/// objects keep their colours here, where the comparison means something.
-/// Remove this once the fast Phong path applies them.
-fn uncolor_phong(objects: &mut [Object], default: ShadingMode) {
-    for object in objects {
-        if object.shading.unwrap_or(default) == ShadingMode::Phong && !object.mesh.colors.is_empty() {
-            Arc::make_mut(&mut object.mesh).colors.clear();
         }
     }
 }
