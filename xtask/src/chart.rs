@@ -46,7 +46,7 @@ fn plot(root: &Area<'_>, points: &[Point]) -> Result<(), Box<dyn std::error::Err
         .build_cartesian_2d(0.0..t_hi * 1.1, (e_lo * 0.6..e_hi * 1.6).log_scale())?;
     chart
         .configure_mesh()
-        .x_desc("total median frame time, ms")
+        .x_desc("total frame time over the benchmark scenes (fastest of N frames), ms")
         .y_desc("mean RMSE vs the best image, 8-bit steps (log)")
         .label_style(("sans-serif", 16))
         .axis_desc_style(("sans-serif", 18))

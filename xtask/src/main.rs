@@ -94,7 +94,7 @@ enum Task {
         #[arg(long, default_value_t = 5)]
         frames: usize,
         /// Image size of the benchmark scenes, WxH.
-        #[arg(long, default_value = "640x360", value_parser = contact::parse_cell)]
+        #[arg(long, default_value = "1920x1080", value_parser = contact::parse_cell)]
         size: (u32, u32),
         /// Only scenes whose name contains this text.
         #[arg(long)]

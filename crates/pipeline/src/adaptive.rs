@@ -170,6 +170,12 @@ impl Adaptive {
         if ks <= 0.0 {
             return 0.0;
         }
+        let directional = ks * self.directional;
+        if directional > self.tolerance {
+            // Directional lights alone exceed the tolerance: skip the
+            // per-triangle geometry (the common case with a sun and ks > 0).
+            return directional;
+        }
         let longest = longest_edge(eye);
         let mut bound = self.directional;
         for &(position, intensity, attenuation) in &self.point {
