@@ -86,29 +86,42 @@ const PALETTE: [Vec3; 8] = [
     Vec3::new(0.95, 0.55, 0.15),
 ];
 
-/// One object per triangle list, flat-shaded, culling off.
+/// A flat-shaded, plain-coloured object of one mesh whose normals are all
+/// `normal`.
+fn flat_object(
+    name: &str,
+    positions: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    normal: Vec3,
+    color: Vec3,
+    cull: bool,
+) -> Object {
+    let mesh = Mesh {
+        name: name.into(),
+        normals: vec![normal; positions.len()],
+        positions,
+        triangles,
+        material: plain(color),
+        uvs: Vec::new(),
+        diffuse_map: None,
+        colors: Vec::new(),
+    };
+    Object {
+        mesh: Arc::new(mesh),
+        world_from_object: Mat4::IDENTITY,
+        material: None,
+        shading: Some(ShadingMode::Flat),
+        cull_back_faces: cull,
+    }
+}
+
+/// One object per triangle, flat-shaded, culling off.
 fn flat_objects(triangles: Vec<([Vec3; 3], Vec3)>) -> Vec<Object> {
     triangles
         .into_iter()
         .map(|(p, color)| {
             let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or(Vec3::Z);
-            let mesh = Mesh {
-                name: "hard case".into(),
-                positions: p.to_vec(),
-                normals: vec![normal; 3],
-                triangles: vec![[0, 1, 2]],
-                material: plain(color),
-                uvs: Vec::new(),
-                diffuse_map: None,
-                colors: Vec::new(),
-            };
-            Object {
-                mesh: Arc::new(mesh),
-                world_from_object: Mat4::IDENTITY,
-                material: None,
-                shading: Some(ShadingMode::Flat),
-                cull_back_faces: false,
-            }
+            flat_object("hard case", p.to_vec(), vec![[0, 1, 2]], normal, color, false)
         })
         .collect()
 }
@@ -156,23 +169,7 @@ pub fn fan(n: u32) -> Scene {
         positions.push(at_pixel(w, h, 256.0 + 250.0 * a.cos(), 256.0 - 250.0 * a.sin()));
     }
     let triangles = (0..n).map(|k| [0, k + 1, (k + 1) % n + 1]).collect();
-    let mesh = Mesh {
-        name: "fan".into(),
-        normals: vec![Vec3::Z; positions.len()],
-        positions,
-        triangles,
-        material: plain(PALETTE[0]),
-        uvs: Vec::new(),
-        diffuse_map: None,
-        colors: Vec::new(),
-    };
-    let object = Object {
-        mesh: Arc::new(mesh),
-        world_from_object: Mat4::IDENTITY,
-        material: None,
-        shading: Some(ShadingMode::Flat),
-        cull_back_faces: true,
-    };
+    let object = flat_object("fan", positions, triangles, Vec3::Z, PALETTE[0], true);
     flat_scene(w, h, pixel_camera(h), vec![object])
 }
 
@@ -251,23 +248,7 @@ pub fn t_junction() -> Scene {
     let positions = vec![a, b, c, d, t];
     // Left: a, b, d (covers the upper-left half); right: a, c, t and t, c, b.
     let triangles = vec![[0, 3, 1], [0, 4, 2], [4, 1, 2]];
-    let mesh = Mesh {
-        name: "t-junction".into(),
-        normals: vec![Vec3::Z; positions.len()],
-        positions,
-        triangles,
-        material: plain(PALETTE[3]),
-        uvs: Vec::new(),
-        diffuse_map: None,
-        colors: Vec::new(),
-    };
-    let object = Object {
-        mesh: Arc::new(mesh),
-        world_from_object: Mat4::IDENTITY,
-        material: None,
-        shading: Some(ShadingMode::Flat),
-        cull_back_faces: false,
-    };
+    let object = flat_object("t-junction", positions, triangles, Vec3::Z, PALETTE[3], false);
     flat_scene(w, h, pixel_camera(h), vec![object])
 }
 
