@@ -48,8 +48,10 @@
 //!   clamped to [0, 1] like every coefficient; an emissiveTexture is
 //!   warned about and ignored (the factor alone is used);
 //! - opacity = baseColorFactor.a for alphaMode BLEND, 1 otherwise. MASK
-//!   with a base colour texture discards samples whose texel alpha is below
-//!   alphaCutoff (default 0.5; see [`TextureMap::alpha_cutoff`]); without
+//!   with a base colour texture discards samples whose alpha
+//!   baseColorFactor.a × texel alpha is below alphaCutoff (default 0.5;
+//!   stored as a cutoff on the texel alpha, alphaCutoff / factor.a, in
+//!   [`TextureMap::alpha_cutoff`]); without
 //!   one (none given, or the texture could not be used) the constant
 //!   alpha baseColorFactor.a decides for the whole primitive: below the
 //!   cutoff it draws nothing and is left out (a file whose every primitive
@@ -359,9 +361,18 @@ impl Loader<'_> {
         self.warn_about_material(&material);
         let cutoff = material.alpha_cutoff().unwrap_or(0.5);
         if let Some(info) = base_color {
+            // glTF masks on factor.a × texel.a ≥ cutoff; the pipeline tests
+            // the texel alpha, so the cutoff is divided by the factor once
+            // here (equal up to one rounding; a zero factor masks all).
+            let factor = material.pbr_metallic_roughness().base_color_factor()[3];
+            let texel_cutoff = match (cutoff <= 0.0, factor > 0.0) {
+                (true, _) => cutoff,
+                (false, true) => cutoff / factor,
+                (false, false) => f32::INFINITY,
+            };
             let alpha = match material.alpha_mode() {
                 gltf::material::AlphaMode::Blend => (true, None),
-                gltf::material::AlphaMode::Mask => (false, Some(cutoff)),
+                gltf::material::AlphaMode::Mask => (false, Some(texel_cutoff)),
                 gltf::material::AlphaMode::Opaque => (false, None),
             };
             built = self.attach_base_color(built, &info, uv_set, alpha)?;

@@ -419,6 +419,31 @@ fn a_texture_next_to_the_file_is_read_with_its_sampler() {
 }
 
 #[test]
+fn mask_cutoffs_apply_to_the_factor_times_the_texel_alpha() {
+    for (factor, cutoff, want) in
+        [(1.0, 0.5, 0.5), (0.5, 0.25, 0.5), (0.8, 0.6, 0.75), (0.0, 0.5, f32::INFINITY)]
+    {
+        let name = format!("mask_{factor}_{cutoff}");
+        let path = textured_quad(&name, "logo.png");
+        std::fs::copy(
+            repo("assets/gltf/BoxTextured/glTF/CesiumLogoFlat.png"),
+            path.with_file_name("logo.png"),
+        )
+        .unwrap();
+        edit(
+            &path,
+            r#""baseColorFactor": [0.2, 0.4, 0.6, 1]}"#,
+            &format!(
+                r#""baseColorFactor": [0.2, 0.4, 0.6, {factor}]}}, "alphaMode": "MASK", "alphaCutoff": {cutoff}"#
+            ),
+        );
+        let scene = load_gltf(&path).unwrap();
+        let map = scene.objects[0].mesh.diffuse_map.as_ref().unwrap();
+        assert_eq!(map.alpha_cutoff, Some(want), "factor {factor}, cutoff {cutoff}");
+    }
+}
+
+#[test]
 fn a_missing_image_warns_and_draws_the_base_colour() {
     let (scene, warnings) = load_gltf_with_warnings(&textured_quad("no_image", "gone.png")).unwrap();
     let mesh = &scene.objects[0].mesh;
