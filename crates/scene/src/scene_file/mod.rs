@@ -98,6 +98,7 @@ pub const MAX_PRIMITIVE_DIVISIONS: u32 = 4096;
 /// ka = [0.8, 0.2, 0.2]              # in [0, 1]
 /// kd = [0.8, 0.2, 0.2]
 /// ks = [0.5, 0.5, 0.5]
+/// ke = [0, 0, 0]                    # emission, added unlit
 /// ns = 32                           # ≥ 0
 /// opacity = 1.0                     # in [0, 1]
 /// ```
@@ -261,6 +262,7 @@ struct MaterialDef {
     ka: Option<S<[f32; 3]>>,
     kd: Option<S<[f32; 3]>>,
     ks: Option<S<[f32; 3]>>,
+    ke: Option<S<[f32; 3]>>,
     ns: Option<S<f32>>,
     opacity: Option<S<f32>>,
 }
@@ -563,9 +565,12 @@ impl Builder<'_> {
             m.kd = self.vec3_in(c, &format!("{key}.color"), 0.0, 1.0)?;
             m.ka = m.kd;
         }
-        for (value, name, field) in
-            [(&def.ka, "ka", &mut m.ka), (&def.kd, "kd", &mut m.kd), (&def.ks, "ks", &mut m.ks)]
-        {
+        for (value, name, field) in [
+            (&def.ka, "ka", &mut m.ka),
+            (&def.kd, "kd", &mut m.kd),
+            (&def.ks, "ks", &mut m.ks),
+            (&def.ke, "ke", &mut m.ke),
+        ] {
             if let Some(v) = value {
                 *field = self.vec3_in(v, &format!("{key}.{name}"), 0.0, 1.0)?;
             }

@@ -55,6 +55,7 @@ scale = [2, 2, 2]
 shading = "flat"
 [objects.material]
 kd = [0.2, 0.3, 0.4]
+ke = [0.0, 0.25, 0.5]
 opacity = 0.5
 [[objects]]
 model = {model:?}
@@ -97,8 +98,8 @@ radius = 2
     // The override keeps the mesh's other coefficients.
     let m = a.material.unwrap();
     assert_eq!(
-        (m.kd, m.opacity, m.ka, m.ns),
-        (Vec3::new(0.2, 0.3, 0.4), 0.5, Vec3::new(0.1, 0.0, 0.0), 50.0)
+        (m.kd, m.opacity, m.ka, m.ns, m.ke),
+        (Vec3::new(0.2, 0.3, 0.4), 0.5, Vec3::new(0.1, 0.0, 0.0), 50.0, Vec3::new(0.0, 0.25, 0.5))
     );
     // Scale 2, then 90° about y (x → −z), then translate.
     let p = a.world_from_object.transform_point3(Vec3::X);
