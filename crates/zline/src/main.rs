@@ -222,14 +222,15 @@ fn run(cli: Cli) -> Result<()> {
     let elapsed = start.elapsed();
     zline::save_png(&image, &common.output)
         .with_context(|| format!("{}: cannot write PNG", common.output.display()))?;
+    let count = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     eprintln!(
-        "wrote {} ({}x{}, {} triangles, {} drawn, {} samples shaded, {:.2} ms)",
+        "wrote {} ({}x{}, {}, {} drawn, {} shaded, {:.2} ms)",
         common.output.display(),
         image.width,
         image.height,
-        stats.triangles,
+        count(stats.triangles, "triangle", "triangles"),
         stats.primitives,
-        stats.fragments,
+        count(stats.fragments, "sample", "samples"),
         elapsed.as_secs_f64() * 1e3
     );
     Ok(())
