@@ -13,19 +13,14 @@ use std::sync::Arc;
 
 use glam::{DVec2, DVec3, Vec3, Vec4};
 use zline_scene::{Interpolation, Mesh, Scene, TextureMap};
-use zline_shading::{Attenuation, Light, Material, Sampler, ShadingMode, Texture};
+use zline_shading::{Light, Material, Sampler, ShadingMode, Texture};
 use zline_truth::render_truth;
 
-use crate::support::{check_close, d, mesh, object, scene, square};
+use crate::support::{
+    check_close, d, mesh, object, parts, scene, square, AMBIENT, ATTENUATION, F64_TOLERANCE, LIGHT,
+    LIGHT_COLOR,
+};
 
-/// The truth computes in f64 from f32 inputs; the expectations here use
-/// the same f32 inputs, so only f64 rounding separates them.
-const F64_TOLERANCE: f64 = 1e-12;
-
-const LIGHT: Vec3 = Vec3::new(0.3, 0.8, -0.9);
-const LIGHT_COLOR: Vec3 = Vec3::new(1.0, 0.85, 0.7);
-const ATTENUATION: Attenuation = Attenuation { a0: 1.0, a1: 0.2, a2: 0.5 };
-const AMBIENT: Vec3 = Vec3::new(0.15, 0.1, 0.05);
 const MATERIAL: Material = Material {
     ke: Vec3::new(0.05, 0.1, 0.2),
     ka: Vec3::new(0.3, 0.4, 0.5),
@@ -34,21 +29,6 @@ const MATERIAL: Material = Material {
     ns: 12.0,
     opacity: 1.0,
 };
-
-/// The two parts of SPEC §5 for `m` under the one point light, the eye at
-/// the origin, unclamped: (ka·Ia + diffuse, ke + specular).
-fn parts(m: &Material, p: DVec3, n: DVec3) -> (DVec3, DVec3) {
-    let to_light = d(LIGHT) - p;
-    let dist = to_light.length();
-    let l = to_light / dist;
-    let h = (l + (-p).normalize()).normalize();
-    let (a0, a1, a2) = (f64::from(ATTENUATION.a0), f64::from(ATTENUATION.a1), f64::from(ATTENUATION.a2));
-    let f = (1.0 / (a0 + a1 * dist + a2 * dist * dist)).min(1.0);
-    let n_dot_l = n.dot(l).max(0.0);
-    let spec = if n_dot_l > 0.0 { n.dot(h).max(0.0).powf(f64::from(m.ns)) } else { 0.0 };
-    let ambient_diffuse = d(m.ka) * d(AMBIENT) + f * d(LIGHT_COLOR) * d(m.kd) * n_dot_l;
-    (ambient_diffuse, d(m.ke) + f * d(LIGHT_COLOR) * d(m.ks) * spec)
-}
 
 /// The lit colour with the ambient+diffuse part multiplied by `tint`.
 fn lit(m: &Material, p: DVec3, n: DVec3, tint: DVec3) -> DVec3 {

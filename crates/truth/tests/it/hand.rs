@@ -6,16 +6,11 @@ use zline_scene::{Camera, Projection, RenderSettings, Scene};
 use zline_shading::{Attenuation, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
 use zline_truth::{render_truth, TruthImage};
 
-use crate::support::{check_close, d, emissive, mesh, object, scene, square};
+use crate::support::{
+    check_close, d, emissive, mesh, object, parts, scene, square, AMBIENT, ATTENUATION, F64_TOLERANCE, LIGHT,
+    LIGHT_COLOR,
+};
 
-/// The truth computes in f64 from f32 inputs; the expectations here use
-/// the same f32 inputs, so only f64 rounding separates them.
-const F64_TOLERANCE: f64 = 1e-12;
-
-const LIGHT: Vec3 = Vec3::new(0.3, 0.8, -0.9);
-const LIGHT_COLOR: Vec3 = Vec3::new(1.0, 0.85, 0.7);
-const ATTENUATION: Attenuation = Attenuation { a0: 1.0, a1: 0.2, a2: 0.5 };
-const AMBIENT: Vec3 = Vec3::new(0.15, 0.1, 0.05);
 const MATERIAL: Material = Material {
     ke: Vec3::ZERO,
     ka: Vec3::new(0.3, 0.4, 0.5),
@@ -27,17 +22,8 @@ const MATERIAL: Material = Material {
 
 /// SPEC §5 for the one point light, eye at the origin, clamped.
 fn lighting(p: DVec3, n: DVec3) -> DVec3 {
-    let to_light = d(LIGHT) - p;
-    let dist = to_light.length();
-    let l = to_light / dist;
-    let h = (l + (-p).normalize()).normalize();
-    let (a0, a1, a2) = (f64::from(ATTENUATION.a0), f64::from(ATTENUATION.a1), f64::from(ATTENUATION.a2));
-    let f = (1.0 / (a0 + a1 * dist + a2 * dist * dist)).min(1.0);
-    let n_dot_l = n.dot(l).max(0.0);
-    let spec = if n_dot_l > 0.0 { n.dot(h).max(0.0).powf(f64::from(MATERIAL.ns)) } else { 0.0 };
-    let c =
-        d(MATERIAL.ka) * d(AMBIENT) + f * d(LIGHT_COLOR) * (d(MATERIAL.kd) * n_dot_l + d(MATERIAL.ks) * spec);
-    c.clamp(DVec3::ZERO, DVec3::ONE)
+    let (ambient_diffuse, specular) = parts(&MATERIAL, p, n);
+    (ambient_diffuse + specular).clamp(DVec3::ZERO, DVec3::ONE)
 }
 
 fn lit_square(mode: ShadingMode) -> TruthImage {

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use glam::{DVec3, Mat4, Vec3};
 use zline_scene::{Camera, Mesh, Object, Projection, RenderSettings, Scene};
-use zline_shading::{Light, Material, ShadingMode};
+use zline_shading::{Attenuation, Light, Material, ShadingMode};
 
 /// A mesh from positions, normals and triangles.
 pub(crate) fn mesh(
@@ -76,4 +76,30 @@ pub(crate) fn d(v: Vec3) -> DVec3 {
 #[track_caller]
 pub(crate) fn check_close(got: DVec3, want: DVec3, tolerance: f64) {
     assert!((got - want).abs().max_element() <= tolerance, "got {got}, want {want}");
+}
+
+/// The truth computes in f64 from f32 inputs; the expectations here use
+/// the same f32 inputs, so only f64 rounding separates them.
+pub(crate) const F64_TOLERANCE: f64 = 1e-12;
+
+/// The one point light of the hand-computed scenes, its colour and
+/// attenuation, and the ambient light.
+pub(crate) const LIGHT: Vec3 = Vec3::new(0.3, 0.8, -0.9);
+pub(crate) const LIGHT_COLOR: Vec3 = Vec3::new(1.0, 0.85, 0.7);
+pub(crate) const ATTENUATION: Attenuation = Attenuation { a0: 1.0, a1: 0.2, a2: 0.5 };
+pub(crate) const AMBIENT: Vec3 = Vec3::new(0.15, 0.1, 0.05);
+
+/// The two parts of SPEC §5 for `m` under the one point light, the eye at
+/// the origin, unclamped: (ka·Ia + diffuse, ke + specular).
+pub(crate) fn parts(m: &Material, p: DVec3, n: DVec3) -> (DVec3, DVec3) {
+    let to_light = d(LIGHT) - p;
+    let dist = to_light.length();
+    let l = to_light / dist;
+    let h = (l + (-p).normalize()).normalize();
+    let (a0, a1, a2) = (f64::from(ATTENUATION.a0), f64::from(ATTENUATION.a1), f64::from(ATTENUATION.a2));
+    let f = (1.0 / (a0 + a1 * dist + a2 * dist * dist)).min(1.0);
+    let n_dot_l = n.dot(l).max(0.0);
+    let spec = if n_dot_l > 0.0 { n.dot(h).max(0.0).powf(f64::from(m.ns)) } else { 0.0 };
+    let ambient_diffuse = d(m.ka) * d(AMBIENT) + f * d(LIGHT_COLOR) * d(m.kd) * n_dot_l;
+    (ambient_diffuse, d(m.ke) + f * d(LIGHT_COLOR) * d(m.ks) * spec)
 }
