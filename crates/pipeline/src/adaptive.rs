@@ -71,6 +71,17 @@ pub struct Adaptive {
     point: Vec<(Vec3, f32, Attenuation)>,
 }
 
+/// What a Phong triangle can be drawn as.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PhongChoice {
+    /// Lit once, without specular (shortcut 4).
+    LitOnce,
+    /// Per sample, without specular (shortcut 3).
+    NoSpecular,
+    /// The full evaluation.
+    Full,
+}
+
 /// What a Gouraud triangle can be drawn as.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum GouraudChoice {
@@ -128,28 +139,32 @@ impl Adaptive {
         GouraudChoice::Linear
     }
 
-    /// Shortcut 3: true when no specular term can reach the tolerance
-    /// anywhere on the triangle with eye-space vertices `eye`, for a
-    /// material whose largest ks channel is `ks`.
-    pub fn specular_negligible(&self, ks: f32, eye: [Vec3; 3]) -> bool {
-        self.specular_bound(ks, eye) <= self.tolerance
+    /// Shortcuts 3 and 4 for a Phong triangle: `kd` and `ks` are the
+    /// material's largest channels, `eye` the vertices' eye-space positions,
+    /// `normal` their normals (`None` when the triangle must keep per-sample
+    /// lighting anyway, e.g. for vertex colours).
+    pub fn phong(&self, kd: f32, ks: f32, normal: Option<[Vec3; 3]>, eye: [Vec3; 3]) -> PhongChoice {
+        let specular = self.specular_bound(ks, eye);
+        if specular.is_nan() || specular > self.tolerance {
+            return PhongChoice::Full;
+        }
+        let budget = self.tolerance - specular;
+        match normal {
+            Some(normal) if self.diffuse_within(kd, normal, eye, budget) => PhongChoice::LitOnce,
+            _ => PhongChoice::NoSpecular,
+        }
     }
 
-    /// Shortcut 4 (after 3): true when lighting the triangle once, without
-    /// specular, stays within the tolerance; `kd` and `ks` are the largest
-    /// channels, `normal` and `eye` the vertices' normals and positions.
-    pub fn lit_once(&self, kd: f32, ks: f32, normal: [Vec3; 3], eye: [Vec3; 3]) -> bool {
-        let specular = self.specular_bound(ks, eye);
-        if specular > self.tolerance {
-            return false; // (NaN fails the final comparison)
-        }
+    /// Shortcut 4's bound: true when the diffuse term provably varies by at
+    /// most `budget` over the triangle.
+    fn diffuse_within(&self, kd: f32, normal: [Vec3; 3], eye: [Vec3; 3], budget: f32) -> bool {
         let n = normal.map(Vec3::normalize_or_zero);
         if n.contains(&Vec3::ZERO) {
             return false;
         }
         let spread = (n[0] - n[1]).length().max((n[1] - n[2]).length()).max((n[2] - n[0]).length());
         if spread > 1.0 {
-            return false;
+            return false; // (NaN fails the final comparison)
         }
         let longest = longest_edge(eye);
         let mut variation = self.directional * spread;
@@ -162,7 +177,7 @@ impl Adaptive {
             let (f_near, f_far) = (attenuation.factor(near), attenuation.factor(far));
             variation += intensity * ((f_near - f_far) + f_near * (spread + 2.0 * longest / near));
         }
-        specular + kd.max(0.0) * variation <= self.tolerance
+        kd.max(0.0) * variation <= budget
     }
 
     /// Shortcut 3's bound: the largest specular term on the triangle.
@@ -242,13 +257,13 @@ mod tests {
         };
         let far = point(Vec3::new(0.0, 0.0, 100.0));
         // f ≤ 1/(1 + 99²) ≈ 1.02e-4 < 1/255 with ks = 1.
-        assert!(adaptive(1.0, vec![far]).specular_negligible(1.0, tri));
+        assert_eq!(adaptive(1.0, vec![far]).phong(0.0, 1.0, None, tri), PhongChoice::NoSpecular);
         // Next to the light, f = 1.
         let near = point(Vec3::new(0.5, 0.5, 0.1));
-        assert!(!adaptive(1.0, vec![near]).specular_negligible(1.0, tri));
+        assert_eq!(adaptive(1.0, vec![near]).phong(0.0, 1.0, None, tri), PhongChoice::Full);
         let sun = Light::Directional { direction: Vec3::NEG_Z, color: Vec3::splat(0.5) };
-        assert!(!adaptive(1.0, vec![far, sun]).specular_negligible(0.1, tri));
-        assert!(adaptive(1.0, vec![far, sun]).specular_negligible(0.005, tri));
+        assert_eq!(adaptive(1.0, vec![far, sun]).phong(0.0, 0.1, None, tri), PhongChoice::Full);
+        assert_eq!(adaptive(1.0, vec![far, sun]).phong(0.0, 0.005, None, tri), PhongChoice::NoSpecular);
     }
 
     #[test]
@@ -257,22 +272,28 @@ mod tests {
         let same = [Vec3::Z; 3];
         let sun = Light::Directional { direction: Vec3::NEG_Z, color: Vec3::ONE };
         // Equal normals under a directional light: the diffuse term is constant.
-        assert!(adaptive(0.0, vec![sun]).lit_once(0.8, 0.0, same, tri));
+        assert_eq!(adaptive(0.0, vec![sun]).phong(0.8, 0.0, Some(same), tri), PhongChoice::LitOnce);
         // ... unless specular may show.
-        assert!(!adaptive(1.0, vec![sun]).lit_once(0.8, 0.5, same, tri));
+        assert_eq!(adaptive(1.0, vec![sun]).phong(0.8, 0.5, Some(same), tri), PhongChoice::Full);
         // Normals 0.1 apart (chord): variation ≤ 0.8·0.1 = 20 steps.
         let spread = [Vec3::Z, Vec3::new(0.1, 0.0, 1.0).normalize(), Vec3::Z];
-        assert!(!adaptive(8.0, vec![sun]).lit_once(0.8, 0.0, spread, tri));
-        assert!(adaptive(25.0, vec![sun]).lit_once(0.8, 0.0, spread, tri));
+        assert_eq!(adaptive(8.0, vec![sun]).phong(0.8, 0.0, Some(spread), tri), PhongChoice::NoSpecular);
+        assert_eq!(adaptive(25.0, vec![sun]).phong(0.8, 0.0, Some(spread), tri), PhongChoice::LitOnce);
         // A point light next to the triangle changes L across it.
         let bulb = Light::Point {
             position: Vec3::new(0.5, 0.5, -4.0),
             color: Vec3::ONE,
             attenuation: Attenuation::NONE,
         };
-        assert!(!adaptive(8.0, vec![bulb]).lit_once(0.8, 0.0, same, tri));
+        assert_eq!(adaptive(8.0, vec![bulb]).phong(0.8, 0.0, Some(same), tri), PhongChoice::NoSpecular);
         // Zero or NaN normals take no shortcut.
-        assert!(!adaptive(255.0, vec![sun]).lit_once(0.8, 0.0, [Vec3::ZERO, Vec3::Z, Vec3::Z], tri));
-        assert!(!adaptive(255.0, vec![sun]).lit_once(0.8, 0.0, [Vec3::NAN, Vec3::Z, Vec3::Z], tri));
+        assert_eq!(
+            adaptive(255.0, vec![sun]).phong(0.8, 0.0, Some([Vec3::ZERO, Vec3::Z, Vec3::Z]), tri),
+            PhongChoice::NoSpecular
+        );
+        assert_eq!(
+            adaptive(255.0, vec![sun]).phong(0.8, 0.0, Some([Vec3::NAN, Vec3::Z, Vec3::Z]), tri),
+            PhongChoice::NoSpecular
+        );
     }
 }

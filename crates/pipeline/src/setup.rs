@@ -13,7 +13,7 @@ use glam::Vec3;
 use zline_raster::{AttributePlanes, DepthPlane, EdgeTable, FixedPoint, PlaneBasis};
 use zline_shading::{LitParts, PreparedLights, PreparedMaterial, ShadingMode};
 
-use crate::adaptive::{Adaptive, GouraudChoice};
+use crate::adaptive::{Adaptive, GouraudChoice, PhongChoice};
 use crate::bin::PrimitiveChunk;
 
 use crate::clip::{clip_polygon, ClipVolume, MAX_CLIPPED};
@@ -410,16 +410,20 @@ fn emit(
             (ShadingMode::Phong, _) => {
                 let m = &ctx.material.0.material;
                 let (kd, ks, eye) = (m.kd.max_element(), m.ks.max_element(), tri.map(|v| v.eye));
-                if !ctx.vertex_colors && adaptive.lit_once(kd, ks, tri.map(|v| v.normal), eye) {
-                    let normal = (tri[0].normal.normalize_or_zero()
-                        + tri[1].normal.normalize_or_zero()
-                        + tri[2].normal.normalize_or_zero())
-                    .normalize_or_zero();
-                    let centroid = (eye[0] + eye[1] + eye[2]) / 3.0;
-                    lit_once =
-                        Some(ctx.lighting.shade_parts(ctx.diffuse_only.0, centroid, normal, Vec3::ZERO));
-                } else if ctx.material.0.specular && adaptive.specular_negligible(ks, eye) {
-                    material = ctx.diffuse_only.1;
+                let normal = (!ctx.vertex_colors).then(|| tri.map(|v| v.normal));
+                match adaptive.phong(kd, ks, normal, eye) {
+                    PhongChoice::LitOnce => {
+                        let normal = (tri[0].normal.normalize_or_zero()
+                            + tri[1].normal.normalize_or_zero()
+                            + tri[2].normal.normalize_or_zero())
+                        .normalize_or_zero();
+                        let centroid = (eye[0] + eye[1] + eye[2]) / 3.0;
+                        let parts =
+                            ctx.lighting.shade_parts(ctx.diffuse_only.0, centroid, normal, Vec3::ZERO);
+                        lit_once = Some(parts);
+                    }
+                    PhongChoice::NoSpecular if ctx.material.0.specular => material = ctx.diffuse_only.1,
+                    PhongChoice::NoSpecular | PhongChoice::Full => {}
                 }
             }
             _ => {}
