@@ -20,10 +20,14 @@ pub(crate) fn repo(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(path)
 }
 
-/// Writes `text` to a fresh file `name` in this process's temporary
-/// directory and returns its path.
+/// Writes `text` to a fresh file `name` in a directory of its own under
+/// this process's temporary directory and returns its path. Each call gets
+/// its own directory, so tests running in parallel never share a file even
+/// when they pick the same name.
 pub(crate) fn temp_file(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("zline-scene-tests-{}", std::process::id()));
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("zline-scene-tests-{}/{call}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
