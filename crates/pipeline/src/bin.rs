@@ -2,7 +2,7 @@
 
 use zline_raster::Rect;
 
-use crate::setup::Primitive;
+use crate::setup::{PassKind, PrimitiveChunk};
 
 /// The window cut into square tiles, row-major.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -55,31 +55,7 @@ impl TileGrid {
     }
 }
 
-/// Primitives set up by one task, with their bounds kept apart so binning
-/// reads 16 bytes per primitive instead of the whole primitive.
-#[derive(Clone, Debug, Default)]
-pub struct PrimitiveChunk {
-    /// The primitives, in draw order.
-    pub prims: Vec<Primitive>,
-    /// `prims[i].edges.bounds()`.
-    pub bounds: Vec<Rect>,
-    /// True when the chunk's primitives are transparent. A chunk holds one
-    /// object's triangles, so this is the object's opacity < 1; binning reads
-    /// it instead of touching every primitive.
-    pub transparent: bool,
-    /// Planes of the textured primitives, referenced by
-    /// [`Shader::Textured`](crate::setup::Shader::Textured).
-    pub textured: Vec<crate::setup::TexturedPlanes>,
-    /// Planes of the untextured Phong primitives with vertex colours,
-    /// referenced by [`Shader::ColoredPhong`](crate::setup::Shader::ColoredPhong).
-    pub colored_phong: Vec<crate::setup::ColoredPhongPlanes>,
-    /// Planes of the textured Phong primitives with vertex colours,
-    /// referenced by
-    /// [`Shader::TexturedColored`](crate::setup::Shader::TexturedColored).
-    pub textured_colored: Vec<crate::setup::TexturedPlanes<12>>,
-}
-
-/// Where a binned primitive lives: `chunks[chunk].prims[index]`.
+/// Where a binned primitive lives: `chunks[chunk].draws[index]`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PrimitiveRef {
     /// The chunk.
@@ -90,7 +66,7 @@ pub struct PrimitiveRef {
 
 /// Per tile (row-major), the primitives whose bounds touch it, in draw order
 /// (chunks in order, then primitives in order): opaque ones in `opaque`,
-/// transparent ones (kt > 0) in `transparent`. The inner vectors keep their
+/// those of transparent chunks ([`PassKind::Transparent`]) in `transparent`. The inner vectors keep their
 /// capacity from frame to frame.
 #[derive(Debug, Default)]
 pub struct Bins {
@@ -116,7 +92,10 @@ pub fn bin_primitives(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bin
                 continue;
             }
             let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
-            let set = if chunk.transparent { &mut bins.transparent } else { &mut bins.opaque };
+            let set = match chunk.pass {
+                PassKind::Opaque => &mut bins.opaque,
+                PassKind::Transparent { .. } => &mut bins.transparent,
+            };
             for row in b.y0 / ts..=(b.y1 - 1) / ts {
                 let tiles = row as usize * grid.cols as usize;
                 for col in b.x0 / ts..=(b.x1 - 1) / ts {

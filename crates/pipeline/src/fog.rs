@@ -21,6 +21,8 @@ use glam::{Mat4, Vec4};
 use wide::f32x8;
 use zline_scene::{Fog, FogCoordinate, FogMode};
 
+use crate::setup::DepthEncoding;
+
 /// Everything the fog pass needs for one frame.
 #[derive(Clone, Copy, Debug)]
 pub struct FogPass {
@@ -33,15 +35,15 @@ pub struct FogPass {
 }
 
 impl FogPass {
-    /// The pass for a frame with this projection and window size (in
-    /// samples). `reversed` when the depth buffer holds reversed depth
-    /// d = (z_nc − 1)/2 (see [`crate::setup::DepthEncoding`]): the rows
-    /// then take z_nc = 2d + 1, which costs nothing per sample.
-    pub fn new(fog: Fog, clip_from_eye: Mat4, width: u32, height: u32, reversed: bool) -> FogPass {
+    /// The pass for a frame with this projection, window size (in
+    /// samples) and depth encoding. For reversed depth, whose buffer holds
+    /// d = (z_nc − 1)/2, the rows take z_nc = 2d + 1, which costs nothing
+    /// per sample.
+    pub fn new(fog: Fog, clip_from_eye: Mat4, width: u32, height: u32, depth: DepthEncoding) -> FogPass {
         let m = clip_from_eye.inverse().transpose();
         let (w, h) = (width.max(1) as f32, height.max(1) as f32);
         let mut rows = [m.x_axis, m.y_axis, m.z_axis, m.w_axis];
-        if reversed {
+        if let DepthEncoding::Reversed { .. } = depth {
             for r in &mut rows {
                 // z_nc·r.z + r.w = d·(2·r.z) + (r.z + r.w)
                 *r = Vec4::new(r.x, r.y, 2.0 * r.z, r.z + r.w);

@@ -25,9 +25,11 @@ pub mod clip;
 pub mod fog;
 pub mod image;
 mod render;
+pub mod resolve;
 pub mod setup;
 pub mod tile;
 pub mod vertex;
+pub mod volume;
 
 pub use image::Image;
 pub use render::{render, RenderOptions, RenderStats, Renderer};

@@ -1,21 +1,30 @@
-//! One frame, end to end: vertex stage, setup, binning, tiles in parallel.
+//! One frame, end to end, in named steps: [`Frame::new`] (sizes, matrices,
+//! depth encoding), [`Renderer::prepare_tables`] (lights, materials and
+//! textures of the frame), [`Renderer::setup_object`] (vertex stage and
+//! setup per object), binning, and [`Renderer::draw_tiles`] (the tiles in
+//! parallel, each: opaque pass → fog → transparency pass → resolve).
 
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
-use glam::Vec3;
+use glam::{Mat4, Vec3};
 use zline_raster::Rect;
-use zline_scene::{DepthMode, Interpolation, Mesh, Projection, Scene, TextureMap};
-use zline_shading::{LightingModel, Material, PreparedLights, PreparedMaterial, ShadingMode};
+use zline_scene::{DepthMode, Object, Projection, Scene};
+use zline_shading::{Filter, LightingModel, Material, PreparedLights, PreparedMaterial};
 
 use crate::adaptive::Adaptive;
-use crate::bin::{bin_primitives, Bins, PrimitiveChunk, TileGrid};
-use crate::clip::ClipVolume;
+use crate::bin::{bin_primitives, Bins, PrimitiveRef, TileGrid};
 use crate::fog::FogPass;
 use crate::image::{quantize_rgba, Image};
-use crate::setup::{setup_triangle, DepthEncoding, SetupContext, Viewport};
-use crate::tile::{ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
-use crate::vertex::{transform_mesh, ClipVertex, ObjectTransforms, Screen, VertexLighting};
+use crate::setup::{
+    setup_triangle, AlphaUse, DepthEncoding, Faces, LevelOfDetail, PassKind, PrimitiveChunk, SetupContext,
+    TextureUse, VertexColors, Viewer,
+};
+use crate::tile::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
+use crate::vertex::{
+    transform_mesh, ClipVertex, ObjectTransforms, Screen, VertexLighting, VertexLights, Viewport,
+};
+use crate::volume::ClipVolume;
 
 /// Triangles per rayon task in setup.
 const TRIANGLE_CHUNK: usize = 2048;
@@ -59,8 +68,10 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> (Image, RenderStats) {
 }
 
 /// A renderer that keeps its working buffers (transformed vertices,
-/// primitives, bins) from frame to frame, so a steady stream of frames
-/// allocates nothing. The image is the same as [`render`]'s.
+/// primitives, bins, the frame's tables, the tile buffers) from frame to
+/// frame, so that a steady stream of frames of the same scene allocates
+/// nothing once the first has sized them (with the adaptive mode off; a
+/// test counts). The image is the same as [`render`]'s.
 #[derive(Debug, Default)]
 pub struct Renderer {
     vertices: Vec<ClipVertex>,
@@ -69,6 +80,84 @@ pub struct Renderer {
     chunks: Vec<PrimitiveChunk>,
     used: usize,
     bins: Bins,
+    tables: FrameTables,
+    /// One per band of tiles.
+    bands: Vec<BandBuffers>,
+}
+
+/// The frame's lights, materials and textures, indexed by the primitives.
+#[derive(Debug, Default)]
+struct FrameTables {
+    lighting: PreparedLights,
+    /// Each object's material at its index; with the adaptive mode, each
+    /// object's material without specular at objects + index.
+    materials: Vec<PreparedMaterial>,
+    textures: Vec<FrameTexture>,
+    /// Per object: its texture's use and whether its alpha blends (the
+    /// object is then transparent even at opacity 1).
+    object_textures: Vec<Option<(TextureUse, bool)>>,
+}
+
+/// A band's tile buffers and the transparency pass's sort scratch.
+#[derive(Debug, Default)]
+struct BandBuffers {
+    target: TileTarget,
+    order: Vec<(f32, PrimitiveRef)>,
+}
+
+/// What the whole frame shares: sizes, matrices, depth encoding.
+struct Frame {
+    /// The image in pixels.
+    width: u32,
+    height: u32,
+    /// Samples per pixel along each axis (supersampling).
+    n: u32,
+    /// The window in samples.
+    viewport: Viewport,
+    eye_from_world: Mat4,
+    clip_from_eye: Mat4,
+    depth: DepthEncoding,
+    viewer: Viewer,
+    adaptive: Option<Adaptive>,
+}
+
+impl Frame {
+    fn new(scene: &Scene) -> Frame {
+        let s = &scene.settings;
+        let (width, height) = (s.width.max(1), s.height.max(1));
+        // Supersampling renders an n× larger window of samples (every stage
+        // works in samples) and box-filters it in the resolve. Larger
+        // factors than scene files accept are taken as the largest.
+        let n = s.ssaa.clamp(1, zline_scene::MAX_SSAA);
+        let depth = match s.depth {
+            DepthMode::ReversedFloat => {
+                let (a, b) = scene.camera.reversed_depth_coefficients();
+                let perspective = matches!(scene.camera.projection, Projection::Perspective { .. });
+                DepthEncoding::Reversed { a, b, perspective }
+            }
+            DepthMode::Normalized => DepthEncoding::Normalized,
+        };
+        let viewer = match scene.camera.projection {
+            Projection::Perspective { .. } => Viewer::AtOrigin,
+            Projection::Orthographic { .. } => Viewer::AlongMinusZ,
+        };
+        let eye_from_world = scene.camera.eye_from_world();
+        let adaptive = s.adaptive_tolerance.and_then(|t| {
+            let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
+            Adaptive::new(t, &model.transformed(&eye_from_world))
+        });
+        Frame {
+            width,
+            height,
+            n,
+            viewport: Viewport { width: width * n, height: height * n },
+            eye_from_world,
+            clip_from_eye: scene.camera.clip_from_eye(width as f32 / height as f32),
+            depth,
+            viewer,
+            adaptive,
+        }
+    }
 }
 
 impl Renderer {
@@ -76,101 +165,165 @@ impl Renderer {
     /// rayon thread pool.
     pub fn render_into(&mut self, scene: &Scene, options: &RenderOptions, image: &mut Image) -> RenderStats {
         let start = Instant::now();
-        let s = &scene.settings;
-        let (width, height) = (s.width.max(1), s.height.max(1));
-        // Supersampling renders an n× larger window of samples (every stage
-        // below works in samples) and box-filters it in the resolve.
-        // Larger factors than scene files accept are taken as the largest.
-        let n = s.ssaa.clamp(1, zline_scene::MAX_SSAA);
-        let (sample_width, sample_height) = (width * n, height * n);
-        let eye_from_world = scene.camera.eye_from_world();
-        let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);
-        let reversed = s.depth == DepthMode::ReversedFloat;
-        let depth = if reversed {
-            let (a, b) = scene.camera.reversed_depth_coefficients();
-            let perspective = matches!(scene.camera.projection, Projection::Perspective { .. });
-            DepthEncoding::Reversed { a, b, perspective }
-        } else {
-            DepthEncoding::Normalized
-        };
-        let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
-        let lighting = PreparedLights::new(&model, &eye_from_world);
-        let mut materials: Vec<PreparedMaterial> =
-            scene.objects.iter().map(|o| PreparedMaterial::new(o.material().sanitized())).collect();
-        let adaptive =
-            s.adaptive_tolerance.and_then(|t| Adaptive::new(t, &model.transformed(&eye_from_world)));
-        if adaptive.is_some() {
-            // Each object's material without specular, at index objects + i.
-            let plain =
-                |m: &PreparedMaterial| PreparedMaterial::new(Material { ks: Vec3::ZERO, ..m.material });
-            materials.extend(materials.clone().iter().map(plain));
-        }
+        let frame = Frame::new(scene);
+        self.prepare_tables(scene, &frame);
         let mut stats = RenderStats::default();
-        let mut textures: Vec<TextureMap> = Vec::new();
         self.used = 0;
         for (index, object) in scene.objects.iter().enumerate() {
             stats.triangles += object.mesh.triangles.len() as u64;
-            let texture = match (&object.mesh.diffuse_map, object.mesh.uvs.is_empty()) {
-                (Some(map), false) => {
-                    let mut map = map.clone();
-                    if let Some(filter) = s.texture_filter {
-                        map.sampler.filter = filter;
-                    }
-                    textures.push(map);
-                    Some(textures.len() as u32 - 1)
-                }
-                _ => None,
-            };
-            let ctx = SetupContext {
-                viewport: Viewport { width: sample_width, height: sample_height },
-                volume: ClipVolume::new(sample_width, sample_height),
-                depth,
-                shading: object.shading.unwrap_or(s.shading),
-                perspective: s.interpolation == Interpolation::PerspectiveCorrect,
-                cull_back_faces: object.cull_back_faces,
-                material: (&materials[index], index as u32),
-                lighting: &lighting,
-                adaptive: adaptive.as_ref(),
-                diffuse_only: {
-                    let i = if adaptive.is_some() { scene.objects.len() + index } else { index };
-                    (&materials[i], i as u32)
-                },
-                texture,
-                orthographic: matches!(scene.camera.projection, Projection::Orthographic { .. }),
-                blend_texture_alpha: texture.is_some_and(|t| textures[t as usize].alpha_blend),
-                vertex_colors: !object.mesh.colors.is_empty(),
-            };
-            let transforms = ObjectTransforms::new(clip_from_eye, eye_from_world, object.world_from_object);
-            self.setup_object(&object.mesh, &transforms, &ctx);
+            self.setup_object(scene, index, object, &frame);
         }
-        let chunks = &self.chunks[..self.used];
-        stats.primitives = chunks.iter().map(|c| c.prims.len() as u64).sum();
+        stats.primitives = self.chunks[..self.used].iter().map(|c| c.draws.len() as u64).sum();
         stats.geometry = start.elapsed();
 
         let start = Instant::now();
         let tile_size = options.tile_size.max(1);
-        let grid = TileGrid::new(sample_width, sample_height, tile_size * n);
-        bin_primitives(chunks, &grid, &mut self.bins);
+        let grid = TileGrid::new(frame.viewport.width, frame.viewport.height, tile_size * frame.n);
+        bin_primitives(&self.chunks[..self.used], &grid, &mut self.bins);
         stats.binning = start.elapsed();
 
         let start = Instant::now();
-        let shade = ShadeContext { lighting: &lighting, materials: &materials, textures: &textures };
+        stats.fragments = self.draw_tiles(scene, &frame, &grid, image);
+        stats.raster = start.elapsed();
+        stats
+    }
+
+    /// The frame's lights (in eye space), materials (sanitized; with the
+    /// adaptive mode, also without specular) and textures (the frame's
+    /// filter override applied; texels shared, not copied).
+    fn prepare_tables(&mut self, scene: &Scene, frame: &Frame) {
+        let t = &mut self.tables;
+        t.lighting.prepare(scene.ambient, &scene.lights, &frame.eye_from_world);
+        t.materials.clear();
+        t.materials.extend(scene.objects.iter().map(|o| PreparedMaterial::new(o.material().sanitized())));
+        if frame.adaptive.is_some() {
+            for i in 0..scene.objects.len() {
+                let plain = Material { ks: Vec3::ZERO, ..t.materials[i].material };
+                t.materials.push(PreparedMaterial::new(plain));
+            }
+        }
+        t.textures.clear();
+        t.object_textures.clear();
+        for object in &scene.objects {
+            let map = object.mesh.diffuse_map.as_ref().filter(|_| !object.mesh.uvs.is_empty());
+            let Some(map) = map else {
+                t.object_textures.push(None);
+                continue;
+            };
+            let mut sampler = map.sampler;
+            if let Some(filter) = scene.settings.texture_filter {
+                sampler.filter = filter;
+            }
+            let lod = match sampler.filter {
+                Filter::Trilinear => LevelOfDetail::Derivatives,
+                Filter::Nearest | Filter::Bilinear => LevelOfDetail::Base,
+            };
+            let alpha = match (map.alpha_cutoff, map.alpha_blend) {
+                (Some(_), _) => AlphaUse::Mask,
+                (None, true) => AlphaUse::Blend,
+                (None, false) => AlphaUse::Ignore,
+            };
+            let index = t.textures.len() as u32;
+            t.object_textures.push(Some((TextureUse { index, lod, alpha }, map.alpha_blend)));
+            let cutoff = map.alpha_cutoff.unwrap_or(0.0);
+            t.textures.push(FrameTexture { texture: map.texture.clone(), sampler, cutoff });
+        }
+    }
+
+    /// The vertex stage and setup of one object, appending its primitives
+    /// in mesh order. Every per-object decision is made here, once.
+    fn setup_object(&mut self, scene: &Scene, index: usize, object: &Object, frame: &Frame) {
+        let mesh = &object.mesh;
+        let shading = object.shading.unwrap_or(scene.settings.shading);
+        let (texture, blends) = match self.tables.object_textures[index] {
+            Some((texture, blends)) => (Some(texture), blends),
+            None => (None, false),
+        };
+        let vertex_colors = if mesh.colors.is_empty() { VertexColors::Absent } else { VertexColors::Present };
+        let vertex_lighting =
+            VertexLighting::choose(shading, texture.is_some(), vertex_colors == VertexColors::Present);
+        let t = &self.tables;
+        let material = &t.materials[index];
+        let diffuse_only = if frame.adaptive.is_some() { scene.objects.len() + index } else { index };
+        let ctx = SetupContext {
+            viewport: frame.viewport,
+            volume: ClipVolume::new(frame.viewport.width, frame.viewport.height),
+            depth: frame.depth,
+            shading,
+            vertex_lighting,
+            interpolation: scene.settings.interpolation,
+            faces: if object.cull_back_faces { Faces::Front } else { Faces::Both },
+            viewer: frame.viewer,
+            material: (material, index as u32),
+            lighting: &t.lighting,
+            adaptive: frame.adaptive.as_ref(),
+            diffuse_only: (&t.materials[diffuse_only], diffuse_only as u32),
+            texture,
+            vertex_colors,
+        };
+        let opacity = material.material.opacity;
+        let pass = if opacity < 1.0 || blends {
+            PassKind::Transparent { kt: 1.0 - opacity }
+        } else {
+            PassKind::Opaque
+        };
+
+        let lights = match vertex_lighting {
+            VertexLighting::VertexStage => Some(VertexLights { lights: &t.lighting, material }),
+            VertexLighting::Unlit | VertexLighting::Setup => None,
+        };
+        let screen = Screen { viewport: ctx.viewport, volume: ctx.volume };
+        let transforms =
+            ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, object.world_from_object);
+        transform_mesh(mesh, &transforms, lights, &screen, &mut self.vertices);
+        let vertices = &self.vertices;
+        let (first, n) = (self.used, mesh.triangles.len().div_ceil(TRIANGLE_CHUNK));
+        self.used += n;
+        if self.chunks.len() < self.used {
+            self.chunks.resize_with(self.used, PrimitiveChunk::default);
+        }
+        let tris = mesh.triangles.par_chunks(TRIANGLE_CHUNK);
+        self.chunks[first..self.used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
+            out.reset(pass);
+            for t in tris {
+                if let Some(tri) = gather(vertices, t) {
+                    setup_triangle(tri, &ctx, out);
+                }
+            }
+        });
+    }
+
+    /// Every tile, bands of tiles in parallel: each tile clears its depth,
+    /// draws its opaque bin, fogs, draws its transparent bin and resolves
+    /// into the image rows it owns. Returns the samples shaded.
+    fn draw_tiles(&mut self, scene: &Scene, frame: &Frame, grid: &TileGrid, image: &mut Image) -> u64 {
+        let (width, n) = (frame.width, frame.n);
+        let tile_size = grid.tile_size / n;
         image.width = width;
-        image.height = height;
-        image.pixels.resize(width as usize * height as usize, 0);
+        image.height = frame.height;
+        image.pixels.resize(width as usize * frame.height as usize, 0);
         let band_len = width as usize * tile_size as usize;
-        let bins = &self.bins;
-        let fog = scene.fog.map(|f| FogPass::new(f, clip_from_eye, sample_width, sample_height, reversed));
-        let clear = if reversed { DEPTH_CLEAR_REVERSED } else { DEPTH_CLEAR };
+        if self.bands.len() < grid.rows as usize {
+            self.bands.resize_with(grid.rows as usize, BandBuffers::default);
+        }
+        let t = &self.tables;
+        let shade = ShadeContext { lighting: &t.lighting, materials: &t.materials, textures: &t.textures };
+        let (bins, chunks) = (&self.bins, &self.chunks[..self.used]);
+        let (vw, vh) = (frame.viewport.width, frame.viewport.height);
+        let fog = scene.fog.map(|f| FogPass::new(f, frame.clip_from_eye, vw, vh, frame.depth));
+        let clear = match frame.depth {
+            DepthEncoding::Normalized => DEPTH_CLEAR,
+            DepthEncoding::Reversed { .. } => DEPTH_CLEAR_REVERSED,
+        };
         let background = quantize_rgba(scene.background.extend(1.0));
-        stats.fragments = image
+        image
             .pixels
             .par_chunks_mut(band_len)
+            .zip(self.bands.par_iter_mut())
             .enumerate()
-            .map(|(row, band)| {
-                let mut target = TileTarget::default();
+            .map(|(row, (band, buffers))| {
+                let BandBuffers { target, order } = buffers;
                 let mut shaded = 0;
-                let mut order = Vec::new();
                 for col in 0..grid.cols {
                     let tile = row * grid.cols as usize + col as usize;
                     let (rect, opaque, transparent) =
@@ -186,8 +339,7 @@ impl Renderer {
                         target.fog_pass(fog);
                     }
                     if !transparent.is_empty() {
-                        shaded +=
-                            target.transparency_pass(chunks, transparent, &shade, fog.as_ref(), &mut order);
+                        shaded += target.transparency_pass(chunks, transparent, &shade, fog.as_ref(), order);
                     }
                     if n == 1 {
                         target.resolve(band, width as usize);
@@ -197,45 +349,7 @@ impl Renderer {
                 }
                 shaded
             })
-            .sum();
-        stats.raster = start.elapsed();
-        stats
-    }
-
-    /// The vertex stage and setup of one object, appending its primitives
-    /// in mesh order.
-    fn setup_object(&mut self, mesh: &Mesh, transforms: &ObjectTransforms, ctx: &SetupContext<'_>) {
-        let lighting = match ctx.shading {
-            // Textured Gouraud lights its (clipped) vertices in setup, in
-            // parts, and so does Gouraud with vertex colours (in `color`).
-            ShadingMode::Gouraud if ctx.texture.is_none() && !ctx.vertex_colors => {
-                VertexLighting::Gouraud(ctx.lighting, ctx.material.0)
-            }
-            _ => VertexLighting::None,
-        };
-        let screen = Screen { viewport: ctx.viewport, volume: ctx.volume };
-        transform_mesh(mesh, transforms, lighting, &screen, &mut self.vertices);
-        let vertices = &self.vertices;
-        let (first, n) = (self.used, mesh.triangles.len().div_ceil(TRIANGLE_CHUNK));
-        self.used += n;
-        if self.chunks.len() < self.used {
-            self.chunks.resize_with(self.used, PrimitiveChunk::default);
-        }
-        let tris = mesh.triangles.par_chunks(TRIANGLE_CHUNK);
-        self.chunks[first..self.used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
-            out.prims.clear();
-            out.textured.clear();
-            out.colored_phong.clear();
-            out.textured_colored.clear();
-            out.transparent = ctx.material.0.material.opacity < 1.0 || ctx.blend_texture_alpha;
-            for t in tris {
-                if let Some(tri) = gather(vertices, t) {
-                    setup_triangle(tri, ctx, out);
-                }
-            }
-            out.bounds.clear();
-            out.bounds.extend(out.prims.iter().map(|p| p.edges.bounds()));
-        });
+            .sum()
     }
 }
 

@@ -3,23 +3,94 @@
 //! Positions go to eye space (for lighting and fog) and clip space (for
 //! clipping and the divide); normals go through the inverse transpose of
 //! eye_from_object and are normalized here, before any interpolation. For
-//! Gouraud objects the lighting model is evaluated at every vertex now.
+//! Gouraud objects without texture or vertex colours the lighting model is
+//! evaluated at every vertex now ([`VertexLighting`] says where each
+//! object is lit). Output: [`ClipVertex`]es with their outcodes and, when
+//! they need no clipping, their [`Projected`] window positions.
 
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use rayon::prelude::*;
-use zline_scene::Mesh;
-
-use crate::clip::{view_code, ClipVolume};
-use crate::setup::{Projected, Viewport};
 use wide::f32x8;
-use zline_shading::{PreparedLights, PreparedMaterial, Vec3x8};
+use zline_raster::FixedPoint;
+use zline_scene::Mesh;
+use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode, Vec3x8};
+
+use crate::volume::{view_code, ClipVolume};
 
 /// Vertices per rayon task: big enough that scheduling costs nothing.
 const VERTEX_CHUNK: usize = 4096;
 
-/// One transformed vertex. `color` is the lit colour for Gouraud objects
-/// lit here, the mesh's vertex colour for meshes that have them (lit in
-/// setup), and zero otherwise. The vertex stage also classifies it against the view
+/// Window size in pixels (samples when supersampling).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Viewport {
+    /// Width.
+    pub width: u32,
+    /// Height.
+    pub height: u32,
+}
+
+/// A vertex after the divide and the window mapping (SPEC §1).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Projected {
+    /// Window position snapped to the 1/256 grid.
+    pub fixed: FixedPoint,
+    /// NC depth z/w.
+    pub z: f64,
+    /// 1/w.
+    pub inv_w: f32,
+}
+
+impl Projected {
+    /// Divides by w and maps to the window. `None` when w ≤ 0 or NaN (never
+    /// divided) or the position cannot be snapped.
+    #[inline]
+    pub fn new(clip: Vec4, viewport: Viewport) -> Option<Projected> {
+        let cw = f64::from(clip.w);
+        if cw.is_nan() || cw <= 0.0 {
+            return None;
+        }
+        let (w, h) = (f64::from(viewport.width), f64::from(viewport.height));
+        let (x, y) = (f64::from(clip.x) / cw, f64::from(clip.y) / cw);
+        let fixed = FixedPoint::snap(((x + 1.0) * 0.5 * w) as f32, ((1.0 - y) * 0.5 * h) as f32)?;
+        Some(Projected { fixed, z: f64::from(clip.z) / cw, inv_w: (1.0 / cw) as f32 })
+    }
+}
+
+/// Where an object's vertices are lit — the one place that decides it
+/// ([`VertexLighting::choose`]); the vertex stage and setup both follow
+/// the choice, and it says what [`ClipVertex::color`] holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VertexLighting {
+    /// Not lit per vertex (flat and Phong shading light later): `color` is
+    /// the mesh's vertex colour, or zero for meshes without colours.
+    Unlit,
+    /// Gouraud without texture or vertex colours, lit by the vertex stage,
+    /// eight vertices at a time: `color` is the lit colour, clamped to
+    /// [0, 1] per vertex (SPEC's reading used by fixed-function GL).
+    VertexStage,
+    /// Gouraud with a texture or vertex colours, lit by setup on the
+    /// original vertices before clipping (so clipped vertices interpolate
+    /// lit values, SPEC §2). Until then `color` is the vertex colour; after,
+    /// untextured: `color` is the clamped lit colour; textured: `color` is
+    /// the unclamped ambient+diffuse part and `normal` the specular part,
+    /// which the textured kernel combines with the texel and clamps.
+    Setup,
+}
+
+impl VertexLighting {
+    /// The choice for an object drawn with `shading`, with or without a
+    /// texture and vertex colours.
+    pub fn choose(shading: ShadingMode, textured: bool, vertex_colors: bool) -> VertexLighting {
+        match shading {
+            ShadingMode::Gouraud if textured || vertex_colors => VertexLighting::Setup,
+            ShadingMode::Gouraud => VertexLighting::VertexStage,
+            ShadingMode::Flat | ShadingMode::Phong => VertexLighting::Unlit,
+        }
+    }
+}
+
+/// One transformed vertex; what `color` holds is stated by the object's
+/// [`VertexLighting`]. The vertex stage also classifies it against the view
 /// volume and the clipping planes and, when it needs no clipping, divides
 /// and snaps it once here instead of once per triangle that uses it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -30,8 +101,7 @@ pub struct ClipVertex {
     pub eye: Vec3,
     /// Unit eye-space normal (zero when the normal matrix is singular).
     pub normal: Vec3,
-    /// Lit colour (Gouraud lit by the vertex stage), clamped to [0, 1]; or
-    /// the vertex colour ([`zline_scene::Mesh::colors`]).
+    /// The colour attribute: see [`VertexLighting`].
     pub color: Vec3,
     /// Texture coordinates (zero for meshes without them).
     pub uv: glam::Vec2,
@@ -98,21 +168,23 @@ pub struct Screen {
     pub volume: ClipVolume,
 }
 
-/// What the vertex stage computes besides positions.
+/// The lights and material of an object whose vertices the vertex stage
+/// lights ([`VertexLighting::VertexStage`]).
 #[derive(Clone, Copy, Debug)]
-pub enum VertexLighting<'a> {
-    /// Nothing: flat and Phong shade later.
-    None,
-    /// Light every vertex (Gouraud) with this model, in eye space.
-    Gouraud(&'a PreparedLights, &'a PreparedMaterial),
+pub struct VertexLights<'a> {
+    /// The lighting model in eye space.
+    pub lights: &'a PreparedLights,
+    /// The object's material.
+    pub material: &'a PreparedMaterial,
 }
 
-/// Transforms every vertex of `mesh` into `out` (resized), in parallel; the
-/// result is in vertex order whatever the thread count.
+/// Transforms every vertex of `mesh` into `out` (resized), in parallel, and
+/// lights them when `lighting` is given; the result is in vertex order
+/// whatever the thread count.
 pub fn transform_mesh(
     mesh: &Mesh,
     t: &ObjectTransforms,
-    lighting: VertexLighting<'_>,
+    lighting: Option<VertexLights<'_>>,
     screen: &Screen,
     out: &mut Vec<ClipVertex>,
 ) {
@@ -134,7 +206,7 @@ pub fn transform_mesh(
                 v.color = c;
             }
         }
-        if let VertexLighting::Gouraud(lights, material) = lighting {
+        if let Some(VertexLights { lights, material }) = lighting {
             light_vertices(out, lights, material);
         }
     });

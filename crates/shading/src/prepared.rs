@@ -145,22 +145,32 @@ impl PreparedLights {
     /// The lights of `model` expressed through `to` (see
     /// [`Light::transformed`]), prepared.
     pub fn new(model: &LightingModel, to: &Mat4) -> PreparedLights {
-        let mut out = PreparedLights { ambient: model.ambient, ..PreparedLights::default() };
-        for light in &model.lights {
+        let mut out = PreparedLights::default();
+        out.prepare(model.ambient, &model.lights, to);
+        out
+    }
+
+    /// Prepares `ambient` and `lights` expressed through `to` in place,
+    /// reusing this value's storage: a renderer that prepares its lights
+    /// every frame allocates only when the scene gains lights.
+    pub fn prepare(&mut self, ambient: Vec3, lights: &[Light], to: &Mat4) {
+        self.ambient = ambient;
+        self.directional.clear();
+        self.point.clear();
+        for light in lights {
             match light.transformed(to) {
                 Light::Directional { direction, color } => {
                     let to_light = -direction.normalize_or_zero();
                     if to_light != Vec3::ZERO {
-                        out.directional.push(Directional { to_light, color });
+                        self.directional.push(Directional { to_light, color });
                     }
                 }
                 Light::Point { position, color, attenuation } => {
                     let attenuation = (!attenuation.is_none()).then_some(attenuation);
-                    out.point.push(Point { position, color, attenuation });
+                    self.point.push(Point { position, color, attenuation });
                 }
             }
         }
-        out
     }
 
     /// SPEC §5 at `point` with unit `normal`, seen from `eye`: the same

@@ -1,0 +1,108 @@
+//! The resolve: a tile's samples into the packed 8-bit pixels of the image
+//! (SPEC §10), box-filtering n×n samples per pixel when supersampling.
+//! Samples no fragment reached (depth still at the far value) take the
+//! background here, since tiles never clear their colour planes.
+
+use glam::Vec3;
+use wide::{f32x8, i32x8, CmpEq};
+use zline_raster::LANES;
+use zline_shading::Vec3x8;
+
+use crate::tile::{load, TileTarget};
+
+impl TileTarget {
+    /// Quantizes the tile into `band`, the packed RGBA image rows that hold
+    /// it (`band` starts at the tile's first row; `width` is the image width
+    /// in pixels).
+    pub fn resolve(&self, band: &mut [u32], width: usize) {
+        if self.stride == 0 {
+            return;
+        }
+        let lanes = LANES as i32;
+        let [red, green, blue] = &self.rgb;
+        let bg = Vec3x8::splat(self.background);
+        for row in 0..self.rect.height() as usize {
+            let line = row * self.stride;
+            let out = &mut band[row * width..(row + 1) * width];
+            for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
+                let i = line + (x - self.origin) as usize;
+                let empty = if self.colors_valid {
+                    f32x8::ZERO
+                } else {
+                    load(&self.depth, i).cmp_eq(f32x8::splat(self.far))
+                };
+                let c = |plane: &[f32], b: f32x8| empty.blend(b, load(plane, i));
+                let px = pack_rgba(c(red, bg.x), c(green, bg.y), c(blue, bg.z));
+                if x >= self.rect.x0 && x + lanes <= self.rect.x1 {
+                    out[x as usize..x as usize + LANES].copy_from_slice(&px);
+                } else {
+                    for (k, &p) in px.iter().enumerate() {
+                        let c = x + k as i32;
+                        if (self.rect.x0..self.rect.x1).contains(&c) {
+                            out[c as usize] = p;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Box-filters the tile's n×n samples per pixel into `band` (the packed
+    /// image rows from the tile's first pixel row; `width` in pixels): each
+    /// pixel gets the mean of its samples' colours (the background where a
+    /// sample was never drawn), summed in a fixed order, then SPEC §10's
+    /// quantization. The tile's rect is in samples and a multiple of n.
+    pub fn resolve_supersampled(&self, band: &mut [u32], width: usize, n: u32) {
+        let n = n as i32;
+        let scale = 1.0 / (n * n) as f32;
+        let [red, green, blue] = &self.rgb;
+        let (py0, px0) = (self.rect.y0 / n, self.rect.x0 / n);
+        for py in py0..self.rect.y1 / n {
+            let out = &mut band[(py - py0) as usize * width..][..width];
+            for px in px0..self.rect.x1 / n {
+                let mut sum = Vec3::ZERO;
+                for sy in py * n..(py + 1) * n {
+                    for sx in px * n..(px + 1) * n {
+                        let i = self.index(sx, sy);
+                        let drawn = self.colors_valid || self.depth[i] != self.far;
+                        sum += if drawn { Vec3::new(red[i], green[i], blue[i]) } else { self.background };
+                    }
+                }
+                out[px as usize] = crate::image::quantize_rgba((sum * scale).extend(1.0));
+            }
+        }
+    }
+}
+
+/// SPEC §10 for eight pixels: each channel clamped (NaN to 0), scaled,
+/// rounded half up, packed as in [`crate::Image`]. c·255 + 0.5 lies in
+/// [0.5, 255.5] after the clamp, where truncation is the floor.
+#[inline(always)]
+fn pack_rgba(r: f32x8, g: f32x8, b: f32x8) -> [u32; LANES] {
+    let q = |c: f32x8| {
+        let c = c.cmp_eq(c).blend(c, f32x8::ZERO);
+        (c.fast_max(f32x8::ZERO).fast_min(f32x8::ONE) * f32x8::splat(255.0) + f32x8::splat(0.5))
+            .fast_trunc_int()
+    };
+    let alpha = i32x8::splat(0xFF << 24);
+    let packed = q(r) | (q(g) * i32x8::splat(1 << 8)) | (q(b) * i32x8::splat(1 << 16)) | alpha;
+    bytemuck::cast(packed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::image::quantize;
+
+    #[test]
+    fn pack_matches_the_scalar_quantizer() {
+        let r: [f32; 8] = [0.0, 1.0, 0.5, f32::NAN, -2.0, 7.0, 0.2, 100.0 / 255.0];
+        let g = r.map(|v| v * 0.7);
+        let b = r.map(|v| 1.0 - v);
+        let got = pack_rgba(f32x8::from(r), f32x8::from(g), f32x8::from(b));
+        for k in 0..8 {
+            let want = u32::from_le_bytes([quantize(r[k]), quantize(g[k]), quantize(b[k]), 255]);
+            assert_eq!(got[k], want, "lane {k}");
+        }
+    }
+}

@@ -1,0 +1,468 @@
+//! Triangle setup: clip-space triangles → [`Primitive`]s ready to scan
+//! (SPEC §1–4, §6).
+//!
+//! Per triangle: drop non-finite input and triangles outside the view volume,
+//! clip when needed, divide by w, map to the window (row 0 on top), snap to
+//! the 1/256 grid, cull back faces by the exact sign of the snapped area,
+//! and build the edge table and plane equations. Attribute planes hold a/w
+//! and 1/w for perspective-correct interpolation or a itself for
+//! screen-linear interpolation; the shading mode decides which attributes
+//! exist at all, so a flat triangle carries none.
+
+mod primitive;
+
+pub use primitive::{
+    layout, AlphaUse, Draw, Flat, Gouraud, Kernel, KernelTables, LevelOfDetail, PassKind, Phong, Primitive,
+    PrimitiveChunk, TexturedFlat, TexturedGouraud, TexturedLighting, TexturedPhong,
+};
+
+use glam::Vec3;
+use zline_raster::{AttributePlanes, DepthPlane, EdgeTable, FixedPoint, PlaneBasis};
+use zline_scene::Interpolation;
+use zline_shading::{LitParts, PreparedLights, PreparedMaterial, ShadingMode};
+
+use crate::adaptive::{Adaptive, GouraudChoice, PhongChoice};
+use crate::clip::{clip_polygon, MAX_CLIPPED};
+use crate::vertex::{ClipVertex, Projected, VertexLighting, Viewport};
+use crate::volume::ClipVolume;
+
+/// What a primitive's depth plane holds (the scene's
+/// [`zline_scene::DepthMode`]). Either way a smaller value is nearer and
+/// the far plane maps to the buffer's clear value, so the tile compares
+/// with one strict `<` in both modes.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum DepthEncoding {
+    /// NC depth z_nc = z_clip/w ∈ [−1, 1] (SPEC §4), cleared to 1.
+    #[default]
+    Normalized,
+    /// Negated reversed depth d = −(w − z_clip)/(2w) = (z_nc − 1)/2 ∈
+    /// [−1, 0], cleared to 0, computed in f64 from the eye-space depth
+    /// alone: −(a·z_eye + b)/(2w) with the camera's (a, b)
+    /// (`Camera::reversed_depth_coefficients`) and w = −z_eye (perspective)
+    /// or 1 (orthographic). Far from the camera its magnitude is small,
+    /// where floats are dense, so it keeps the relative precision of z_eye
+    /// that NC depth (crowded near 1) loses; the negation only keeps the
+    /// comparison the same.
+    Reversed {
+        /// a in w − z_clip = a·z_eye + b.
+        a: f64,
+        /// b in w − z_clip = a·z_eye + b.
+        b: f64,
+        /// w = −z_eye (true) or 1.
+        perspective: bool,
+    },
+}
+
+impl DepthEncoding {
+    /// The value stored for a vertex.
+    #[inline]
+    fn value(self, v: &ClipVertex, p: &Projected) -> f64 {
+        match self {
+            DepthEncoding::Normalized => p.z,
+            DepthEncoding::Reversed { a, b, perspective } => {
+                let z = f64::from(v.eye.z);
+                let w = if perspective { -z } else { 1.0 };
+                -(a * z + b) / (2.0 * w)
+            }
+        }
+    }
+}
+
+/// Which faces an object draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Faces {
+    /// Front faces only: back faces are culled.
+    Front,
+    /// Both sides: a triangle seen from behind is lit with its normals
+    /// turned towards the viewer (two-sided lighting).
+    Both,
+}
+
+/// Where the viewer is, for deciding which side of a triangle it sees.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Viewer {
+    /// At the eye-space origin (perspective projection).
+    AtOrigin,
+    /// At infinity, looking along −z (orthographic projection).
+    AlongMinusZ,
+}
+
+/// Whether a mesh has vertex colours: a factor on ka and kd like a texel,
+/// applied by flat shading (their mean at the centroid), Gouraud shading
+/// (lit in setup, per vertex) and Phong shading (interpolated like the
+/// normal and multiplied per sample: [`Kernel::ColoredPhong`],
+/// [`TexturedLighting::ColoredPhong`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VertexColors {
+    /// No vertex colours.
+    Absent,
+    /// [`ClipVertex::color`] holds them until lighting.
+    Present,
+}
+
+/// An object's texture as its kernels use it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureUse {
+    /// Index into the frame's texture table.
+    pub index: u32,
+    /// How the level of detail is found (from the filter).
+    pub lod: LevelOfDetail,
+    /// What the texel's alpha does (from the alpha mode).
+    pub alpha: AlphaUse,
+}
+
+/// Everything setup needs to know about the object a triangle belongs to.
+#[derive(Clone, Copy, Debug)]
+pub struct SetupContext<'a> {
+    /// The window.
+    pub viewport: Viewport,
+    /// The clipping planes.
+    pub volume: ClipVolume,
+    /// What depth planes hold.
+    pub depth: DepthEncoding,
+    /// The object's shading mode.
+    pub shading: ShadingMode,
+    /// Where the object's vertices are lit (Gouraud).
+    pub vertex_lighting: VertexLighting,
+    /// How attributes are interpolated.
+    pub interpolation: Interpolation,
+    /// Which faces are drawn.
+    pub faces: Faces,
+    /// Where the viewer is.
+    pub viewer: Viewer,
+    /// The object's material and its index in the frame's table.
+    pub material: (&'a PreparedMaterial, u32),
+    /// The eye-space lighting model (flat shading evaluates it here).
+    pub lighting: &'a PreparedLights,
+    /// The adaptive mode's data when it is on ([`crate::adaptive`]).
+    pub adaptive: Option<&'a Adaptive>,
+    /// The object's material without specular and its index in the
+    /// frame's table (used by the adaptive mode; equal to `material` when
+    /// off).
+    pub diffuse_only: (&'a PreparedMaterial, u32),
+    /// The object's diffuse texture, when it has one and texture
+    /// coordinates.
+    pub texture: Option<TextureUse>,
+    /// Whether the mesh has vertex colours.
+    pub vertex_colors: VertexColors,
+}
+
+/// Sets up one triangle (vertices in the mesh's order) and appends 0 or more
+/// primitives to `out` (more than one only when clipping made a polygon).
+pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut PrimitiveChunk) {
+    if tri[0].view_code & tri[1].view_code & tri[2].view_code != 0 {
+        return; // entirely outside one plane of the view volume (NaN vertices included)
+    }
+    // Two-sided lighting: a triangle seen from behind (possible only when
+    // culling is off) is lit with its normals turned towards the viewer, as
+    // OpenGL's two-sided lighting model and glTF's doubleSided do; with
+    // one-sided lighting the far side of an open mesh would be lit as if
+    // the viewer stood behind it.
+    let flipped: [ClipVertex; 3];
+    let back = ctx.faces == Faces::Both && seen_from_behind(&tri, ctx.viewer);
+    let tri = if back {
+        flipped = tri.map(|v| turned(v, ctx));
+        [&flipped[0], &flipped[1], &flipped[2]]
+    } else {
+        tri
+    };
+    // Gouraud lit here lights the original vertices before clipping, so
+    // clipped vertices interpolate the lit values in clip space like every
+    // attribute (SPEC §2, §6).
+    let lit: [ClipVertex; 3];
+    let tri = if ctx.vertex_lighting == VertexLighting::Setup {
+        lit = tri.map(|v| lit_in_setup(v, ctx));
+        [&lit[0], &lit[1], &lit[2]]
+    } else {
+        tri
+    };
+    let flat = match ctx.shading {
+        ShadingMode::Flat => flat_parts(&tri, back, ctx),
+        _ => LitParts::default(),
+    };
+    let code = tri[0].clip_code | tri[1].clip_code | tri[2].clip_code;
+    if code == 0 {
+        // The common case: projected once per vertex by the vertex stage.
+        emit(tri, [tri[0].projected, tri[1].projected, tri[2].projected], flat, ctx, out);
+        return;
+    }
+    if !tri.iter().all(|v| v.clip.is_finite()) {
+        return;
+    }
+    let mut poly = [ClipVertex::default(); MAX_CLIPPED];
+    let n = clip_polygon(&ctx.volume, tri.map(|v| *v), code, &mut poly);
+    for i in 1..n.saturating_sub(1) {
+        let t = [&poly[0], &poly[i], &poly[i + 1]];
+        let p = t.map(|v| Projected::new(v.clip, ctx.viewport));
+        if let [Some(a), Some(b), Some(c)] = p {
+            emit(t, [a, b, c], flat, ctx, out);
+        }
+    }
+}
+
+/// SPEC §6 flat shading: the lighting model at the centroid of the original
+/// triangle with its face normal (computed in f64 so huge coordinates do not
+/// overflow), turned towards the viewer when `back` (two-sided lighting).
+fn flat_parts(tri: &[&ClipVertex; 3], back: bool, ctx: &SetupContext<'_>) -> LitParts {
+    let p = tri.map(|v| v.eye.as_dvec3());
+    let mut normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero().as_vec3();
+    if back {
+        normal = -normal;
+    }
+    let centroid = ((p[0] + p[1] + p[2]) / 3.0).as_vec3();
+    let mut parts = ctx.lighting.shade_parts(ctx.material.0, centroid, normal, Vec3::ZERO);
+    if ctx.vertex_colors == VertexColors::Present {
+        parts.ambient_diffuse *= (tri[0].color + tri[1].color + tri[2].color) / 3.0;
+    }
+    parts
+}
+
+/// A vertex of a Gouraud triangle lit in setup ([`VertexLighting::Setup`]):
+/// the ambient+diffuse part multiplied by the vertex colour when the mesh
+/// has them; untextured, `color` becomes the clamped lit colour; textured,
+/// `color` and `normal` carry the unclamped ambient+diffuse and specular
+/// parts (the normal is not needed once lit).
+fn lit_in_setup(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
+    let mut parts = ctx.lighting.shade_parts(ctx.material.0, v.eye, v.normal, Vec3::ZERO);
+    if ctx.vertex_colors == VertexColors::Present {
+        parts.ambient_diffuse *= v.color;
+    }
+    if ctx.texture.is_some() {
+        ClipVertex { color: parts.ambient_diffuse, normal: parts.specular, ..*v }
+    } else {
+        ClipVertex { color: parts.color(), ..*v }
+    }
+}
+
+/// True when the triangle's front (counter-clockwise) side faces away from
+/// the viewer, decided in eye space on the original triangle.
+fn seen_from_behind(tri: &[&ClipVertex; 3], viewer: Viewer) -> bool {
+    let p = tri.map(|v| v.eye.as_dvec3());
+    let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+    let to_viewer = match viewer {
+        Viewer::AlongMinusZ => glam::DVec3::Z,
+        Viewer::AtOrigin => -p[0],
+    };
+    normal.dot(to_viewer) < 0.0
+}
+
+/// A vertex with its normal turned around, and its colour relit with that
+/// normal when the vertex stage lit it.
+fn turned(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
+    let normal = -v.normal;
+    let color = match ctx.vertex_lighting {
+        VertexLighting::VertexStage => ctx.lighting.shade(ctx.material.0, v.eye, normal, Vec3::ZERO),
+        VertexLighting::Unlit | VertexLighting::Setup => v.color,
+    };
+    ClipVertex { normal, color, ..*v }
+}
+
+/// What the adaptive mode ([`crate::adaptive`]) decided for one triangle.
+#[derive(Clone, Copy, Debug)]
+struct Shortcuts {
+    interpolation: Interpolation,
+    /// The material drawn (its index in the frame's table).
+    material: u32,
+    /// Gouraud drawn flat with this colour.
+    flat_color: Option<Vec3>,
+    /// Phong lit once at the centroid with these parts.
+    lit_once: Option<LitParts>,
+}
+
+/// The adaptive mode's choice for one triangle, or the full evaluation when
+/// it is off.
+fn shortcuts(tri: [&ClipVertex; 3], p: &[Projected; 3], ctx: &SetupContext<'_>) -> Shortcuts {
+    let mut s = Shortcuts {
+        interpolation: ctx.interpolation,
+        material: ctx.material.1,
+        flat_color: None,
+        lit_once: None,
+    };
+    let Some(adaptive) = ctx.adaptive else {
+        return s;
+    };
+    match (ctx.shading, ctx.texture) {
+        (ShadingMode::Gouraud, None) => {
+            let perspective = ctx.interpolation == Interpolation::PerspectiveCorrect;
+            match adaptive.gouraud(tri.map(|v| v.color), p.map(|v| v.inv_w), perspective) {
+                GouraudChoice::Flat(c) => s.flat_color = Some(c),
+                GouraudChoice::Linear => s.interpolation = Interpolation::ScreenLinear,
+                GouraudChoice::Full => {}
+            }
+        }
+        (ShadingMode::Phong, _) => {
+            let m = &ctx.material.0.material;
+            let (kd, ks, eye) = (m.kd.max_element(), m.ks.max_element(), tri.map(|v| v.eye));
+            let normal = (ctx.vertex_colors == VertexColors::Absent).then(|| tri.map(|v| v.normal));
+            match adaptive.phong(kd, ks, normal, eye) {
+                PhongChoice::LitOnce => {
+                    let normal = (tri[0].normal.normalize_or_zero()
+                        + tri[1].normal.normalize_or_zero()
+                        + tri[2].normal.normalize_or_zero())
+                    .normalize_or_zero();
+                    let centroid = (eye[0] + eye[1] + eye[2]) / 3.0;
+                    let parts = ctx.lighting.shade_parts(ctx.diffuse_only.0, centroid, normal, Vec3::ZERO);
+                    s.lit_once = Some(parts);
+                }
+                PhongChoice::NoSpecular if ctx.material.0.specular => s.material = ctx.diffuse_only.1,
+                PhongChoice::NoSpecular | PhongChoice::Full => {}
+            }
+        }
+        _ => {}
+    }
+    s
+}
+
+/// Projects, snaps, culls and builds the planes of one clipped triangle,
+/// and appends it to the table of the kernel that will draw it.
+#[inline]
+fn emit(
+    tri: [&ClipVertex; 3],
+    p: [Projected; 3],
+    flat: LitParts,
+    ctx: &SetupContext<'_>,
+    out: &mut PrimitiveChunk,
+) {
+    let fixed = p.map(|v| v.fixed);
+    if ctx.faces == Faces::Front && !is_front_facing(&fixed) {
+        return;
+    }
+    let (Some(edges), Some(basis)) = (EdgeTable::new(fixed), PlaneBasis::new(fixed)) else {
+        return;
+    };
+    let depth = DepthPlane::new(&basis, std::array::from_fn(|k| ctx.depth.value(tri[k], &p[k])));
+    let sc = shortcuts(tri, &p, ctx);
+    let interpolation = sc.interpolation;
+    let q = match interpolation {
+        Interpolation::PerspectiveCorrect => p.map(|v| v.inv_w),
+        Interpolation::ScreenLinear => [1.0; 3],
+    };
+    let sort_depth = ((p[0].z + p[1].z + p[2].z) / 3.0) as f32;
+    let planes = Planes { tri, q, basis: &basis };
+    let PrimitiveChunk { draws, bounds, tables: t, .. } = out;
+    macro_rules! push {
+        ($table:expr, $kernel:expr, $shader:expr) => {
+            PrimitiveChunk::push(
+                (draws, bounds),
+                &mut $table,
+                $kernel,
+                Primitive { edges, depth, shader: $shader },
+                sort_depth,
+            )
+        };
+    }
+    let Some(texture) = ctx.texture else {
+        // Untextured: only the attributes the shading mode needs.
+        match (ctx.shading, sc.flat_color, sc.lit_once) {
+            (_, Some(color), _) => push!(t.flat, Kernel::Flat, Flat { color }),
+            (_, None, Some(parts)) => push!(t.flat, Kernel::Flat, Flat { color: parts.color() }),
+            (ShadingMode::Flat, None, None) => push!(t.flat, Kernel::Flat, Flat { color: flat.color() }),
+            (ShadingMode::Gouraud, None, None) => {
+                let planes = planes.build(|v| [v.color]);
+                push!(t.gouraud, Kernel::Gouraud(interpolation), Gouraud { planes })
+            }
+            (ShadingMode::Phong, None, None) => match ctx.vertex_colors {
+                VertexColors::Absent => {
+                    let planes = planes.build(|v| [v.normal, v.eye]);
+                    let shader = Phong { planes, material: sc.material };
+                    push!(t.phong, Kernel::Phong(interpolation), shader)
+                }
+                VertexColors::Present => {
+                    let planes = planes.build(|v| [v.normal, v.eye, v.color]);
+                    let shader = Phong { planes, material: sc.material };
+                    push!(t.colored_phong, Kernel::ColoredPhong(interpolation), shader)
+                }
+            },
+        }
+        return;
+    };
+    // Textured: texture coordinates plus what the lighting interpolates.
+    // The adaptive mode's Phong lit once is drawn as textured flat.
+    let (shading, flat) = match sc.lit_once {
+        Some(parts) => (ShadingMode::Flat, parts),
+        None => (ctx.shading, flat),
+    };
+    let lighting = match (shading, ctx.vertex_colors) {
+        (ShadingMode::Flat, _) => TexturedLighting::Flat,
+        (ShadingMode::Gouraud, _) => TexturedLighting::Gouraud,
+        (ShadingMode::Phong, VertexColors::Absent) => TexturedLighting::Phong,
+        (ShadingMode::Phong, VertexColors::Present) => TexturedLighting::ColoredPhong,
+    };
+    let kernel = Kernel::Textured { lighting, interpolation, lod: texture.lod, alpha: texture.alpha };
+    let (index, material) = (texture.index, sc.material);
+    match lighting {
+        TexturedLighting::Flat => {
+            let planes = planes.textured(|_| []);
+            let (ambient_diffuse, specular) = (flat.ambient_diffuse, flat.specular);
+            let shader = TexturedFlat { planes, ambient_diffuse, specular, texture: index };
+            push!(t.textured_flat, kernel, shader)
+        }
+        TexturedLighting::Gouraud => {
+            // Lit before clipping: see `lit_in_setup`.
+            let planes = planes.textured(|v| [v.color, v.normal]);
+            push!(t.textured_gouraud, kernel, TexturedGouraud { planes, texture: index })
+        }
+        TexturedLighting::Phong => {
+            let planes = planes.textured(|v| [v.normal, v.eye]);
+            push!(t.textured_phong, kernel, TexturedPhong { planes, texture: index, material })
+        }
+        TexturedLighting::ColoredPhong => {
+            let planes = planes.textured(|v| [v.normal, v.eye, v.color]);
+            push!(t.textured_colored_phong, kernel, TexturedPhong { planes, texture: index, material })
+        }
+    }
+}
+
+/// Builds attribute planes over one triangle: plane [`layout`]`::*::Q` is
+/// q (1/w or 1), then each attribute times q.
+struct Planes<'a> {
+    tri: [&'a ClipVertex; 3],
+    q: [f32; 3],
+    basis: &'a PlaneBasis,
+}
+
+impl Planes<'_> {
+    /// [q, then the triples `f` gives, each times q].
+    #[inline]
+    fn build<const K: usize, const N: usize>(
+        &self,
+        f: impl Fn(&ClipVertex) -> [Vec3; K],
+    ) -> AttributePlanes<N> {
+        debug_assert_eq!(N, 1 + 3 * K);
+        let values = std::array::from_fn(|k| {
+            let q = self.q[k];
+            let triples = f(self.tri[k]);
+            std::array::from_fn(|i| if i == 0 { q } else { triples[(i - 1) / 3][(i - 1) % 3] * q })
+        });
+        AttributePlanes::new(self.basis, values)
+    }
+
+    /// [q, s·q, t·q, then the triples `f` gives, each times q].
+    #[inline]
+    fn textured<const K: usize, const N: usize>(
+        &self,
+        f: impl Fn(&ClipVertex) -> [Vec3; K],
+    ) -> AttributePlanes<N> {
+        debug_assert_eq!(N, 3 + 3 * K);
+        let values = std::array::from_fn(|k| {
+            let q = self.q[k];
+            let (uv, triples) = (self.tri[k].uv * q, f(self.tri[k]));
+            std::array::from_fn(|i| match i {
+                0 => q,
+                1 => uv.x,
+                2 => uv.y,
+                _ => triples[(i - 3) / 3][(i - 3) % 3] * q,
+            })
+        });
+        AttributePlanes::new(self.basis, values)
+    }
+}
+
+/// Front faces are counter-clockwise as seen by the viewer (SPEC §2). With
+/// window y pointing down that is a negative cross product, decided exactly
+/// on the snapped vertices.
+#[inline]
+pub fn is_front_facing(p: &[FixedPoint; 3]) -> bool {
+    let [a, b, c] = p.map(|q| (i64::from(q.x), i64::from(q.y)));
+    (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0) < 0
+}

@@ -1,0 +1,498 @@
+//! The span kernels: one monomorphized function per [`Kernel`], pass and
+//! texture use.
+//!
+//! [`TileTarget::blocks`] is the loop every kernel shares — depth test,
+//! alpha test, depth and colour writes or blending — and each kernel passes
+//! it the closure that shades eight samples from their interpolated
+//! attributes. What varies between primitives is a type parameter, never a
+//! branch in that loop:
+//!
+//! | parameter | types | decides |
+//! |---|---|---|
+//! | [`Interp`] | [`Perspective`], [`Linear`] | a/w ÷ 1/w per sample, or the plane value itself |
+//! | [`Pass`] | [`Opaque`], [`Blend`], [`BlendFogged`] | depth write and replace, or blend (fogged per sample) |
+//! | [`Alpha`] | [`IgnoreAlpha`], [`MaskAlpha`], [`TextureAlpha`] | the texel's alpha ignored, tested against the cutoff, or blended |
+//! | [`Lod`] | [`BaseLod`], [`DerivativeLod`] | level 0, or the level from the exact derivatives of s and t |
+//!
+//! [`Kernel`]: crate::setup::Kernel
+
+use wide::{f32x8, i32x8, CmpEq, CmpGe, CmpLt};
+use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, Span};
+use zline_shading::Vec3x8;
+
+use super::{load, store, FrameTexture, ShadeContext, TileTarget};
+use crate::fog::FogPass;
+use crate::setup::layout::{gouraud, phong, textured};
+use crate::setup::{Flat, Gouraud, Phong, Primitive, TexturedFlat, TexturedGouraud, TexturedPhong};
+
+/// How attributes are recovered from their planes.
+pub(crate) trait Interp {
+    /// True for perspective-correct planes (a/w and 1/w).
+    const PERSPECTIVE: bool;
+    /// The factor that turns a plane value into the attribute: 1/(1/w) or 1.
+    fn w(q: f32x8) -> f32x8;
+    /// `v` over `q` (perspective) or `v` itself.
+    fn divide(v: f32x8, q: f32x8) -> f32x8;
+}
+
+/// Perspective-correct interpolation: planes hold a/w and 1/w.
+pub(crate) struct Perspective;
+
+/// Screen-linear interpolation: planes hold a; no divide.
+pub(crate) struct Linear;
+
+impl Interp for Perspective {
+    const PERSPECTIVE: bool = true;
+    #[inline(always)]
+    fn w(q: f32x8) -> f32x8 {
+        f32x8::ONE / q
+    }
+    #[inline(always)]
+    fn divide(v: f32x8, q: f32x8) -> f32x8 {
+        v / q
+    }
+}
+
+impl Interp for Linear {
+    const PERSPECTIVE: bool = false;
+    #[inline(always)]
+    fn w(_: f32x8) -> f32x8 {
+        f32x8::ONE
+    }
+    #[inline(always)]
+    fn divide(v: f32x8, _: f32x8) -> f32x8 {
+        v
+    }
+}
+
+/// The pass a primitive is drawn in.
+pub(crate) trait Pass {
+    /// False: depth is written and the colour replaced (opaque). True: depth
+    /// is only tested and the colour blended over the stored one.
+    const BLENDS: bool;
+    /// The surface's weight 1 − kt in the blend.
+    fn opacity(&self) -> f32x8;
+    /// The fragment's colour after fog (blending passes fog per sample; the
+    /// opaque pass leaves fog to [`TileTarget::fog_pass`]).
+    fn fog(&self, c: Vec3x8, x: i32, y: i32, z: f32x8) -> Vec3x8;
+}
+
+/// The opaque pass.
+pub(crate) struct Opaque;
+
+/// The transparency pass without fog.
+pub(crate) struct Blend {
+    /// 1 − kt.
+    pub(crate) opacity: f32x8,
+}
+
+/// The transparency pass with fog.
+pub(crate) struct BlendFogged<'a> {
+    /// 1 − kt.
+    pub(crate) opacity: f32x8,
+    /// The frame's fog.
+    pub(crate) fog: &'a FogPass,
+    /// Its colour.
+    pub(crate) color: Vec3x8,
+}
+
+impl Pass for Opaque {
+    const BLENDS: bool = false;
+    #[inline(always)]
+    fn opacity(&self) -> f32x8 {
+        f32x8::ONE
+    }
+    #[inline(always)]
+    fn fog(&self, c: Vec3x8, _: i32, _: i32, _: f32x8) -> Vec3x8 {
+        c
+    }
+}
+
+impl Pass for Blend {
+    const BLENDS: bool = true;
+    #[inline(always)]
+    fn opacity(&self) -> f32x8 {
+        self.opacity
+    }
+    #[inline(always)]
+    fn fog(&self, c: Vec3x8, _: i32, _: i32, _: f32x8) -> Vec3x8 {
+        c
+    }
+}
+
+impl Pass for BlendFogged<'_> {
+    const BLENDS: bool = true;
+    #[inline(always)]
+    fn opacity(&self) -> f32x8 {
+        self.opacity
+    }
+    #[inline(always)]
+    fn fog(&self, c: Vec3x8, x: i32, y: i32, z: f32x8) -> Vec3x8 {
+        let (f, fc) = (self.fog.factors(x, y, z), self.color);
+        let g = f32x8::ONE - f;
+        Vec3x8 { x: c.x * f + fc.x * g, y: c.y * f + fc.y * g, z: c.z * f + fc.z * g }
+    }
+}
+
+/// What the texel's alpha does.
+pub(crate) trait Alpha: Sized {
+    /// The use for a texture.
+    fn new(texture: &FrameTexture) -> Self;
+    /// The lanes still live after the alpha test.
+    fn test(&self, live: f32x8, alpha: f32x8) -> f32x8;
+    /// The factor on the pass's opacity.
+    fn weight(alpha: f32x8) -> f32x8;
+}
+
+/// The alpha is ignored (and untextured kernels have none).
+pub(crate) struct IgnoreAlpha;
+
+/// Samples whose alpha is below the cutoff are discarded before they write
+/// depth; the rest are drawn opaque.
+pub(crate) struct MaskAlpha(f32x8);
+
+/// The alpha multiplies the pass's opacity.
+pub(crate) struct TextureAlpha;
+
+impl Alpha for IgnoreAlpha {
+    #[inline(always)]
+    fn new(_: &FrameTexture) -> Self {
+        IgnoreAlpha
+    }
+    #[inline(always)]
+    fn test(&self, live: f32x8, _: f32x8) -> f32x8 {
+        live
+    }
+    #[inline(always)]
+    fn weight(_: f32x8) -> f32x8 {
+        f32x8::ONE
+    }
+}
+
+impl Alpha for MaskAlpha {
+    #[inline(always)]
+    fn new(texture: &FrameTexture) -> Self {
+        MaskAlpha(f32x8::splat(texture.cutoff))
+    }
+    #[inline(always)]
+    fn test(&self, live: f32x8, alpha: f32x8) -> f32x8 {
+        live & alpha.cmp_ge(self.0)
+    }
+    #[inline(always)]
+    fn weight(_: f32x8) -> f32x8 {
+        f32x8::ONE
+    }
+}
+
+impl Alpha for TextureAlpha {
+    #[inline(always)]
+    fn new(_: &FrameTexture) -> Self {
+        TextureAlpha
+    }
+    #[inline(always)]
+    fn test(&self, live: f32x8, _: f32x8) -> f32x8 {
+        live
+    }
+    #[inline(always)]
+    fn weight(alpha: f32x8) -> f32x8 {
+        alpha
+    }
+}
+
+/// How a textured kernel finds the level of detail.
+pub(crate) trait Lod {
+    /// The levels of eight samples at (s, t), from the plane gradients
+    /// `dx`, `dy` (planes Q, S, T) and `inv` (the [`Interp::w`] factor).
+    fn lods<I: Interp>(d: &Derivatives, s: f32x8, t: f32x8, inv: f32x8) -> f32x8;
+}
+
+/// The plane gradients a [`DerivativeLod`] reads, in texels.
+pub(crate) struct Derivatives {
+    dx: [f32; 3],
+    dy: [f32; 3],
+    size: (f32x8, f32x8),
+}
+
+impl Derivatives {
+    fn new<const N: usize>(planes: &AttributePlanes<N>, texture: &FrameTexture) -> Derivatives {
+        let (dx, dy) = (planes.dx(), planes.dy());
+        let (q, s, t) = (textured::Q, textured::S, textured::T);
+        let (w, h) = (texture.texture.width(), texture.texture.height());
+        Derivatives {
+            dx: [dx[q], dx[s], dx[t]],
+            dy: [dy[q], dy[s], dy[t]],
+            size: (f32x8::splat(w as f32), f32x8::splat(h as f32)),
+        }
+    }
+}
+
+/// Level 0 (nearest and bilinear filtering).
+pub(crate) struct BaseLod;
+
+/// The level from the exact per-sample derivatives (trilinear filtering).
+pub(crate) struct DerivativeLod;
+
+impl Lod for BaseLod {
+    #[inline(always)]
+    fn lods<I: Interp>(_: &Derivatives, _: f32x8, _: f32x8, _: f32x8) -> f32x8 {
+        f32x8::ZERO
+    }
+}
+
+impl Lod for DerivativeLod {
+    /// `shading::lod` for eight lanes: ½·log2 of the larger squared
+    /// footprint in texels, with `wide`'s vector log2 (one call instead of
+    /// eight of libm's, which measured ~12 % of a textured frame). Zero or
+    /// NaN footprints read level 0.
+    #[inline(always)]
+    fn lods<I: Interp>(d: &Derivatives, s: f32x8, t: f32x8, inv: f32x8) -> f32x8 {
+        // s = S/Q with S = s/w and Q = 1/w planes: ∂s/∂x = (∂S/∂x − s·∂Q/∂x)/Q.
+        let derivative = |ds: f32, dq: f32, v: f32x8| {
+            if I::PERSPECTIVE {
+                (f32x8::splat(ds) - v * f32x8::splat(dq)) * inv
+            } else {
+                f32x8::splat(ds)
+            }
+        };
+        let (fw, fh) = d.size;
+        let (dx, dy) = (d.dx, d.dy);
+        let (sx, tx) = (derivative(dx[1], dx[0], s) * fw, derivative(dx[2], dx[0], t) * fh);
+        let (sy, ty) = (derivative(dy[1], dy[0], s) * fw, derivative(dy[2], dy[0], t) * fh);
+        let footprint = (sx * sx + tx * tx).max(sy * sy + ty * ty);
+        f32x8::splat(0.5) * footprint.log2()
+    }
+}
+
+/// Three consecutive planes from `i`, each times `w`.
+#[inline(always)]
+fn triple<const N: usize>(a: &[f32x8; N], i: usize, w: f32x8) -> Vec3x8 {
+    Vec3x8 { x: a[i] * w, y: a[i + 1] * w, z: a[i + 2] * w }
+}
+
+impl TileTarget {
+    /// Scan-converts one primitive and runs [`Self::blocks`] on each span.
+    #[inline(always)]
+    fn scan<const N: usize, P: Pass, A: Alpha>(
+        &mut self,
+        (edges, depth): (&EdgeTable, &DepthPlane),
+        planes: &AttributePlanes<N>,
+        pass: &P,
+        alpha: &A,
+        mut shade: impl FnMut(&[f32x8; N]) -> (Vec3x8, f32x8),
+    ) -> u64 {
+        let mut n = 0;
+        edges.scan(self.rect, |s| n += self.blocks(depth, planes, s, pass, alpha, &mut shade));
+        n
+    }
+
+    /// The loop every kernel shares: depth-tests each block of `span`, and
+    /// where any lane passes, shades the block with `shade` (colour and
+    /// alpha), applies the alpha test, then writes depth and colour
+    /// (opaque) or fogs and blends the colour without writing depth
+    /// (transparent). Returns the samples that passed.
+    #[inline(always)]
+    fn blocks<const N: usize, P: Pass, A: Alpha>(
+        &mut self,
+        depth: &DepthPlane,
+        attrs: &AttributePlanes<N>,
+        span: Span,
+        pass: &P,
+        alpha_use: &A,
+        mut shade: impl FnMut(&[f32x8; N]) -> (Vec3x8, f32x8),
+    ) -> u64 {
+        let row = self.index(self.origin, span.y);
+        let origin = self.origin;
+        let opacity = pass.opacity();
+        let (zbuf, [red, green, blue]) = (&mut self.depth, &mut self.rgb);
+        let mut n = 0;
+        for_each_block(depth, attrs, span, |b| {
+            let i = row + (b.x - origin) as usize;
+            let (z, stored) = (f32x8::from(b.z), load(zbuf, i));
+            let live = lane_mask(b.mask) & z.cmp_lt(stored);
+            if live.none() {
+                return;
+            }
+            let (c, alpha) = shade(&b.attrs.map(f32x8::from));
+            let live = alpha_use.test(live, alpha);
+            let bits = live.move_mask();
+            if bits == 0 {
+                return;
+            }
+            n += u64::from(bits.count_ones());
+            if P::BLENDS {
+                // C = (1 − kt)·C_surface + kt·C_behind with 1 − kt =
+                // opacity·alpha (alpha is 1 but for textures whose alpha
+                // blends).
+                let keep = opacity * A::weight(alpha);
+                let behind = f32x8::ONE - keep;
+                let c = pass.fog(c, b.x, span.y, z);
+                for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
+                    let old = load(plane, i);
+                    store(plane, i, live.blend(v * keep + old * behind, old));
+                }
+            } else {
+                store(zbuf, i, live.blend(z, stored));
+                for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
+                    let old = load(plane, i);
+                    store(plane, i, live.blend(v, old));
+                }
+            }
+        });
+        n
+    }
+
+    /// SPEC §6 flat: one colour.
+    pub(super) fn flat<P: Pass>(&mut self, p: &Primitive<Flat>, pass: &P) -> u64 {
+        let c = Vec3x8::splat(p.shader.color);
+        let planes = AttributePlanes::NONE;
+        self.scan((&p.edges, &p.depth), &planes, pass, &IgnoreAlpha, |_| (c, f32x8::ONE))
+    }
+
+    /// SPEC §6 Gouraud: the lit vertex colours interpolated.
+    pub(super) fn gouraud<I: Interp, P: Pass>(&mut self, p: &Primitive<Gouraud>, pass: &P) -> u64 {
+        self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a| {
+            let (q, c) = (a[gouraud::Q], gouraud::COLOR);
+            let c = Vec3x8 { x: I::divide(a[c], q), y: I::divide(a[c + 1], q), z: I::divide(a[c + 2], q) };
+            (c, f32x8::ONE)
+        })
+    }
+
+    /// SPEC §6 Phong: normal and eye position interpolated, the normal
+    /// re-normalized per sample, the lighting model per sample.
+    pub(super) fn phong<I: Interp, P: Pass>(
+        &mut self,
+        p: &Primitive<Phong<{ phong::LEN }>>,
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
+        self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a| {
+            let w = I::w(a[phong::Q]);
+            let normal = triple(a, phong::NORMAL, w).normalize_or_zero();
+            (l.shade_x8(m, triple(a, phong::EYE, w), normal), f32x8::ONE)
+        })
+    }
+
+    /// [`Self::phong`] with the vertex colour interpolated too, multiplying
+    /// ka and kd like a texel: c ⊙ (ambient+diffuse) + specular, clamped.
+    pub(super) fn phong_tinted<I: Interp, P: Pass>(
+        &mut self,
+        p: &Primitive<Phong<{ phong::COLORED_LEN }>>,
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
+        self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a| {
+            let w = I::w(a[phong::Q]);
+            let normal = triple(a, phong::NORMAL, w).normalize_or_zero();
+            let tint = triple(a, phong::COLOR, w);
+            let (ambient_diffuse, specular) = l.shade_parts_x8(m, triple(a, phong::EYE, w), normal);
+            ((tint * ambient_diffuse + specular).clamp01(), f32x8::ONE)
+        })
+    }
+
+    /// SPEC §7, the part every textured kernel shares: texture coordinates
+    /// interpolated, the texel sampled with the map's sampler at the level
+    /// `L` finds, and c = texel ⊙ (ambient+diffuse) + specular, clamped,
+    /// with the parts from `parts(attributes, w)`.
+    #[inline(always)]
+    fn textured<const N: usize, I: Interp, L: Lod, P: Pass, A: Alpha>(
+        &mut self,
+        (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
+        map: &FrameTexture,
+        pass: &P,
+        mut parts: impl FnMut(&[f32x8; N], f32x8) -> (Vec3x8, Vec3x8),
+    ) -> u64 {
+        let derivatives = Derivatives::new(planes, map);
+        let (texture, sampler) = (&*map.texture, &map.sampler);
+        self.scan((edges, depth), planes, pass, &A::new(map), |a| {
+            let inv = I::w(a[textured::Q]);
+            let (s, t) = (a[textured::S] * inv, a[textured::T] * inv);
+            let lods = L::lods::<I>(&derivatives, s, t, inv);
+            let [r, g, b, texel_alpha] = texture.sample_x8(sampler, s, t, lods);
+            let texel = Vec3x8 { x: r, y: g, z: b };
+            let (ambient_diffuse, specular) = parts(a, inv);
+            ((texel * ambient_diffuse + specular).clamp01(), texel_alpha)
+        })
+    }
+
+    /// Textured flat: the parts lit once at the centroid.
+    pub(super) fn textured_flat<I: Interp, L: Lod, P: Pass, A: Alpha>(
+        &mut self,
+        p: &Primitive<TexturedFlat>,
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        let map = &ctx.textures[p.shader.texture as usize];
+        let (ad, spec) = (Vec3x8::splat(p.shader.ambient_diffuse), Vec3x8::splat(p.shader.specular));
+        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |_, _| (ad, spec))
+    }
+
+    /// Textured Gouraud: the parts lit at the vertices, interpolated apart.
+    pub(super) fn textured_gouraud<I: Interp, L: Lod, P: Pass, A: Alpha>(
+        &mut self,
+        p: &Primitive<TexturedGouraud>,
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        let map = &ctx.textures[p.shader.texture as usize];
+        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w| {
+            (triple(a, textured::AMBIENT_DIFFUSE, w), triple(a, textured::SPECULAR, w))
+        })
+    }
+
+    /// Textured Phong: the parts lit per sample.
+    pub(super) fn textured_phong<I: Interp, L: Lod, P: Pass, A: Alpha>(
+        &mut self,
+        p: &Primitive<TexturedPhong<{ textured::PHONG_LEN }>>,
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        let map = &ctx.textures[p.shader.texture as usize];
+        let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
+        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w| {
+            l.shade_parts_x8(
+                m,
+                triple(a, textured::EYE, w),
+                triple(a, textured::NORMAL, w).normalize_or_zero(),
+            )
+        })
+    }
+
+    /// Textured Phong with vertex colours: the interpolated colour
+    /// multiplies ambient+diffuse like the texel.
+    #[inline(never)]
+    pub(super) fn textured_colored_phong<I: Interp, L: Lod, P: Pass, A: Alpha>(
+        &mut self,
+        p: &Primitive<TexturedPhong<{ textured::COLORED_PHONG_LEN }>>,
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        let map = &ctx.textures[p.shader.texture as usize];
+        let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
+        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w| {
+            let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
+            let (ambient_diffuse, specular) = l.shade_parts_x8(m, triple(a, textured::EYE, w), normal);
+            (triple(a, textured::COLOR, w) * ambient_diffuse, specular)
+        })
+    }
+}
+
+/// An all-ones lane for each set bit of `bits`.
+#[inline(always)]
+fn lane_mask(bits: u8) -> f32x8 {
+    let lane_bits = i32x8::from([1, 2, 4, 8, 16, 32, 64, 128]);
+    let set = (i32x8::splat(i32::from(bits)) & lane_bits).cmp_eq(lane_bits);
+    bytemuck::cast(set)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lane_masks_follow_bits() {
+        let m: [u32; 8] = bytemuck::cast(lane_mask(0b1010_0110));
+        assert_eq!(m.map(|v| v != 0), [false, true, true, false, false, true, false, true]);
+    }
+}

@@ -1,0 +1,345 @@
+//! Rasterizing one tile: the opaque pass over its bin with a depth buffer
+//! (SPEC §4), fog on the samples it settled, then the transparency pass.
+//! [`crate::resolve`] turns the tile's samples into image pixels.
+//!
+//! Spans are walked eight samples at a time ([`zline_raster::for_each_block`]):
+//! the depth test, the writes and the shading of a block are `f32x8`
+//! operations, with lanes outside the span or behind the stored depth
+//! masked off. Shading the masked lanes too costs less than gathering the
+//! live ones (a batch-and-scatter variant of the Phong kernel measured about
+//! a third slower). The colour buffer is three planes (R, G, B) so that
+//! blocks load and store whole vectors; the buffers are padded to multiples
+//! of eight columns on the global grid, which keeps blocks inside them for
+//! any tile size.
+//!
+//! Each primitive names its kernel ([`Kernel`], chosen in setup); [`kernel`]
+//! holds one monomorphized span function per kernel, pass and texture use,
+//! so the per-sample loop contains only what that primitive needs. The
+//! pass (opaque, transparent, transparent with fog) is an argument of the
+//! draw, not state kept on the tile.
+
+mod kernel;
+
+use std::sync::Arc;
+
+use glam::Vec3;
+use wide::{f32x8, CmpEq, CmpLt};
+use zline_raster::{Rect, LANES};
+use zline_scene::Interpolation;
+use zline_shading::{PreparedLights, PreparedMaterial, Sampler, Texture, Vec3x8};
+
+use crate::bin::PrimitiveRef;
+use crate::fog::FogPass;
+use crate::setup::{AlphaUse, Draw, Kernel, LevelOfDetail, PassKind, PrimitiveChunk, TexturedLighting};
+
+use kernel::{
+    Alpha, BaseLod, Blend, BlendFogged, DerivativeLod, IgnoreAlpha, Interp, Linear, Lod, MaskAlpha, Opaque,
+    Pass, Perspective, TextureAlpha,
+};
+
+/// NC depth initialised to the far plane (SPEC §4).
+pub const DEPTH_CLEAR: f32 = 1.0;
+
+/// Reversed depth's far plane (see [`crate::setup::DepthEncoding`]).
+pub const DEPTH_CLEAR_REVERSED: f32 = 0.0;
+
+/// A texture as the frame's kernels read it: the texels (shared with the
+/// scene, not copied) and the sampler after the frame's filter override.
+#[derive(Clone, Debug)]
+pub struct FrameTexture {
+    /// The texels.
+    pub texture: Arc<Texture>,
+    /// Filtering and wrapping.
+    pub sampler: Sampler,
+    /// The cutoff of [`AlphaUse::Mask`].
+    pub cutoff: f32,
+}
+
+/// What shading reads besides the primitive.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadeContext<'a> {
+    /// Lights in eye space.
+    pub lighting: &'a PreparedLights,
+    /// The frame's materials, indexed by the primitives' `material`.
+    pub materials: &'a [PreparedMaterial],
+    /// The frame's textures, indexed by the primitives' `texture`.
+    pub textures: &'a [FrameTexture],
+}
+
+/// A tile's depth buffer and colour planes, one value per sample, covering
+/// columns `origin..origin + stride` (the tile widened to multiples of
+/// [`LANES`]). One per band of tiles, kept from frame to frame.
+#[derive(Clone, Debug, Default)]
+pub struct TileTarget {
+    pub(crate) rect: Rect,
+    pub(crate) origin: i32,
+    pub(crate) stride: usize,
+    pub(crate) depth: Vec<f32>,
+    /// The far plane's depth: [`DEPTH_CLEAR`] or [`DEPTH_CLEAR_REVERSED`].
+    pub(crate) far: f32,
+    pub(crate) rgb: [Vec<f32>; 3],
+    pub(crate) background: Vec3,
+    /// False while undrawn samples (depth `far`) hold stale colours that
+    /// the resolve replaces by the background.
+    pub(crate) colors_valid: bool,
+}
+
+impl TileTarget {
+    /// Resets the buffers for a tile (`rect` in samples): depth `far`
+    /// ([`DEPTH_CLEAR`], or [`DEPTH_CLEAR_REVERSED`] for reversed depth).
+    ///
+    /// Only the depth buffer is written. A sample whose depth is still
+    /// `far` was never drawn — a fragment is written only when z < stored,
+    /// so a written depth is below `far` — and the resolve gives it the
+    /// background; the colour planes are not cleared at all (they only
+    /// grow to the tile's size). That saves three of the four stores per
+    /// sample of a clear.
+    pub fn clear(&mut self, rect: Rect, background: Vec3, far: f32) {
+        let lanes = LANES as i32;
+        self.rect = rect;
+        self.origin = rect.x0 & !(lanes - 1);
+        self.stride = ((rect.x1 + lanes - 1) & !(lanes - 1)).saturating_sub(self.origin).max(0) as usize;
+        let n = self.stride * rect.height() as usize;
+        self.depth.clear();
+        self.depth.resize(n, far);
+        self.far = far;
+        self.background = background;
+        self.colors_valid = false;
+        for plane in &mut self.rgb {
+            plane.resize(n, 0.0);
+        }
+    }
+
+    #[inline]
+    pub(crate) fn index(&self, x: i32, y: i32) -> usize {
+        (y - self.rect.y0) as usize * self.stride + (x - self.origin) as usize
+    }
+
+    /// Draws the primitives `bin` (references into `chunks`) in order;
+    /// returns the number of samples that passed the depth test.
+    pub fn opaque_pass(
+        &mut self,
+        chunks: &[PrimitiveChunk],
+        bin: &[PrimitiveRef],
+        ctx: &ShadeContext<'_>,
+    ) -> u64 {
+        let mut shaded = 0;
+        for r in bin {
+            let chunk = &chunks[r.chunk as usize];
+            shaded += self.draw(chunk, chunk.draws[r.index as usize], ctx, &Opaque);
+        }
+        shaded
+    }
+
+    /// SPEC §9, pass 2: the transparent primitives `bin` back to front
+    /// (largest mean NC depth first; ties in draw order, so every tile sorts
+    /// alike), each depth-tested against the opaque depth without writing
+    /// it, fogged per sample when the scene has fog, and blended as
+    /// C = (1 − kt)·C_surface + kt·C_behind. `order` is scratch space.
+    /// Returns the samples blended.
+    ///
+    /// Where transparent surfaces intersect, each triangle is blended whole
+    /// in its sorted place, so the nearer part of the one sorted first ends
+    /// up behind the other: the classic artefact of sorting by triangle,
+    /// which per-sample sorting (not done here) would remove.
+    pub fn transparency_pass(
+        &mut self,
+        chunks: &[PrimitiveChunk],
+        bin: &[PrimitiveRef],
+        ctx: &ShadeContext<'_>,
+        fog: Option<&FogPass>,
+        order: &mut Vec<(f32, PrimitiveRef)>,
+    ) -> u64 {
+        self.materialize_background();
+        let draw = |r: &PrimitiveRef| chunks[r.chunk as usize].draws[r.index as usize];
+        order.clear();
+        order.extend(bin.iter().map(|r| (draw(r).sort_depth, *r)));
+        // Far to near, ties in draw order (chunk, then index: the bin's
+        // order). An unstable sort with the draw order as the tie-break
+        // gives the stable sort's order without its scratch allocation.
+        order.sort_unstable_by(|a, b| {
+            b.0.total_cmp(&a.0).then_with(|| (a.1.chunk, a.1.index).cmp(&(b.1.chunk, b.1.index)))
+        });
+        let mut shaded = 0;
+        for (_, r) in order.iter() {
+            let chunk = &chunks[r.chunk as usize];
+            let PassKind::Transparent { kt } = chunk.pass else {
+                continue; // binning puts only transparent chunks here
+            };
+            let opacity = f32x8::splat(1.0 - kt);
+            let d = draw(r);
+            shaded += match fog {
+                None => self.draw(chunk, d, ctx, &Blend { opacity }),
+                Some(fog) => {
+                    let pass = BlendFogged { opacity, fog, color: Vec3x8::splat(fog.color()) };
+                    self.draw(chunk, d, ctx, &pass)
+                }
+            };
+        }
+        shaded
+    }
+
+    /// Writes the background into undrawn samples, so blending reads it as
+    /// C_behind.
+    fn materialize_background(&mut self) {
+        let bg = Vec3x8::splat(self.background);
+        let [red, green, blue] = &mut self.rgb;
+        for i in (0..self.depth.len()).step_by(LANES) {
+            let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
+            for (plane, c) in [(&mut *red, bg.x), (&mut *green, bg.y), (&mut *blue, bg.z)] {
+                let old = load(plane, i);
+                store(plane, i, empty.blend(c, old));
+            }
+        }
+        self.colors_valid = true;
+    }
+
+    /// Fogs every drawn sample of the tile (see [`crate::fog`]).
+    pub fn fog_pass(&mut self, pass: &FogPass) {
+        let fog = Vec3x8::splat(pass.color());
+        let [red, green, blue] = &mut self.rgb;
+        for row in 0..self.rect.height() as usize {
+            let y = self.rect.y0 + row as i32;
+            for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
+                let i = row * self.stride + (x - self.origin) as usize;
+                let z = load(&self.depth, i);
+                let drawn = z.cmp_lt(f32x8::splat(self.far));
+                if drawn.none() {
+                    continue;
+                }
+                let f = pass.factors(x, y, z);
+                let g = f32x8::ONE - f;
+                for (plane, c) in [(&mut *red, fog.x), (&mut *green, fog.y), (&mut *blue, fog.z)] {
+                    let old = load(plane, i);
+                    store(plane, i, drawn.blend(old * f + c * g, old));
+                }
+            }
+        }
+    }
+
+    /// Draws one primitive with its kernel in `pass`: the one place where a
+    /// primitive's [`Kernel`] becomes a monomorphized span function.
+    #[inline]
+    fn draw<P: Pass>(&mut self, chunk: &PrimitiveChunk, d: Draw, ctx: &ShadeContext<'_>, pass: &P) -> u64 {
+        let (t, i) = (&chunk.tables, d.index as usize);
+        match d.kernel {
+            Kernel::Flat => self.flat(&t.flat[i], pass),
+            Kernel::Gouraud(Interpolation::PerspectiveCorrect) => {
+                self.gouraud::<Perspective, P>(&t.gouraud[i], pass)
+            }
+            Kernel::Gouraud(Interpolation::ScreenLinear) => self.gouraud::<Linear, P>(&t.gouraud[i], pass),
+            Kernel::Phong(Interpolation::PerspectiveCorrect) => {
+                self.phong::<Perspective, P>(&t.phong[i], ctx, pass)
+            }
+            Kernel::Phong(Interpolation::ScreenLinear) => self.phong::<Linear, P>(&t.phong[i], ctx, pass),
+            Kernel::ColoredPhong(interpolation) => {
+                self.colored_phong(&t.colored_phong[i], interpolation, ctx, pass)
+            }
+            Kernel::Textured { lighting, interpolation, lod, alpha } => {
+                let k = TexturedChoice { lighting, lod, alpha, index: i };
+                match interpolation {
+                    Interpolation::PerspectiveCorrect => {
+                        self.textured_lod::<Perspective, P>(chunk, k, ctx, pass)
+                    }
+                    Interpolation::ScreenLinear => self.textured_lod::<Linear, P>(chunk, k, ctx, pass),
+                }
+            }
+        }
+    }
+
+    /// Coloured Phong, out of line so that the kernels of primitives without
+    /// colours are compiled as if these did not exist.
+    #[inline(never)]
+    fn colored_phong<P: Pass>(
+        &mut self,
+        p: &crate::setup::Primitive<crate::setup::Phong<{ crate::setup::layout::phong::COLORED_LEN }>>,
+        interpolation: Interpolation,
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        match interpolation {
+            Interpolation::PerspectiveCorrect => self.phong_tinted::<Perspective, P>(p, ctx, pass),
+            Interpolation::ScreenLinear => self.phong_tinted::<Linear, P>(p, ctx, pass),
+        }
+    }
+
+    /// Textured kernels, step 2: the level of detail.
+    #[inline(never)]
+    fn textured_lod<I: Interp, P: Pass>(
+        &mut self,
+        chunk: &PrimitiveChunk,
+        k: TexturedChoice,
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        match k.lod {
+            LevelOfDetail::Base => self.textured_alpha::<I, BaseLod, P>(chunk, k, ctx, pass),
+            LevelOfDetail::Derivatives => self.textured_alpha::<I, DerivativeLod, P>(chunk, k, ctx, pass),
+        }
+    }
+
+    /// Textured kernels, step 3: what the texel's alpha does. A texture
+    /// whose alpha blends is drawn only in the transparency pass; in the
+    /// opaque pass its alpha is ignored.
+    #[inline(always)]
+    fn textured_alpha<I: Interp, L: Lod, P: Pass>(
+        &mut self,
+        chunk: &PrimitiveChunk,
+        k: TexturedChoice,
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        match (k.alpha, P::BLENDS) {
+            (AlphaUse::Ignore, _) | (AlphaUse::Blend, false) => {
+                self.textured_lighting::<I, L, P, IgnoreAlpha>(chunk, k, ctx, pass)
+            }
+            (AlphaUse::Mask, _) => self.textured_lighting::<I, L, P, MaskAlpha>(chunk, k, ctx, pass),
+            (AlphaUse::Blend, true) => self.textured_lighting::<I, L, P, TextureAlpha>(chunk, k, ctx, pass),
+        }
+    }
+
+    /// Textured kernels, step 4: the lighting combined with the texel.
+    #[inline(always)]
+    fn textured_lighting<I: Interp, L: Lod, P: Pass, A: Alpha>(
+        &mut self,
+        chunk: &PrimitiveChunk,
+        k: TexturedChoice,
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        let (t, i) = (&chunk.tables, k.index);
+        match k.lighting {
+            TexturedLighting::Flat => self.textured_flat::<I, L, P, A>(&t.textured_flat[i], ctx, pass),
+            TexturedLighting::Gouraud => {
+                self.textured_gouraud::<I, L, P, A>(&t.textured_gouraud[i], ctx, pass)
+            }
+            TexturedLighting::Phong => self.textured_phong::<I, L, P, A>(&t.textured_phong[i], ctx, pass),
+            TexturedLighting::ColoredPhong => {
+                self.textured_colored_phong::<I, L, P, A>(&t.textured_colored_phong[i], ctx, pass)
+            }
+        }
+    }
+}
+
+/// The parts of a textured [`Kernel`] still to dispatch on, and the
+/// primitive's index in its table.
+#[derive(Clone, Copy, Debug)]
+struct TexturedChoice {
+    lighting: TexturedLighting,
+    lod: LevelOfDetail,
+    alpha: AlphaUse,
+    index: usize,
+}
+
+/// Eight floats from `buf[i..i + 8]`.
+#[inline(always)]
+pub(crate) fn load(buf: &[f32], i: usize) -> f32x8 {
+    let lanes: [f32; LANES] = buf[i..i + LANES].try_into().unwrap_or([0.0; LANES]);
+    f32x8::from(lanes)
+}
+
+/// Writes eight floats to `buf[i..i + 8]`.
+#[inline(always)]
+pub(crate) fn store(buf: &mut [f32], i: usize, v: f32x8) {
+    buf[i..i + LANES].copy_from_slice(&v.to_array());
+}

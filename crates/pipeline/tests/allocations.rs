@@ -1,0 +1,48 @@
+//! A steady stream of frames allocates nothing: after a first frame has
+//! sized the renderer's buffers, rendering the same scene again makes no
+//! heap allocation, on one thread or several, with or without
+//! supersampling. This test binary's global allocator counts every
+//! allocation and reallocation, on every thread, while frames render.
+
+use std::alloc::System;
+
+use stats_alloc::{Region, StatsAlloc, INSTRUMENTED_SYSTEM};
+use zline_pipeline::{Image, RenderOptions, Renderer};
+use zline_scene::{demo_scene, Scene};
+
+#[global_allocator]
+static GLOBAL: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
+
+/// Allocations made by `frames` frames after a first one, in a pool of
+/// `threads`.
+fn allocations_after_first_frame(scene: &Scene, threads: usize, frames: usize) -> usize {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    let (mut renderer, mut image, options) = (Renderer::default(), Image::empty(), RenderOptions::default());
+    pool.install(|| renderer.render_into(scene, &options, &mut image));
+    let first = image.clone();
+    let region = Region::new(GLOBAL);
+    for _ in 0..frames {
+        pool.install(|| renderer.render_into(scene, &options, &mut image));
+    }
+    let stats = region.change();
+    assert_eq!(image, first, "a later frame differs from the first");
+    stats.allocations + stats.reallocations
+}
+
+/// The demo (flat, Gouraud and Phong spheres, a textured floor, a
+/// transparent sphere, fog) at a small size.
+fn demo(ssaa: u32) -> Scene {
+    let mut scene = demo_scene();
+    (scene.settings.width, scene.settings.height, scene.settings.ssaa) = (160, 90, ssaa);
+    scene
+}
+
+// One test function: the count is global, so no other test may run
+// (and allocate) in this binary while it counts.
+#[test]
+fn steady_frames_allocate_nothing() {
+    for (threads, ssaa) in [(1, 1), (2, 1), (2, 2)] {
+        let n = allocations_after_first_frame(&demo(ssaa), threads, 3);
+        assert_eq!(n, 0, "{n} allocations in 3 frames ({threads} threads, ssaa {ssaa})");
+    }
+}
