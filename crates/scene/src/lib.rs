@@ -22,6 +22,7 @@ mod error;
 mod framing;
 mod gltf;
 pub mod hard_cases;
+mod limits;
 mod mesh;
 mod model;
 mod obj;
@@ -38,13 +39,14 @@ pub use framing::{
 pub use hard_cases::{hard_cases, HardCase};
 // `crate::` because `gltf` also names the glTF parsing crate.
 pub use crate::gltf::{load_gltf, load_gltf_with_warnings, GltfScene, MAX_GLTF_SHININESS};
+pub use limits::{MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_PRIMITIVE_DIVISIONS, MAX_SSAA};
 pub use mesh::{face_normal, FALLBACK_NORMAL};
 pub use model::{
     Camera, DepthMode, Interpolation, Mesh, Object, Projection, RenderSettings, Scene, TextureMap,
 };
 pub use obj::{load_obj, load_obj_with_warnings};
 pub use primitives::{cube, plane, torus, uv_sphere};
-pub use scene_file::{load_scene, MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_PRIMITIVE_DIVISIONS, MAX_SSAA};
+pub use scene_file::load_scene;
 pub use zline_shading::{
     Attenuation, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
 };

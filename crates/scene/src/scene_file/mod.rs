@@ -23,16 +23,11 @@ use crate::framing::{
     aspect, camera_is_finite, default_culling, default_lights, framing_camera, DEFAULT_AMBIENT,
     DEFAULT_BACKGROUND,
 };
+use crate::limits::MAX_PRIMITIVE_DIVISIONS;
 use crate::mesh::bounds_of;
 use crate::model::{Camera, Mesh, Object, Projection, Scene};
 use crate::obj::read_text;
 use crate::primitives::{cube, plane, torus, uv_sphere};
-
-/// Largest image side a scene file may ask for.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
-
-/// Largest ring, segment or subdivision count of a primitive.
-pub const MAX_PRIMITIVE_DIVISIONS: u32 = 4096;
 
 /// Loads a TOML scene file. Warnings about model files (a missing MTL
 /// file, say) are printed to stderr as `warning: ...` lines.
@@ -621,4 +616,3 @@ mod render;
 
 use models::{ModelCache, ModelPart};
 use render::RenderDef;
-pub use render::{MAX_ADAPTIVE_TOLERANCE, MAX_SSAA};

@@ -5,15 +5,9 @@
 use serde::Deserialize;
 use zline_shading::Filter;
 
-use super::{Builder, Result, ShadingDef, MAX_IMAGE_SIDE, S};
+use super::{Builder, Result, ShadingDef, S};
+use crate::limits::{MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_SSAA};
 use crate::model::{DepthMode, Interpolation, RenderSettings};
-
-/// Largest supersampling factor a scene file may ask for (`ssaa = 8`: 64
-/// samples per pixel).
-pub const MAX_SSAA: u32 = 8;
-
-/// Largest adaptive tolerance, in 8-bit units: a whole channel's range.
-pub const MAX_ADAPTIVE_TOLERANCE: f32 = 255.0;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
