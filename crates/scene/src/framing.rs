@@ -21,6 +21,7 @@ use std::sync::Arc;
 use glam::{DVec3, Mat4, Vec3};
 use zline_shading::Light;
 
+use crate::culling::default_culling;
 use crate::gltf::GltfScene;
 use crate::mesh::bounds_of;
 use crate::model::{Camera, Mesh, Object, Projection, RenderSettings, Scene};
@@ -99,11 +100,6 @@ pub(crate) fn world_bounds(objects: &[Object]) -> Option<(Vec3, Vec3)> {
             .iter()
             .flat_map(|o| o.mesh.positions.iter().map(|&p| o.world_from_object.transform_point3(p))),
     )
-}
-
-/// Culling on for closed, opaque meshes (SPEC §2).
-pub(crate) fn default_culling(mesh: &Mesh, opacity: f32) -> bool {
-    opacity >= 1.0 && mesh.is_closed()
 }
 
 /// The aspect ratio (width / height) of the settings' image.

@@ -17,6 +17,7 @@
 //! documented on [`load_scene`]'s module, and `examples/scene.toml` shows
 //! every key), `demo` (the built-in demo scene).
 
+mod culling;
 mod demo;
 mod error;
 mod framing;

@@ -12,8 +12,8 @@ use std::sync::Arc;
 
 use glam::Mat4;
 
+use crate::culling::default_culling;
 use crate::error::SceneError;
-use crate::framing::default_culling;
 use crate::gltf::load_gltf;
 use crate::model::Mesh;
 use crate::obj::load_obj;

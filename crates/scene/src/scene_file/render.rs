@@ -5,7 +5,9 @@
 use serde::Deserialize;
 use zline_shading::Filter;
 
-use super::{Builder, Result, ShadingDef, S};
+use zline_shading::ShadingMode;
+
+use super::checks::{Checker, Result, S};
 use crate::limits::{MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_SSAA};
 use crate::model::{DepthMode, Interpolation, RenderSettings};
 
@@ -20,6 +22,25 @@ pub(super) struct RenderDef {
     ssaa: Option<S<u32>>,
     depth: Option<DepthDef>,
     adaptive: Option<S<f32>>,
+}
+
+/// A shading mode: `[render] shading` and an object's `shading`.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum ShadingDef {
+    Flat,
+    Gouraud,
+    Phong,
+}
+
+impl From<ShadingDef> for ShadingMode {
+    fn from(s: ShadingDef) -> ShadingMode {
+        match s {
+            ShadingDef::Flat => ShadingMode::Flat,
+            ShadingDef::Gouraud => ShadingMode::Gouraud,
+            ShadingDef::Phong => ShadingMode::Phong,
+        }
+    }
 }
 
 #[derive(Clone, Copy, Deserialize)]
@@ -45,60 +66,59 @@ enum DepthDef {
     Reversed,
 }
 
-impl Builder<'_> {
-    pub(super) fn settings(&self, render: Option<RenderDef>) -> Result<RenderSettings> {
-        let mut settings = RenderSettings::default();
-        let Some(render) = render else { return Ok(settings) };
-        if let Some(w) = &render.width {
-            settings.width = self.image_side(w, "render.width")?;
-        }
-        if let Some(h) = &render.height {
-            settings.height = self.image_side(h, "render.height")?;
-        }
-        if let Some(s) = render.shading {
-            settings.shading = s.into();
-        }
-        if let Some(i) = render.interpolation {
-            settings.interpolation = match i {
-                InterpolationDef::Perspective => Interpolation::PerspectiveCorrect,
-                InterpolationDef::Linear => Interpolation::ScreenLinear,
-            };
-        }
-        settings.texture_filter = render.filter.map(|f| match f {
-            FilterDef::Nearest => Filter::Nearest,
-            FilterDef::Bilinear => Filter::Bilinear,
-            FilterDef::Trilinear => Filter::Trilinear,
-        });
-        if let Some(n) = &render.ssaa {
-            settings.ssaa = self.ssaa(n)?;
-        }
-        if let Some(d) = render.depth {
-            settings.depth = match d {
-                DepthDef::Normalized => DepthMode::Normalized,
-                DepthDef::Reversed => DepthMode::ReversedFloat,
-            };
-        }
-        if render.adaptive.is_some() {
-            let tolerance =
-                self.optional(&render.adaptive, "render.adaptive", 0.0, 0.0, MAX_ADAPTIVE_TOLERANCE)?;
-            settings.adaptive_tolerance = Some(tolerance);
-        }
-        Ok(settings)
+/// The render settings of the `[render]` table, the defaults without one.
+pub(super) fn settings(check: &Checker, render: Option<RenderDef>) -> Result<RenderSettings> {
+    let mut settings = RenderSettings::default();
+    let Some(render) = render else { return Ok(settings) };
+    if let Some(w) = &render.width {
+        settings.width = image_side(check, w, "render.width")?;
     }
+    if let Some(h) = &render.height {
+        settings.height = image_side(check, h, "render.height")?;
+    }
+    if let Some(s) = render.shading {
+        settings.shading = s.into();
+    }
+    if let Some(i) = render.interpolation {
+        settings.interpolation = match i {
+            InterpolationDef::Perspective => Interpolation::PerspectiveCorrect,
+            InterpolationDef::Linear => Interpolation::ScreenLinear,
+        };
+    }
+    settings.texture_filter = render.filter.map(|f| match f {
+        FilterDef::Nearest => Filter::Nearest,
+        FilterDef::Bilinear => Filter::Bilinear,
+        FilterDef::Trilinear => Filter::Trilinear,
+    });
+    if let Some(n) = &render.ssaa {
+        settings.ssaa = ssaa(check, n)?;
+    }
+    if let Some(d) = render.depth {
+        settings.depth = match d {
+            DepthDef::Normalized => DepthMode::Normalized,
+            DepthDef::Reversed => DepthMode::ReversedFloat,
+        };
+    }
+    if render.adaptive.is_some() {
+        let tolerance =
+            check.optional(&render.adaptive, "render.adaptive", 0.0, 0.0, MAX_ADAPTIVE_TOLERANCE)?;
+        settings.adaptive_tolerance = Some(tolerance);
+    }
+    Ok(settings)
+}
 
-    fn image_side(&self, v: &S<u32>, key: &str) -> Result<u32> {
-        let side = *v.get_ref();
-        if !(1..=MAX_IMAGE_SIDE).contains(&side) {
-            return Err(self.error(v.span(), key, format!("must be in 1..={MAX_IMAGE_SIDE}, got {side}")));
-        }
-        Ok(side)
+fn image_side(check: &Checker, v: &S<u32>, key: &str) -> Result<u32> {
+    let side = *v.get_ref();
+    if !(1..=MAX_IMAGE_SIDE).contains(&side) {
+        return Err(check.error(v.span(), key, format!("must be in 1..={MAX_IMAGE_SIDE}, got {side}")));
     }
+    Ok(side)
+}
 
-    fn ssaa(&self, v: &S<u32>) -> Result<u32> {
-        let n = *v.get_ref();
-        if !(1..=MAX_SSAA).contains(&n) {
-            return Err(self.error(v.span(), "render.ssaa", format!("must be in 1..={MAX_SSAA}, got {n}")));
-        }
-        Ok(n)
+fn ssaa(check: &Checker, v: &S<u32>) -> Result<u32> {
+    let n = *v.get_ref();
+    if !(1..=MAX_SSAA).contains(&n) {
+        return Err(check.error(v.span(), "render.ssaa", format!("must be in 1..={MAX_SSAA}, got {n}")));
     }
+    Ok(n)
 }
