@@ -13,6 +13,7 @@
 
 use std::path::Path;
 
+pub use zline_io as io;
 pub use zline_pipeline as pipeline;
 pub use zline_raster as raster;
 pub use zline_scene as scene;

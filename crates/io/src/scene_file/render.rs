@@ -5,11 +5,12 @@
 use serde::Deserialize;
 use zline_shading::Filter;
 
+use zline_scene::{
+    DepthMode, Interpolation, RenderSettings, MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_SSAA,
+};
 use zline_shading::ShadingMode;
 
 use super::checks::{Checker, Result, S};
-use crate::limits::{MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_SSAA};
-use crate::model::{DepthMode, Interpolation, RenderSettings};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -7,9 +7,9 @@ use std::path::Path;
 
 use glam::Vec3;
 use toml::Spanned;
+use zline_scene::MAX_PRIMITIVE_DIVISIONS;
 
 use crate::error::SceneError;
-use crate::limits::MAX_PRIMITIVE_DIVISIONS;
 
 /// A value of the scene file with its byte range in the text.
 pub(super) type S<T> = Spanned<T>;

@@ -5,7 +5,7 @@ use glam::Vec3;
 use gltf::texture::{MagFilter, MinFilter, WrappingMode};
 use zline_shading::{Filter, Material, Sampler, Wrap};
 
-use crate::model::{Camera, Mesh, Object, Projection};
+use zline_scene::{Camera, Mesh, Object, Projection};
 
 /// Largest ns the metallic–roughness mapping yields (see the parent
 /// module's doc).

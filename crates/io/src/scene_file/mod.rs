@@ -13,17 +13,15 @@ use std::path::{Path, PathBuf};
 
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
+use zline_scene::{cube, plane, torus, uv_sphere, Camera, Mesh, Object, Projection, Scene};
 use zline_shading::{Attenuation, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
 
 use crate::culling::default_culling;
 use crate::error::{line_column, SceneError};
 use crate::framing::{
-    aspect, camera_is_finite, default_lights, framing_camera, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
+    aspect, bounds_of, camera_is_finite, default_lights, framing_camera, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
 };
-use crate::mesh::bounds_of;
-use crate::model::{Camera, Mesh, Object, Projection, Scene};
 use crate::obj::read_text;
-use crate::primitives::{cube, plane, torus, uv_sphere};
 
 mod checks;
 mod models;

@@ -103,11 +103,11 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
 use gltf::mesh::Mode;
+use zline_scene::{Camera, Mesh, Object, Projection, TextureMap};
 use zline_shading::{Attenuation, Light, Sampler, Texture};
 
 use crate::culling::default_culling;
 use crate::error::SceneError;
-use crate::model::{Camera, Mesh, Object, Projection, TextureMap};
 use crate::texture_file::{decode_texture, DecodeError, TextureCache};
 
 mod attributes;
