@@ -12,7 +12,8 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use zline::pipeline::{Image, RenderOptions, Renderer};
-use zline::scene::{hard_cases, DepthMode, Interpolation, RenderSettings, Scene, ShadingMode};
+use zline::scene::{DepthMode, Interpolation, RenderSettings, Scene, ShadingMode};
+use zline::scenes::hard_cases;
 use zline_truth::{render_truth, ErrorStats, TruthImage};
 
 /// Where the report's inputs and outputs go.

@@ -7,22 +7,17 @@
 //! dependencies are zline-shading (materials, lights, textures) and glam.
 //!
 //! Modules: `model` (scene, objects, meshes, camera, settings), `mesh`
-//! (validation and vertex normals; errors in `error`), `limits` (the
+//! (validation and vertex normals; its errors in `error`), `limits` (the
 //! largest render settings a scene may ask for), `primitives` (procedural
-//! meshes), `demo` (the built-in demo scene), `hard_cases` (numerically
-//! hard scenes).
+//! meshes). The built-in scenes are in zline-scenes.
 
-mod demo;
 mod error;
-pub mod hard_cases;
 mod limits;
 mod mesh;
 mod model;
 mod primitives;
 
-pub use demo::demo_scene;
 pub use error::MeshError;
-pub use hard_cases::{hard_cases, HardCase};
 pub use limits::{MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_PRIMITIVE_DIVISIONS, MAX_SSAA};
 pub use mesh::{face_normal, FALLBACK_NORMAL};
 pub use model::{

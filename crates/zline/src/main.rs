@@ -204,7 +204,7 @@ fn one_line(e: &anyhow::Error) -> String {
 fn run(cli: Cli) -> Result<()> {
     let (mut scene, common) = match cli.command {
         Command::Render { input, common } => (load_input(&input)?, common),
-        Command::Demo { common } => (zline::scene::demo_scene(), common),
+        Command::Demo { common } => (zline::scenes::demo_scene(), common),
     };
     apply_overrides(&mut scene.settings, &common);
     apply_fog(&mut scene, &common);

@@ -101,7 +101,7 @@ use render::{settings, RenderDef, ShadingDef};
 /// ```
 ///
 /// Near and far, when not given, hug the bounding sphere of the scene seen
-/// from the eye (near = max(d − 1.1·r, far·10⁻⁴)), as [`framing_camera`](crate::framing_camera)
+/// from the eye (near = max(d − 1.1·r, far·10⁻⁴)), as [`framing_camera`]
 /// does.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
     let text = read_text(path)?;
