@@ -8,11 +8,9 @@ use anyhow::{Context, Result};
 use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
+use zline::io::{default_lights, load_obj, scene_for_model, DEFAULT_AMBIENT, DEFAULT_BACKGROUND};
 use zline::pipeline::{Image, RenderOptions, RenderStats, Renderer};
-use zline::scene::{
-    default_lights, load_obj, scene_for_model, uv_sphere, Camera, Object, Projection, RenderSettings, Scene,
-    ShadingMode, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
-};
+use zline::scene::{uv_sphere, Camera, Object, Projection, RenderSettings, Scene, ShadingMode};
 
 const WIDTH: u32 = 1920;
 const HEIGHT: u32 = 1080;

@@ -15,10 +15,9 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context, Result};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ExtendedColorType, ImageEncoder, Rgb, RgbImage};
+use zline::io::{load_gltf, load_obj, scene_for_gltf, scene_for_model};
 use zline::pipeline::{render, Image, RenderOptions, RenderStats};
-use zline::scene::{
-    load_gltf, load_obj, scene_for_gltf, scene_for_model, RenderSettings, Scene, ShadingMode, MAX_IMAGE_SIDE,
-};
+use zline::scene::{RenderSettings, Scene, ShadingMode, MAX_IMAGE_SIDE};
 
 /// Cells per row of the sheet.
 const COLUMNS: usize = 4;

@@ -20,8 +20,8 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context, Result};
 use image::{Rgb, RgbImage};
 use rayon::prelude::*;
+use zline::io::load_scene;
 use zline::pipeline::{render, RenderOptions};
-use zline::scene::load_scene;
 
 /// Scene files and their reference images, relative to the workspace root.
 const SCENES: &str = "tests/scenes";

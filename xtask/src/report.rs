@@ -12,7 +12,8 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use zline::pipeline::{Image, RenderOptions, Renderer};
-use zline::scene::{hard_cases, DepthMode, Interpolation, RenderSettings, Scene, ShadingMode};
+use zline::scene::{DepthMode, Interpolation, RenderSettings, Scene, ShadingMode};
+use zline::scenes::hard_cases;
 use zline_truth::{render_truth, ErrorStats, TruthImage};
 
 /// Where the report's inputs and outputs go.
@@ -103,13 +104,12 @@ fn scenes(args: &Args) -> Result<Vec<ReportScene>> {
     let mut out = Vec::new();
     match crate::bench::bunny(&args.assets) {
         Some(path) => {
-            let model =
-                zline::scene::load_obj(&path).with_context(|| format!("loading {}", path.display()))?;
+            let model = zline::io::load_obj(&path).with_context(|| format!("loading {}", path.display()))?;
             let settings = RenderSettings { width: w, height: h, ..RenderSettings::default() };
             out.push(ReportScene {
                 name: "bunny".into(),
                 benchmark: true,
-                scene: zline::scene::scene_for_model(model, settings),
+                scene: zline::io::scene_for_model(model, settings),
             });
         }
         None => eprintln!("note: the bunny is not under {}; skipped (pass --assets)", args.assets.display()),

@@ -25,7 +25,7 @@ use glam::{DVec3, Vec3};
 use zline_shading::Material;
 
 use crate::error::MeshError;
-use crate::model::Mesh;
+use crate::model::{Mesh, TextureMap};
 
 /// The normal of a vertex that belongs to no non-degenerate face.
 pub const FALLBACK_NORMAL: Vec3 = Vec3::Z;
@@ -91,7 +91,7 @@ impl Mesh {
     }
 
     /// The same mesh with a diffuse texture.
-    pub fn with_diffuse_map(mut self, map: crate::TextureMap) -> Mesh {
+    pub fn with_diffuse_map(mut self, map: TextureMap) -> Mesh {
         self.diffuse_map = Some(map);
         self
     }

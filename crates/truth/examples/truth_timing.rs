@@ -12,8 +12,9 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use zline_io::{load_obj, scene_for_model};
 use zline_pipeline::{render, RenderOptions};
-use zline_scene::{load_obj, scene_for_model, uv_sphere, RenderSettings, Scene};
+use zline_scene::{uv_sphere, RenderSettings, Scene};
 use zline_truth::{render_truth, render_truth_with, ErrorStats, TruthOptions};
 
 fn main() {

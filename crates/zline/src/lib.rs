@@ -6,16 +6,18 @@
 //! re-exports the layers below, so a program can depend on `zline` alone:
 //!
 //! ```no_run
-//! let scene = zline::scene::demo_scene();
+//! let scene = zline::scenes::demo_scene();
 //! let (image, _stats) = zline::pipeline::render(&scene, &Default::default());
 //! zline::save_png(&image, std::path::Path::new("demo.png")).unwrap();
 //! ```
 
 use std::path::Path;
 
+pub use zline_io as io;
 pub use zline_pipeline as pipeline;
 pub use zline_raster as raster;
 pub use zline_scene as scene;
+pub use zline_scenes as scenes;
 pub use zline_shading as shading;
 
 /// Writes an image as an 8-bit RGB PNG.

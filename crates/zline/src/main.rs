@@ -204,7 +204,7 @@ fn one_line(e: &anyhow::Error) -> String {
 fn run(cli: Cli) -> Result<()> {
     let (mut scene, common) = match cli.command {
         Command::Render { input, common } => (load_input(&input)?, common),
-        Command::Demo { common } => (zline::scene::demo_scene(), common),
+        Command::Demo { common } => (zline::scenes::demo_scene(), common),
     };
     apply_overrides(&mut scene.settings, &common);
     apply_fog(&mut scene, &common);
@@ -240,14 +240,14 @@ fn load_input(input: &Path) -> Result<Scene> {
     let ext = input.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     Ok(match ext.as_deref() {
         Some("obj") => {
-            let meshes = zline::scene::load_obj(input)?;
-            zline::scene::scene_for_model(meshes, RenderSettings::default())
+            let meshes = zline::io::load_obj(input)?;
+            zline::io::scene_for_model(meshes, RenderSettings::default())
         }
         Some("gltf" | "glb") => {
-            let gltf = zline::scene::load_gltf(input)?;
-            zline::scene::scene_for_gltf(gltf, RenderSettings::default())
+            let gltf = zline::io::load_gltf(input)?;
+            zline::io::scene_for_gltf(gltf, RenderSettings::default())
         }
-        Some("toml") => zline::scene::load_scene(input)?,
+        Some("toml") => zline::io::load_scene(input)?,
         _ => bail!(
             "{}: unsupported input; expected an .obj, .gltf or .glb model or a .toml scene file",
             input.display()

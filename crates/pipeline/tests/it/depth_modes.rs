@@ -23,7 +23,7 @@ fn both_encodings_draw_an_ordinary_scene_alike() {
 
 /// `hard_cases::parallel_planes`, drawn far plane first or near plane first.
 fn parallel_planes(near_first: bool, depth: DepthMode) -> Scene {
-    let mut s = zline_scene::hard_cases::parallel_planes(depth);
+    let mut s = zline_scenes::hard_cases::parallel_planes(depth);
     if near_first {
         s.objects.rotate_left(2); // the near plane's two triangles first
     }

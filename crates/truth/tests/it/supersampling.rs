@@ -3,7 +3,8 @@
 //! per sample step), the same colours.
 
 use glam::DVec3;
-use zline_scene::{demo_scene, RenderSettings};
+use zline_scene::RenderSettings;
+use zline_scenes::demo_scene;
 use zline_truth::render_truth;
 
 #[test]

@@ -1,6 +1,7 @@
 //! The same image, bit for bit, on one thread and on two.
 
-use zline_scene::{demo_scene, RenderSettings, Scene};
+use zline_scene::{RenderSettings, Scene};
+use zline_scenes::demo_scene;
 use zline_truth::{render_truth_with, TruthImage, TruthOptions};
 
 fn on_threads(threads: usize, scene: &Scene, options: &TruthOptions) -> TruthImage {

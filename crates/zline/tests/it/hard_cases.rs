@@ -1,10 +1,10 @@
-//! The hard cases of `zline_scene::hard_cases`, each rendered by the fast
+//! The hard cases of `zline_scenes::hard_cases`, each rendered by the fast
 //! pipeline and checked against its stated outcome — most against the f64
 //! truth of `zline-truth`.
 
 use zline::pipeline::{render, Image, RenderOptions};
-use zline::scene::hard_cases::{self, HardCase};
 use zline::scene::{DepthMode, Scene};
+use zline::scenes::hard_cases::{self, HardCase};
 use zline_truth::{render_truth, ErrorStats};
 
 /// `hard_cases::RED` and `GREEN` in 8 bits (SPEC §10: 0.85·255 + 0.5 =

@@ -1,4 +1,4 @@
-//! Integration tests of zline-scene: loaders against fixture files in
+//! Integration tests of zline-io: loaders against fixture files in
 //! `tests/data/`, scene files written to a temporary directory, and the
 //! repository's `examples/` and `assets/` (OBJ and glTF models).
 
@@ -27,7 +27,7 @@ pub(crate) fn repo(path: &str) -> PathBuf {
 pub(crate) fn temp_file(name: &str, text: &str) -> PathBuf {
     static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!("zline-scene-tests-{}/{call}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("zline-io-tests-{}/{call}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();

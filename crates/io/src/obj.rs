@@ -42,10 +42,10 @@ use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
+use zline_scene::{Mesh, TextureMap};
 use zline_shading::{Material, Sampler, Wrap};
 
 use crate::error::SceneError;
-use crate::model::{Mesh, TextureMap};
 use crate::texture_file::TextureCache;
 
 /// Loads an OBJ file, printing warnings (such as a missing MTL file) to

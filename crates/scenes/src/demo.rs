@@ -13,12 +13,13 @@
 use std::sync::Arc;
 
 use glam::{Mat4, Quat, Vec2, Vec3};
+use zline_scene::{
+    cube, plane, torus, uv_sphere, Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene,
+    TextureMap,
+};
 use zline_shading::{
     Attenuation, Fog, FogCoordinate, FogMode, Light, Material, Sampler, ShadingMode, Texture,
 };
-
-use crate::model::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene, TextureMap};
-use crate::primitives::{cube, plane, torus, uv_sphere};
 
 /// The demo scene (see the module doc).
 pub fn demo_scene() -> Scene {

@@ -11,11 +11,11 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::Mat4;
+use zline_scene::Mesh;
 
+use crate::culling::default_culling;
 use crate::error::SceneError;
-use crate::framing::default_culling;
 use crate::gltf::load_gltf;
-use crate::model::Mesh;
 use crate::obj::load_obj;
 
 /// One mesh of a model file, placed in the model's space.

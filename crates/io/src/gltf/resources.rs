@@ -2,9 +2,9 @@
 //! files next to the glTF file, read here so that one bad resource gives one
 //! clear error or warning (see the parent module).
 
-#![allow(unused_imports, reason = "the parent's imports are shared wholesale")]
+use std::path::{Path, PathBuf};
 
-use super::*;
+use crate::error::SceneError;
 
 /// Reads every buffer: the GLB's BIN chunk, a `data:` URI or a file
 /// relative to the glTF file. A buffer that cannot be read, or is shorter
@@ -101,4 +101,18 @@ pub(super) fn short(s: &str) -> String {
         out.push('…');
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percent_escapes_decode_or_fail_cleanly() {
+        assert_eq!(percent_decode("a%20b.png").as_deref(), Some("a b.png"));
+        assert_eq!(percent_decode("plain.bin").as_deref(), Some("plain.bin"));
+        assert_eq!(percent_decode("bad%2"), None);
+        assert_eq!(percent_decode("bad%zz"), None);
+        assert_eq!(percent_decode("%FF"), None, "not UTF-8");
+    }
 }

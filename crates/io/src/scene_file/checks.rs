@@ -1,11 +1,31 @@
 //! Value checks and located errors for scene files: every bad value becomes
 //! a [`SceneError`] naming the file, line, column, key and value.
 
-#![allow(unused_imports, reason = "the parent's imports are shared wholesale")]
+use std::fmt::Display;
+use std::ops::Range;
+use std::path::Path;
 
-use super::*;
+use glam::Vec3;
+use toml::Spanned;
+use zline_scene::MAX_PRIMITIVE_DIVISIONS;
 
-impl Builder<'_> {
+use crate::error::SceneError;
+
+/// A value of the scene file with its byte range in the text.
+pub(super) type S<T> = Spanned<T>;
+
+/// A scene file's result.
+pub(super) type Result<T, E = SceneError> = std::result::Result<T, E>;
+
+/// The scene file being read: checks its values and locates its errors.
+pub(super) struct Checker<'a> {
+    /// The scene file.
+    pub(super) path: &'a Path,
+    /// Its text, to turn byte offsets into lines and columns.
+    pub(super) text: &'a str,
+}
+
+impl Checker<'_> {
     pub(super) fn vec3(&self, v: &S<[f32; 3]>, key: &str) -> Result<Vec3> {
         self.vec3_in(v, key, f32::MIN, f32::MAX)
     }
@@ -96,5 +116,14 @@ impl Builder<'_> {
 
     pub(super) fn file_error(&self, message: &str) -> SceneError {
         SceneError::File { path: self.path.to_path_buf(), message: message.to_owned() }
+    }
+}
+
+/// A range for messages: `[lo, hi]`, `[lo, ∞)` or any finite value.
+fn range(lo: f32, hi: f32) -> String {
+    match (lo == f32::MIN, hi == f32::MAX || hi == f32::INFINITY) {
+        (true, true) => "any finite value".to_owned(),
+        (false, true) => format!("[{lo}, ∞)"),
+        _ => format!("[{lo}, {hi}]"),
     }
 }

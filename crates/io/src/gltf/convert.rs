@@ -1,9 +1,19 @@
 //! glTF values → zline's model: samplers, materials, cameras, mirrored
 //! meshes, names (see the parent module for the mappings' reasons).
 
-#![allow(unused_imports, reason = "the parent's imports are shared wholesale")]
+use glam::Vec3;
+use gltf::texture::{MagFilter, MinFilter, WrappingMode};
+use zline_shading::{Filter, Material, Sampler, Wrap};
 
-use super::*;
+use zline_scene::{Camera, Mesh, Object, Projection};
+
+/// Largest ns the metallic–roughness mapping yields (see the parent
+/// module's doc).
+pub const MAX_GLTF_SHININESS: f32 = 1024.0;
+
+/// The far plane of a camera without zfar lies this factor beyond the
+/// farthest corner of the scene's bounding box.
+const FITTED_FAR_MARGIN: f32 = 1.05;
 
 /// The far plane of an infinite perspective camera: beyond the farthest
 /// corner of the objects' world bounding box, and beyond the near plane.
@@ -92,15 +102,6 @@ pub(super) fn material_name(material: &gltf::Material) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn percent_escapes_decode_or_fail_cleanly() {
-        assert_eq!(percent_decode("a%20b.png").as_deref(), Some("a b.png"));
-        assert_eq!(percent_decode("plain.bin").as_deref(), Some("plain.bin"));
-        assert_eq!(percent_decode("bad%2"), None);
-        assert_eq!(percent_decode("bad%zz"), None);
-        assert_eq!(percent_decode("%FF"), None, "not UTF-8");
-    }
 
     /// A document with only the given JSON members (and `asset`).
     fn document(members: &str) -> gltf::Document {

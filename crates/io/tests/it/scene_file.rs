@@ -5,9 +5,10 @@
 use std::sync::Arc;
 
 use glam::Vec3;
+use zline_io::{default_lights, load_scene, DEFAULT_AMBIENT};
 use zline_scene::{
-    default_lights, load_scene, Attenuation, DepthMode, FogCoordinate, FogMode, Interpolation, Light,
-    Projection, RenderSettings, ShadingMode, DEFAULT_AMBIENT,
+    Attenuation, DepthMode, FogCoordinate, FogMode, Interpolation, Light, Projection, RenderSettings,
+    ShadingMode,
 };
 
 use crate::{check_message, data, repo, temp_file};

@@ -6,10 +6,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::{Mat4, Quat, Vec2, Vec3};
-use zline_scene::{
-    load_gltf, load_gltf_with_warnings, scene_for_gltf, Attenuation, GltfScene, Light, Projection,
-    RenderSettings, FRAMING_FOVY_DEGREES,
-};
+use zline_io::{load_gltf, load_gltf_with_warnings, scene_for_gltf, GltfScene, FRAMING_FOVY_DEGREES};
+use zline_scene::{Attenuation, Light, Projection, RenderSettings};
 use zline_shading::{Filter, Sampler, Wrap};
 
 use crate::{check_message, repo};
@@ -98,7 +96,7 @@ fn bare_gltf_gets_a_framing_camera_and_default_lights() {
         load_gltf(&repo("assets/gltf/Box/glTF-Binary/Box.glb")).unwrap(),
         RenderSettings::default(),
     );
-    assert_eq!(scene.lights, zline_scene::default_lights());
+    assert_eq!(scene.lights, zline_io::default_lights());
     let Projection::Perspective { fovy_degrees, .. } = scene.camera.projection else { panic!() };
     assert_eq!(fovy_degrees, FRAMING_FOVY_DEGREES);
     check_close(scene.camera.target, Vec3::ZERO);
@@ -126,7 +124,7 @@ fn quad_bin() -> Vec<u8> {
 /// directory: the quad mesh (material 0 when `members` has materials),
 /// plus the given top-level JSON members (nodes, scenes, …).
 fn quad_gltf(name: &str, members: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("zline-scene-tests-{}", std::process::id())).join(name);
+    let dir = std::env::temp_dir().join(format!("zline-io-tests-{}", std::process::id())).join(name);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("quad.bin"), quad_bin()).unwrap();
     let material = if members.contains("\"materials\"") { r#", "material": 0"# } else { "" };

@@ -9,30 +9,27 @@
 //!
 //! The format is documented on [`load_scene`].
 
-use std::fmt::Display;
-use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
-use toml::Spanned;
+use zline_scene::{cube, plane, torus, uv_sphere, Camera, Mesh, Object, Projection, Scene};
 use zline_shading::{Attenuation, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
 
-use crate::error::SceneError;
+use crate::culling::default_culling;
+use crate::error::{line_column, SceneError};
 use crate::framing::{
-    aspect, camera_is_finite, default_culling, default_lights, framing_camera, DEFAULT_AMBIENT,
-    DEFAULT_BACKGROUND,
+    aspect, bounds_of, camera_is_finite, default_lights, framing_camera, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
 };
-use crate::mesh::bounds_of;
-use crate::model::{Camera, Mesh, Object, Projection, Scene};
 use crate::obj::read_text;
-use crate::primitives::{cube, plane, torus, uv_sphere};
 
-/// Largest image side a scene file may ask for.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
+mod checks;
+mod models;
+mod render;
 
-/// Largest ring, segment or subdivision count of a primitive.
-pub const MAX_PRIMITIVE_DIVISIONS: u32 = 4096;
+use checks::{Checker, Result, S};
+use models::{ModelCache, ModelPart};
+use render::{settings, RenderDef, ShadingDef};
 
 /// Loads a TOML scene file. Warnings about model files (a missing MTL
 /// file, say) are printed to stderr as `warning: ...` lines.
@@ -104,12 +101,12 @@ pub const MAX_PRIMITIVE_DIVISIONS: u32 = 4096;
 /// ```
 ///
 /// Near and far, when not given, hug the bounding sphere of the scene seen
-/// from the eye (near = max(d − 1.1·r, far·10⁻⁴)), as [`framing_camera`](crate::framing_camera)
+/// from the eye (near = max(d − 1.1·r, far·10⁻⁴)), as [`framing_camera`]
 /// does.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
     let text = read_text(path)?;
     let file: SceneFile = toml::from_str(&text).map_err(|e| toml_error(path, &text, &e))?;
-    Builder { path, text: &text, models: ModelCache::default() }.scene(file)
+    Builder { check: Checker { path, text: &text }, models: ModelCache::default() }.scene(file)
 }
 
 fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> SceneError {
@@ -119,8 +116,6 @@ fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> SceneError {
         None => SceneError::File { path: path.to_path_buf(), message },
     }
 }
-
-type S<T> = Spanned<T>;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -159,24 +154,6 @@ enum FogKind {
 enum FogCoordinateDef {
     EyePlane,
     Radial,
-}
-
-#[derive(Clone, Copy, Deserialize)]
-#[serde(rename_all = "lowercase")]
-enum ShadingDef {
-    Flat,
-    Gouraud,
-    Phong,
-}
-
-impl From<ShadingDef> for ShadingMode {
-    fn from(s: ShadingDef) -> ShadingMode {
-        match s {
-            ShadingDef::Flat => ShadingMode::Flat,
-            ShadingDef::Gouraud => ShadingMode::Gouraud,
-            ShadingDef::Phong => ShadingMode::Phong,
-        }
-    }
 }
 
 #[derive(Clone, Copy, Default, Deserialize)]
@@ -269,22 +246,19 @@ struct MaterialDef {
 
 /// Turns the parsed file into a scene, validating as it goes.
 struct Builder<'a> {
-    path: &'a Path,
-    text: &'a str,
+    check: Checker<'a>,
     models: ModelCache,
 }
 
-type Result<T, E = SceneError> = std::result::Result<T, E>;
-
 impl Builder<'_> {
     fn scene(mut self, file: SceneFile) -> Result<Scene> {
-        let settings = self.settings(file.render)?;
+        let settings = settings(&self.check, file.render)?;
         let background = match &file.background {
-            Some(c) => self.vec3_in(c, "background", 0.0, 1.0)?,
+            Some(c) => self.check.vec3_in(c, "background", 0.0, 1.0)?,
             None => DEFAULT_BACKGROUND,
         };
         let ambient = match &file.ambient {
-            Some(c) => self.vec3_in(c, "ambient", 0.0, f32::INFINITY)?,
+            Some(c) => self.check.vec3_in(c, "ambient", 0.0, f32::INFINITY)?,
             None => DEFAULT_AMBIENT,
         };
         let lights = match &file.lights {
@@ -296,7 +270,7 @@ impl Builder<'_> {
             None => default_lights(),
         };
         if file.objects.is_empty() {
-            return Err(self.file_error("no [[objects]]: a scene needs at least one object"));
+            return Err(self.check.file_error("no [[objects]]: a scene needs at least one object"));
         }
         let mut objects = Vec::new();
         for (i, def) in file.objects.iter().enumerate() {
@@ -313,25 +287,25 @@ impl Builder<'_> {
 
     fn camera(&self, def: &S<CameraDef>, bounds: (Vec3, Vec3), aspect: f32) -> Result<Camera> {
         let c = def.get_ref();
-        let eye = self.vec3(&c.eye, "camera.eye")?;
-        let target = c.target.as_ref().map_or(Ok(Vec3::ZERO), |t| self.vec3(t, "camera.target"))?;
-        let up = c.up.as_ref().map_or(Ok(Vec3::Y), |u| self.vec3(u, "camera.up"))?;
+        let eye = self.check.vec3(&c.eye, "camera.eye")?;
+        let target = c.target.as_ref().map_or(Ok(Vec3::ZERO), |t| self.check.vec3(t, "camera.target"))?;
+        let up = c.up.as_ref().map_or(Ok(Vec3::Y), |u| self.check.vec3(u, "camera.up"))?;
         if eye == target {
-            return Err(self.error(c.eye.span(), "camera.eye", "must differ from camera.target"));
+            return Err(self.check.error(c.eye.span(), "camera.eye", "must differ from camera.target"));
         }
         let direction = target - eye;
         if (direction / direction.abs().max_element()).cross(up).length() < 1e-6 {
             let span = c.up.as_ref().map_or(def.span(), |u| u.span());
-            return Err(self.error(span, "camera.up", "must not be parallel to the view direction"));
+            return Err(self.check.error(span, "camera.up", "must not be parallel to the view direction"));
         }
         let fitted = fitted_depth_range(eye, target, bounds);
-        let near = self.optional(&c.near, "camera.near", fitted.0, f32::MIN, f32::MAX)?;
-        let far = self.optional(&c.far, "camera.far", fitted.1, f32::MIN, f32::MAX)?;
+        let near = self.check.optional(&c.near, "camera.near", fitted.0, f32::MIN, f32::MAX)?;
+        let far = self.check.optional(&c.far, "camera.far", fitted.1, f32::MIN, f32::MAX)?;
         let projection = match c.projection {
             ProjectionDef::Perspective => {
-                let fovy = self.optional(&c.fovy, "camera.fovy", 45.0, 0.0, 180.0)?;
+                let fovy = self.check.optional(&c.fovy, "camera.fovy", 45.0, 0.0, 180.0)?;
                 if fovy <= 0.0 || fovy >= 180.0 {
-                    return Err(self.value_error(
+                    return Err(self.check.value_error(
                         c.fovy.as_ref(),
                         def,
                         "camera.fovy",
@@ -339,7 +313,7 @@ impl Builder<'_> {
                     ));
                 }
                 if near <= 0.0 {
-                    return Err(self.value_error(
+                    return Err(self.check.value_error(
                         c.near.as_ref(),
                         def,
                         "camera.near",
@@ -350,20 +324,25 @@ impl Builder<'_> {
             }
             ProjectionDef::Orthographic => {
                 let fitted_height = 2.2 * (bounds.1 - bounds.0).length().max(1e-6) / 2.0;
-                let height = self.optional(&c.height, "camera.height", fitted_height, 0.0, f32::MAX)?;
+                let height = self.check.optional(&c.height, "camera.height", fitted_height, 0.0, f32::MAX)?;
                 if height <= 0.0 {
-                    return Err(self.value_error(c.height.as_ref(), def, "camera.height", "must be > 0"));
+                    return Err(self.check.value_error(
+                        c.height.as_ref(),
+                        def,
+                        "camera.height",
+                        "must be > 0",
+                    ));
                 }
                 Projection::Orthographic { height, near, far }
             }
         };
         if far <= near {
             let message = format!("must be greater than camera.near ({near}), got {far}");
-            return Err(self.value_error(c.far.as_ref(), def, "camera.far", message));
+            return Err(self.check.value_error(c.far.as_ref(), def, "camera.far", message));
         }
         let camera = Camera { eye, target, up, projection };
         if !camera_is_finite(&camera, aspect) {
-            return Err(self.error(def.span(), "camera", "its values give a non-finite projection"));
+            return Err(self.check.error(def.span(), "camera", "its values give a non-finite projection"));
         }
         Ok(camera)
     }
@@ -371,24 +350,28 @@ impl Builder<'_> {
     fn fog(&self, def: &S<FogDef>) -> Result<Fog> {
         let f = def.get_ref();
         let color = match &f.color {
-            Some(c) => self.vec3_in(c, "fog.color", 0.0, 1.0)?,
+            Some(c) => self.check.vec3_in(c, "fog.color", 0.0, 1.0)?,
             None => Vec3::splat(0.5),
         };
         let mode = match f.mode {
             FogKind::Linear => {
-                self.not_allowed(&f.density, "fog", "density", "linear fog")?;
-                let start = self.optional(&f.start, "fog.start", 0.0, 0.0, f32::MAX)?;
-                let end = self.optional(&f.end, "fog.end", 1.0, 0.0, f32::MAX)?;
+                self.check.not_allowed(&f.density, "fog", "density", "linear fog")?;
+                let start = self.check.optional(&f.start, "fog.start", 0.0, 0.0, f32::MAX)?;
+                let end = self.check.optional(&f.end, "fog.end", 1.0, 0.0, f32::MAX)?;
                 if end < start {
                     let span = f.end.as_ref().map_or(def.span(), |e| e.span());
-                    return Err(self.error(span, "fog.end", format!("must be ≥ start ({start}), got {end}")));
+                    return Err(self.check.error(
+                        span,
+                        "fog.end",
+                        format!("must be ≥ start ({start}), got {end}"),
+                    ));
                 }
                 FogMode::Linear { start, end }
             }
             FogKind::Exp | FogKind::Exp2 => {
-                self.not_allowed(&f.start, "fog", "start", "exponential fog")?;
-                self.not_allowed(&f.end, "fog", "end", "exponential fog")?;
-                let density = self.optional(&f.density, "fog.density", 1.0, 0.0, f32::MAX)?;
+                self.check.not_allowed(&f.start, "fog", "start", "exponential fog")?;
+                self.check.not_allowed(&f.end, "fog", "end", "exponential fog")?;
+                let density = self.check.optional(&f.density, "fog.density", 1.0, 0.0, f32::MAX)?;
                 match f.mode {
                     FogKind::Exp => FogMode::Exponential { density },
                     _ => FogMode::SquaredExponential { density },
@@ -405,20 +388,20 @@ impl Builder<'_> {
     fn light(&self, def: &S<LightDef>, key: &str) -> Result<Light> {
         let l = def.get_ref();
         let color = match &l.color {
-            Some(c) => self.vec3_in(c, &format!("{key}.color"), 0.0, f32::INFINITY)?,
+            Some(c) => self.check.vec3_in(c, &format!("{key}.color"), 0.0, f32::INFINITY)?,
             None => Vec3::ONE,
         };
         match l.kind {
             LightKind::Point => {
-                self.not_allowed(&l.direction, key, "direction", "point lights")?;
+                self.check.not_allowed(&l.direction, key, "direction", "point lights")?;
                 let Some(position) = &l.position else {
-                    return Err(self.error(def.span(), key, "a point light needs 'position'"));
+                    return Err(self.check.error(def.span(), key, "a point light needs 'position'"));
                 };
-                let position = self.vec3(position, &format!("{key}.position"))?;
+                let position = self.check.vec3(position, &format!("{key}.position"))?;
                 let attenuation = match &l.attenuation {
                     Some(a) => {
                         let [a0, a1, a2] =
-                            self.vec3_in(a, &format!("{key}.attenuation"), 0.0, f32::INFINITY)?.into();
+                            self.check.vec3_in(a, &format!("{key}.attenuation"), 0.0, f32::INFINITY)?.into();
                         Attenuation { a0, a1, a2 }
                     }
                     None => Attenuation::NONE,
@@ -426,14 +409,18 @@ impl Builder<'_> {
                 Ok(Light::Point { position, color, attenuation })
             }
             LightKind::Directional => {
-                self.not_allowed(&l.position, key, "position", "directional lights")?;
-                self.not_allowed(&l.attenuation, key, "attenuation", "directional lights")?;
+                self.check.not_allowed(&l.position, key, "position", "directional lights")?;
+                self.check.not_allowed(&l.attenuation, key, "attenuation", "directional lights")?;
                 let Some(d) = &l.direction else {
-                    return Err(self.error(def.span(), key, "a directional light needs 'direction'"));
+                    return Err(self.check.error(def.span(), key, "a directional light needs 'direction'"));
                 };
-                let direction = self.vec3(d, &format!("{key}.direction"))?;
+                let direction = self.check.vec3(d, &format!("{key}.direction"))?;
                 if direction == Vec3::ZERO {
-                    return Err(self.error(d.span(), &format!("{key}.direction"), "must not be [0, 0, 0]"));
+                    return Err(self.check.error(
+                        d.span(),
+                        &format!("{key}.direction"),
+                        "must not be [0, 0, 0]",
+                    ));
                 }
                 Ok(Light::Directional { direction, color })
             }
@@ -447,9 +434,9 @@ impl Builder<'_> {
             (Some(model), None) => self.model(o, model, key)?,
             (None, Some(kind)) => vec![ModelPart::alone(self.primitive(o, *kind.get_ref(), key)?)],
             (Some(_), Some(_)) => {
-                return Err(self.error(def.span(), key, "give 'model' or 'primitive', not both"))
+                return Err(self.check.error(def.span(), key, "give 'model' or 'primitive', not both"))
             }
-            (None, None) => return Err(self.error(def.span(), key, "needs 'model' or 'primitive'")),
+            (None, None) => return Err(self.check.error(def.span(), key, "needs 'model' or 'primitive'")),
         };
         let world_from_object = self.transform(o, key)?;
         let shading = o.shading.map(ShadingMode::from);
@@ -470,7 +457,7 @@ impl Builder<'_> {
         for (value, name) in
             [(&o.rings, "rings"), (&o.segments, "segments"), (&o.subdivisions, "subdivisions")]
         {
-            self.not_allowed(value, key, name, "models")?;
+            self.check.not_allowed(value, key, name, "models")?;
         }
         for (value, name) in [
             (&o.radius, "radius"),
@@ -478,14 +465,14 @@ impl Builder<'_> {
             (&o.major_radius, "major_radius"),
             (&o.minor_radius, "minor_radius"),
         ] {
-            self.not_allowed(value, key, name, "models")?;
+            self.check.not_allowed(value, key, name, "models")?;
         }
-        let dir = self.path.parent().unwrap_or(Path::new(""));
+        let dir = self.check.path.parent().unwrap_or(Path::new(""));
         let model_path: PathBuf = dir.join(model.get_ref());
         self.models.get(&model_path).map_err(|source| {
-            let (line, column) = crate::error::line_column(self.text, model.span().start);
+            let (line, column) = line_column(self.check.text, model.span().start);
             SceneError::Referenced {
-                scene: self.path.to_path_buf(),
+                scene: self.check.path.to_path_buf(),
                 line,
                 column,
                 key: format!("{key}.model"),
@@ -504,15 +491,15 @@ impl Builder<'_> {
         };
         let count = |v: &Option<S<u32>>, name: &str, uses: &[PrimitiveKind], default: u32, min: u32| {
             if !uses.contains(&kind) {
-                return self.not_allowed(v, key, name, what).map(|()| 0);
+                return self.check.not_allowed(v, key, name, what).map(|()| 0);
             }
-            self.count(v, &format!("{key}.{name}"), default, min)
+            self.check.count(v, &format!("{key}.{name}"), default, min)
         };
         let length = |v: &Option<S<f32>>, name: &str, uses: &[PrimitiveKind], default: f32| {
             if !uses.contains(&kind) {
-                return self.not_allowed(v, key, name, what).map(|()| 0.0);
+                return self.check.not_allowed(v, key, name, what).map(|()| 0.0);
             }
-            self.positive(v, &format!("{key}.{name}"), default)
+            self.check.positive(v, &format!("{key}.{name}"), default)
         };
         let (default_rings, min_rings) = if kind == Torus { (48, 3) } else { (32, 2) };
         let rings = count(&o.rings, "rings", &[Sphere, Torus], default_rings, min_rings)?;
@@ -532,9 +519,12 @@ impl Builder<'_> {
     }
 
     fn transform(&self, o: &ObjectDef, key: &str) -> Result<Mat4> {
-        let translate =
-            o.translate.as_ref().map_or(Ok(Vec3::ZERO), |t| self.vec3(t, &format!("{key}.translate")))?;
-        let rotate = o.rotate.as_ref().map_or(Ok(Vec3::ZERO), |r| self.vec3(r, &format!("{key}.rotate")))?;
+        let translate = o
+            .translate
+            .as_ref()
+            .map_or(Ok(Vec3::ZERO), |t| self.check.vec3(t, &format!("{key}.translate")))?;
+        let rotate =
+            o.rotate.as_ref().map_or(Ok(Vec3::ZERO), |r| self.check.vec3(r, &format!("{key}.rotate")))?;
         let scale = match &o.scale {
             None => Vec3::ONE,
             Some(s) => {
@@ -543,7 +533,7 @@ impl Builder<'_> {
                     ScaleDef::PerAxis(a) => Vec3::from(a),
                 };
                 if !v.is_finite() || v.cmpeq(Vec3::ZERO).any() {
-                    return Err(self.error(
+                    return Err(self.check.error(
                         s.span(),
                         &format!("{key}.scale"),
                         format!("must be finite and non-zero, got {v}"),
@@ -562,7 +552,7 @@ impl Builder<'_> {
         let key = format!("{key}.material");
         let mut m = base;
         if let Some(c) = &def.color {
-            m.kd = self.vec3_in(c, &format!("{key}.color"), 0.0, 1.0)?;
+            m.kd = self.check.vec3_in(c, &format!("{key}.color"), 0.0, 1.0)?;
             m.ka = m.kd;
         }
         for (value, name, field) in [
@@ -572,20 +562,12 @@ impl Builder<'_> {
             (&def.ke, "ke", &mut m.ke),
         ] {
             if let Some(v) = value {
-                *field = self.vec3_in(v, &format!("{key}.{name}"), 0.0, 1.0)?;
+                *field = self.check.vec3_in(v, &format!("{key}.{name}"), 0.0, 1.0)?;
             }
         }
-        m.ns = self.optional(&def.ns, &format!("{key}.ns"), m.ns, 0.0, f32::MAX)?;
-        m.opacity = self.optional(&def.opacity, &format!("{key}.opacity"), m.opacity, 0.0, 1.0)?;
+        m.ns = self.check.optional(&def.ns, &format!("{key}.ns"), m.ns, 0.0, f32::MAX)?;
+        m.opacity = self.check.optional(&def.opacity, &format!("{key}.opacity"), m.opacity, 0.0, 1.0)?;
         Ok(m)
-    }
-}
-
-pub(super) fn range(lo: f32, hi: f32) -> String {
-    match (lo == f32::MIN, hi == f32::MAX || hi == f32::INFINITY) {
-        (true, true) => "any finite value".to_owned(),
-        (false, true) => format!("[{lo}, ∞)"),
-        _ => format!("[{lo}, {hi}]"),
     }
 }
 
@@ -614,11 +596,3 @@ fn fitted_depth_range(eye: Vec3, target: Vec3, (min, max): (Vec3, Vec3)) -> (f32
     let near = (d - 1.1 * radius).max(far * 1e-4);
     (near as f32, far as f32)
 }
-
-mod checks;
-mod models;
-mod render;
-
-use models::{ModelCache, ModelPart};
-use render::RenderDef;
-pub use render::{MAX_ADAPTIVE_TOLERANCE, MAX_SSAA};

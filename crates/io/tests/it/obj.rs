@@ -2,7 +2,8 @@
 //! never a panic; good files give valid meshes.
 
 use glam::Vec3;
-use zline_scene::{load_obj, load_obj_with_warnings, Material};
+use zline_io::{load_obj, load_obj_with_warnings};
+use zline_scene::Material;
 
 use crate::{check_message, data, repo};
 

@@ -2,7 +2,8 @@
 
 use std::sync::Arc;
 
-use zline_scene::{load_scene, Projection, ShadingMode};
+use zline_io::load_scene;
+use zline_scene::{Projection, ShadingMode};
 
 use crate::repo;
 

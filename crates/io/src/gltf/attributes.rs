@@ -2,11 +2,23 @@
 //! TEXCOORD_n and the triangle indices, each accessor checked for its type,
 //! its range in the buffer and its count (see the parent module).
 
-#![allow(unused_imports, reason = "the parent's imports are shared wholesale")]
+use std::path::Path;
 
-use super::*;
+use glam::{Vec2, Vec3};
+use gltf::accessor::{DataType, Dimensions};
 
-impl Loader<'_> {
+use crate::error::SceneError;
+
+/// The vertex data of one glTF file: its buffers, and the file for
+/// messages.
+pub(super) struct Attributes<'a> {
+    /// The glTF file.
+    pub(super) path: &'a Path,
+    /// Its buffers, in order.
+    pub(super) buffers: &'a [Vec<u8>],
+}
+
+impl Attributes<'_> {
     pub(super) fn read_positions(
         &self,
         primitive: &gltf::Primitive,
@@ -35,12 +47,13 @@ impl Loader<'_> {
         Ok((normals.len() == vertices).then_some(normals))
     }
 
-    /// COLOR_0 as RGB; a warning when some alpha is below 1 (not used).
+    /// COLOR_0 as RGB, and whether some alpha is below 1 (not used; the
+    /// caller warns).
     pub(super) fn read_colors(
-        &mut self,
+        &self,
         primitive: &gltf::Primitive,
         name: &str,
-    ) -> Result<Option<Vec<Vec3>>, SceneError> {
+    ) -> Result<Option<(Vec<Vec3>, bool)>, SceneError> {
         let Some(accessor) = primitive.get(&gltf::Semantic::Colors(0)) else { return Ok(None) };
         let types = [Dimensions::Vec3, Dimensions::Vec4]
             .into_iter()
@@ -49,10 +62,8 @@ impl Loader<'_> {
         let read = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice)).read_colors(0);
         let rgba: Vec<[f32; 4]> = read.map(|r| r.into_rgba_f32().collect()).unwrap_or_default();
         self.check_count(&accessor, name, "COLOR_0", rgba.len())?;
-        if rgba.iter().any(|c| c[3] < 1.0) {
-            self.warn(format!("mesh '{name}': vertex colour (COLOR_0) alpha is not supported; ignored"));
-        }
-        Ok(Some(rgba.iter().map(|&[r, g, b, _]| Vec3::new(r, g, b)).collect()))
+        let alpha_ignored = rgba.iter().any(|c| c[3] < 1.0);
+        Ok(Some((rgba.iter().map(|&[r, g, b, _]| Vec3::new(r, g, b)).collect(), alpha_ignored)))
     }
 
     /// Texture coordinates of a set, flipped to t = 1 − v.
@@ -176,5 +187,9 @@ impl Loader<'_> {
             "mesh '{mesh}': {what} accessor {index}: read {read} of {} elements",
             accessor.count()
         )))
+    }
+
+    fn error(&self, message: String) -> SceneError {
+        SceneError::File { path: self.path.to_path_buf(), message }
     }
 }

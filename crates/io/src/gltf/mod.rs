@@ -101,26 +101,29 @@ use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use glam::{Mat4, Vec2, Vec3};
-use gltf::accessor::{DataType, Dimensions};
+use glam::{Mat4, Vec3};
 use gltf::mesh::Mode;
-use gltf::texture::{MagFilter, MinFilter, WrappingMode};
-use zline_shading::{Attenuation, Filter, Light, Material, Sampler, Texture, Wrap};
+use zline_scene::{Camera, Mesh, Object, Projection, TextureMap};
+use zline_shading::{Attenuation, Light, Sampler, Texture};
 
+use crate::culling::default_culling;
 use crate::error::SceneError;
-use crate::framing::default_culling;
-use crate::model::{Camera, Mesh, Object, Projection, TextureMap};
 use crate::texture_file::{decode_texture, DecodeError, TextureCache};
+
+mod attributes;
+mod convert;
+mod resources;
+
+use attributes::Attributes;
+pub use convert::MAX_GLTF_SHININESS;
+use convert::{
+    fit_far_plane, material_from_gltf, material_name, primitive_name, projection_is_valid, reversed,
+    sampler_from_gltf,
+};
+use resources::{decode_data_uri, read_buffers, uri_target, UriTarget};
 
 /// Extensions the loader reads (others are warned about).
 const SUPPORTED_EXTENSIONS: &[&str] = &["KHR_lights_punctual", "KHR_materials_emissive_strength"];
-
-/// Largest ns the metallic–roughness mapping yields (see the module doc).
-pub const MAX_GLTF_SHININESS: f32 = 1024.0;
-
-/// The far plane of a camera without zfar lies this factor beyond the
-/// farthest corner of the scene's bounding box.
-const FITTED_FAR_MARGIN: f32 = 1.05;
 
 /// What a glTF file holds, in zline's model (see the module doc).
 #[derive(Clone, Debug, PartialEq)]
@@ -169,13 +172,6 @@ pub fn load_gltf_with_warnings(path: &Path) -> Result<(GltfScene, Vec<String>), 
     loader.walk(&document)?;
     loader.finish()
 }
-
-mod attributes;
-mod convert;
-mod resources;
-
-use convert::*;
-use resources::*;
 
 /// A primitive turned into a mesh, shared by every node that draws it.
 #[derive(Clone)]
@@ -335,19 +331,20 @@ impl Loader<'_> {
         if primitive.morph_targets().len() > 0 {
             self.warn(format!("mesh '{name}': morph targets are not supported; drawn without them"));
         }
-        let Some(positions) = self.read_positions(primitive, &name)? else {
+        let attributes = Attributes { path: self.path, buffers: &self.buffers };
+        let Some(positions) = attributes.read_positions(primitive, &name)? else {
             self.warn(format!("mesh '{name}': primitive has no POSITION; skipped"));
             return Ok(None);
         };
-        let normals = self.read_normals(primitive, &name, positions.len())?;
-        let triangles = self.read_triangles(primitive, &name, positions.len())?;
+        let normals = attributes.read_normals(primitive, &name, positions.len())?;
+        let triangles = attributes.read_triangles(primitive, &name, positions.len())?;
         if triangles.is_empty() {
             return Ok(None);
         }
         let material = primitive.material();
         let base_color = material.pbr_metallic_roughness().base_color_texture();
         let uv_set = base_color.as_ref().map_or(0, |info| info.tex_coord());
-        let uvs = self.read_uvs(primitive, &name, uv_set)?;
+        let uvs = attributes.read_uvs(primitive, &name, uv_set)?;
         let mesh_error =
             |source| SceneError::Mesh { path: self.path.to_path_buf(), mesh: name.clone(), source };
         let mut built = Mesh::new(name.clone(), positions, normals, triangles, material_from_gltf(&material))
@@ -355,7 +352,10 @@ impl Loader<'_> {
         if let Some(uvs) = uvs {
             built = built.with_uvs(uvs).map_err(mesh_error)?;
         }
-        if let Some(colors) = self.read_colors(primitive, &name)? {
+        if let Some((colors, alpha_ignored)) = attributes.read_colors(primitive, &name)? {
+            if alpha_ignored {
+                self.warn(format!("mesh '{name}': vertex colour (COLOR_0) alpha is not supported; ignored"));
+            }
             built = built.with_colors(colors).map_err(mesh_error)?;
         }
         self.warn_about_material(&material);

@@ -6,7 +6,8 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
-use zline_scene::{load_obj, load_obj_with_warnings, Mesh};
+use zline_io::{load_obj, load_obj_with_warnings};
+use zline_scene::Mesh;
 use zline_shading::{Sampler, Wrap};
 
 use crate::{check_message, repo};
@@ -14,7 +15,7 @@ use crate::{check_message, repo};
 /// A fresh directory `name` in this process's temporary directory holding
 /// the given files.
 fn fixture(name: &str, files: &[(&str, &[u8])]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("zline-scene-tests-{}", std::process::id())).join(name);
+    let dir = std::env::temp_dir().join(format!("zline-io-tests-{}", std::process::id())).join(name);
     std::fs::create_dir_all(&dir).unwrap();
     for (file, bytes) in files {
         std::fs::write(dir.join(file), bytes).unwrap();

@@ -19,11 +19,11 @@
 use std::sync::Arc;
 
 use glam::{DVec3, Mat4, Vec3};
+use zline_scene::{Camera, Mesh, Object, Projection, RenderSettings, Scene};
 use zline_shading::Light;
 
+use crate::culling::default_culling;
 use crate::gltf::GltfScene;
-use crate::mesh::bounds_of;
-use crate::model::{Camera, Mesh, Object, Projection, RenderSettings, Scene};
 
 /// The direction from the target towards the eye, before normalization:
 /// in front (+z), a little above (+y) and to the right (+x).
@@ -92,6 +92,14 @@ pub fn scene_for_gltf(gltf: GltfScene, settings: RenderSettings) -> Scene {
     }
 }
 
+/// The bounding box of some points, `None` when there are none.
+pub(crate) fn bounds_of(points: impl IntoIterator<Item = Vec3>) -> Option<(Vec3, Vec3)> {
+    points.into_iter().fold(None, |acc, p| match acc {
+        None => Some((p, p)),
+        Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
+    })
+}
+
 /// The world-space bounding box of some objects' vertices.
 pub(crate) fn world_bounds(objects: &[Object]) -> Option<(Vec3, Vec3)> {
     bounds_of(
@@ -99,11 +107,6 @@ pub(crate) fn world_bounds(objects: &[Object]) -> Option<(Vec3, Vec3)> {
             .iter()
             .flat_map(|o| o.mesh.positions.iter().map(|&p| o.world_from_object.transform_point3(p))),
     )
-}
-
-/// Culling on for closed, opaque meshes (SPEC §2).
-pub(crate) fn default_culling(mesh: &Mesh, opacity: f32) -> bool {
-    opacity >= 1.0 && mesh.is_closed()
 }
 
 /// The aspect ratio (width / height) of the settings' image.
@@ -171,7 +174,7 @@ pub(crate) fn camera_is_finite(camera: &Camera, aspect: f32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::primitives::{cube, plane};
+    use zline_scene::{cube, plane};
 
     #[track_caller]
     fn check_frames(min: Vec3, max: Vec3, aspect: f32) {

@@ -9,10 +9,8 @@
 use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
+use zline_scene::{plane, Camera, DepthMode, Mesh, Object, Projection, RenderSettings, Scene};
 use zline_shading::{Light, Material, ShadingMode};
-
-use crate::model::{Camera, DepthMode, Mesh, Object, Projection, RenderSettings, Scene};
-use crate::primitives::plane;
 
 /// A named hard case with the outcome it must have.
 #[derive(Clone, Debug)]

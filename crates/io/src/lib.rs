@@ -1,0 +1,35 @@
+//! The zline loaders: files → the scene model of zline-scene.
+//!
+//! This is the one crate that reads files: OBJ+MTL (through tobj), glTF 2.0
+//! (through the `gltf` crate), PNG and JPEG textures (through `image`) and
+//! TOML scene files. Every loader error is a [`SceneError`] whose one-line
+//! message names the file, the place and what is wrong; what a loader can
+//! draw around (a missing MTL file or texture, an unsupported glTF feature)
+//! is a warning instead. It knows nothing of rasterization, screens or
+//! threads.
+//!
+//! Steps, one module each: `obj` (OBJ+MTL files and their textures), `gltf`
+//! (glTF and GLB files: nodes, materials, cameras, lights), `texture_file`
+//! (PNG/JPEG images → textures, shared by both loaders), `culling` (the
+//! default back-face culling rule), `framing` (camera and lights for a bare
+//! model or glTF file), `scene_file` (TOML scenes; the format is documented
+//! on [`load_scene`], and `examples/scene.toml` shows every key), `error`
+//! (the error type).
+
+mod culling;
+mod error;
+mod framing;
+mod gltf;
+mod obj;
+mod scene_file;
+mod texture_file;
+
+pub use error::SceneError;
+pub use framing::{
+    default_lights, framing_camera, scene_for_gltf, scene_for_model, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
+    FRAMING_FOVY_DEGREES, VIEW_DIRECTION,
+};
+// `crate::` because `gltf` also names the glTF parsing crate.
+pub use crate::gltf::{load_gltf, load_gltf_with_warnings, GltfScene, MAX_GLTF_SHININESS};
+pub use obj::{load_obj, load_obj_with_warnings};
+pub use scene_file::load_scene;

@@ -1,0 +1,12 @@
+//! The zline built-in scenes, built in code from the scene model of
+//! zline-scene and its procedural meshes: no files, no loaders.
+//!
+//! Modules: `demo` (the demo scene: the three shading modes side by side,
+//! texture, transparency and fog) and [`hard_cases`](mod@hard_cases) (scenes that stress
+//! numerical stability, each with the outcome a correct render shows).
+
+mod demo;
+pub mod hard_cases;
+
+pub use demo::demo_scene;
+pub use hard_cases::{hard_cases, HardCase};
