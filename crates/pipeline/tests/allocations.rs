@@ -8,7 +8,8 @@ use std::alloc::System;
 
 use stats_alloc::{Region, StatsAlloc, INSTRUMENTED_SYSTEM};
 use zline_pipeline::{Image, RenderOptions, Renderer};
-use zline_scene::{demo_scene, Scene};
+use zline_scene::Scene;
+use zline_scenes::demo_scene;
 
 #[global_allocator]
 static GLOBAL: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
