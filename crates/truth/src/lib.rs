@@ -39,11 +39,9 @@
 //! within about 1/512 pixel of an edge or a depth intersection may differ,
 //! and colours by rounding; it sorts transparent triangles by mean depth,
 //! the truth sorts fragments per sample (they differ where transparent
-//! surfaces intersect); it relights the new vertices of a clipped Gouraud
-//! triangle that is textured or has vertex colours, where the truth
-//! interpolates their lit parts (SPEC §2); and it does not yet apply vertex
-//! colours with Phong shading, where the truth multiplies ka and kd by the
-//! colour interpolated to each sample.
+//! surfaces intersect). Both interpolate the lit values of a clipped
+//! Gouraud triangle's new vertices (SPEC §2) and multiply ka and kd by the
+//! vertex colour interpolated to each sample with Phong shading.
 
 mod camera;
 mod clip;
