@@ -13,7 +13,8 @@
 
 use glam::Vec3;
 
-use crate::{Light, Material};
+use crate::light::Light;
+use crate::material::Material;
 
 /// Ambient light plus a list of lights, all in one coordinate frame.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -104,7 +105,7 @@ impl LightingModel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Attenuation;
+    use crate::light::Attenuation;
 
     #[track_caller]
     fn check_close(got: Vec3, want: Vec3) {

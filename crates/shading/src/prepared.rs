@@ -11,7 +11,9 @@
 
 use glam::{Mat4, Vec3};
 
-use crate::{Attenuation, Light, LightingModel, LitParts, Material};
+use crate::light::{Attenuation, Light};
+use crate::material::Material;
+use crate::model::{LightingModel, LitParts};
 
 /// A directional light with its unit vector towards the light.
 #[derive(Clone, Copy, Debug, PartialEq)]

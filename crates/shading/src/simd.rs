@@ -204,7 +204,9 @@ mod tests {
     use glam::{Mat4, Vec3};
 
     use super::*;
-    use crate::{Attenuation, Light, LightingModel, Material};
+    use crate::light::{Attenuation, Light};
+    use crate::material::Material;
+    use crate::model::LightingModel;
 
     #[test]
     fn every_lane_matches_the_scalar_path_bit_for_bit() {

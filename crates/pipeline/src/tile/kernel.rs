@@ -20,7 +20,7 @@ use wide::{f32x8, i32x8, CmpEq, CmpGe, CmpLt};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, Span};
 use zline_shading::Vec3x8;
 
-use super::{load, store, FrameTexture, ShadeContext, TileTarget};
+use super::target::{load, store, FrameTexture, ShadeContext, TileTarget};
 use crate::fog::FogPass;
 use crate::setup::layout::{gouraud, phong, textured};
 use crate::setup::{Flat, Gouraud, Phong, Primitive, TexturedFlat, TexturedGouraud, TexturedPhong};

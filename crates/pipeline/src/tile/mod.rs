@@ -19,14 +19,15 @@
 //! draw, not state kept on the tile.
 
 mod kernel;
+mod target;
 
-use std::sync::Arc;
+pub(crate) use target::{load, store};
+pub use target::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 
-use glam::Vec3;
 use wide::{f32x8, CmpEq, CmpLt};
-use zline_raster::{Rect, LANES};
+use zline_raster::LANES;
 use zline_scene::Interpolation;
-use zline_shading::{PreparedLights, PreparedMaterial, Sampler, Texture, Vec3x8};
+use zline_shading::Vec3x8;
 
 use crate::bin::PrimitiveRef;
 use crate::fog::FogPass;
@@ -37,84 +38,7 @@ use kernel::{
     Pass, Perspective, TextureAlpha,
 };
 
-/// NC depth initialised to the far plane (SPEC §4).
-pub const DEPTH_CLEAR: f32 = 1.0;
-
-/// Reversed depth's far plane (see [`crate::setup::DepthEncoding`]).
-pub const DEPTH_CLEAR_REVERSED: f32 = 0.0;
-
-/// A texture as the frame's kernels read it: the texels (shared with the
-/// scene, not copied) and the sampler after the frame's filter override.
-#[derive(Clone, Debug)]
-pub struct FrameTexture {
-    /// The texels.
-    pub texture: Arc<Texture>,
-    /// Filtering and wrapping.
-    pub sampler: Sampler,
-    /// The cutoff of [`AlphaUse::Mask`].
-    pub cutoff: f32,
-}
-
-/// What shading reads besides the primitive.
-#[derive(Clone, Copy, Debug)]
-pub struct ShadeContext<'a> {
-    /// Lights in eye space.
-    pub lighting: &'a PreparedLights,
-    /// The frame's materials, indexed by the primitives' `material`.
-    pub materials: &'a [PreparedMaterial],
-    /// The frame's textures, indexed by the primitives' `texture`.
-    pub textures: &'a [FrameTexture],
-}
-
-/// A tile's depth buffer and colour planes, one value per sample, covering
-/// columns `origin..origin + stride` (the tile widened to multiples of
-/// [`LANES`]). One per band of tiles, kept from frame to frame.
-#[derive(Clone, Debug, Default)]
-pub struct TileTarget {
-    pub(crate) rect: Rect,
-    pub(crate) origin: i32,
-    pub(crate) stride: usize,
-    pub(crate) depth: Vec<f32>,
-    /// The far plane's depth: [`DEPTH_CLEAR`] or [`DEPTH_CLEAR_REVERSED`].
-    pub(crate) far: f32,
-    pub(crate) rgb: [Vec<f32>; 3],
-    pub(crate) background: Vec3,
-    /// False while undrawn samples (depth `far`) hold stale colours that
-    /// the resolve replaces by the background.
-    pub(crate) colors_valid: bool,
-}
-
 impl TileTarget {
-    /// Resets the buffers for a tile (`rect` in samples): depth `far`
-    /// ([`DEPTH_CLEAR`], or [`DEPTH_CLEAR_REVERSED`] for reversed depth).
-    ///
-    /// Only the depth buffer is written. A sample whose depth is still
-    /// `far` was never drawn — a fragment is written only when z < stored,
-    /// so a written depth is below `far` — and the resolve gives it the
-    /// background; the colour planes are not cleared at all (they only
-    /// grow to the tile's size). That saves three of the four stores per
-    /// sample of a clear.
-    pub fn clear(&mut self, rect: Rect, background: Vec3, far: f32) {
-        let lanes = LANES as i32;
-        self.rect = rect;
-        self.origin = rect.x0 & !(lanes - 1);
-        self.stride = ((rect.x1 + lanes - 1) & !(lanes - 1)).saturating_sub(self.origin).max(0) as usize;
-        let n = self.stride * rect.height() as usize;
-        self.depth.clear();
-        self.depth.resize(n, far);
-        self.far = far;
-        self.background = background;
-        self.colors_valid = false;
-        for plane in &mut self.rgb {
-            plane.resize(n, 0.0);
-        }
-    }
-
-    #[inline]
-    pub(crate) fn index(&self, x: i32, y: i32) -> usize {
-        (y - self.rect.y0) as usize * self.stride + (x - self.origin) as usize
-    }
-
     /// Draws the primitives `bin` (references into `chunks`) in order;
     /// returns the number of samples that passed the depth test.
     pub fn opaque_pass(
@@ -329,17 +253,4 @@ struct TexturedChoice {
     lod: LevelOfDetail,
     alpha: AlphaUse,
     index: usize,
-}
-
-/// Eight floats from `buf[i..i + 8]`.
-#[inline(always)]
-pub(crate) fn load(buf: &[f32], i: usize) -> f32x8 {
-    let lanes: [f32; LANES] = buf[i..i + LANES].try_into().unwrap_or([0.0; LANES]);
-    f32x8::from(lanes)
-}
-
-/// Writes eight floats to `buf[i..i + 8]`.
-#[inline(always)]
-pub(crate) fn store(buf: &mut [f32], i: usize, v: f32x8) {
-    buf[i..i + LANES].copy_from_slice(&v.to_array());
 }
