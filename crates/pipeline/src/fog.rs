@@ -17,8 +17,10 @@
 //! Samples no fragment reached keep the background: OpenGL fogs fragments,
 //! not the clear colour.
 
+use std::marker::PhantomData;
+
 use glam::{Mat4, Vec4};
-use wide::f32x8;
+use wide::{f32x8, CmpEq, CmpLt};
 use zline_scene::{Fog, FogCoordinate, FogMode};
 
 use crate::setup::DepthEncoding;
@@ -58,9 +60,53 @@ impl FogPass {
     }
 
     /// Fog factors for eight samples of row `y` starting at column `x`, with
-    /// stored depths `z`.
+    /// stored depths `z` (the coordinate and mode chosen per call; a pass
+    /// over many blocks uses [`Self::specialized`] instead).
     #[inline]
     pub fn factors(&self, x: i32, y: i32, z: f32x8) -> f32x8 {
+        match (self.fog.coordinate, self.fog.mode) {
+            (FogCoordinate::EyePlane, mode) => self.factors_with::<EyePlane>(Falloffs::new(mode), x, y, z),
+            (FogCoordinate::Radial, mode) => self.factors_with::<Radial>(Falloffs::new(mode), x, y, z),
+        }
+    }
+
+    /// Runs `visitor` with this fog's factors as a type: the coordinate and
+    /// the mode are decided here, once, not per block.
+    pub fn specialized<V: FogVisitor>(&self, visitor: V) -> V::Output {
+        macro_rules! visit {
+            ($coordinate:ty, $falloff:expr) => {
+                visitor.visit(Specialized::<$coordinate, _> {
+                    pass: self,
+                    falloff: $falloff,
+                    coordinate: PhantomData,
+                })
+            };
+        }
+        match (self.fog.coordinate, self.fog.mode) {
+            (FogCoordinate::EyePlane, FogMode::Linear { start, end }) if end == start => {
+                visit!(EyePlane, Step { start })
+            }
+            (FogCoordinate::EyePlane, FogMode::Linear { start, end }) => {
+                visit!(EyePlane, Linear { start, end })
+            }
+            (FogCoordinate::EyePlane, FogMode::Exponential { density }) => visit!(EyePlane, Exp { density }),
+            (FogCoordinate::EyePlane, FogMode::SquaredExponential { density }) => {
+                visit!(EyePlane, Exp2 { density })
+            }
+            (FogCoordinate::Radial, FogMode::Linear { start, end }) if end == start => {
+                visit!(Radial, Step { start })
+            }
+            (FogCoordinate::Radial, FogMode::Linear { start, end }) => visit!(Radial, Linear { start, end }),
+            (FogCoordinate::Radial, FogMode::Exponential { density }) => visit!(Radial, Exp { density }),
+            (FogCoordinate::Radial, FogMode::SquaredExponential { density }) => {
+                visit!(Radial, Exp2 { density })
+            }
+        }
+    }
+
+    /// The factors with the coordinate `C` and the falloff `falloff`.
+    #[inline(always)]
+    fn factors_with<C: Coordinate>(&self, falloff: impl Falloff, x: i32, y: i32, z: f32x8) -> f32x8 {
         let (sx, ox, sy, oy) = self.scale;
         let lanes = f32x8::from([0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
         let xn = (f32x8::splat(x as f32) + lanes) * f32x8::splat(sx) + f32x8::splat(ox);
@@ -68,30 +114,158 @@ impl FogPass {
         let row = |r: Vec4| {
             xn * f32x8::splat(r.x) + yn * f32x8::splat(r.y) + z * f32x8::splat(r.z) + f32x8::splat(r.w)
         };
-        let [rx, ry, rz, rw] = self.rows;
-        let w = row(rw);
-        let distance = match self.fog.coordinate {
-            FogCoordinate::EyePlane => -row(rz) / w,
-            FogCoordinate::Radial => {
-                let (ex, ey, ez) = (row(rx), row(ry), row(rz));
-                (ex * ex + ey * ey + ez * ez).sqrt() / w.abs()
-            }
-        };
-        let f = match self.fog.mode {
-            FogMode::Linear { start, end } if end == start => {
-                use wide::CmpLt;
-                distance.cmp_lt(f32x8::splat(start)).blend(f32x8::ONE, f32x8::ZERO)
-            }
-            FogMode::Linear { start, end } => (f32x8::splat(end) - distance) / f32x8::splat(end - start),
-            FogMode::Exponential { density } => (-f32x8::splat(density) * distance).exp(),
-            FogMode::SquaredExponential { density } => {
-                let d = f32x8::splat(density) * distance;
-                (-(d * d)).exp()
-            }
-        };
+        let f = falloff.factor(C::distance(&self.rows, row));
         // NaN (a degenerate projection) becomes full fog, as in `Fog::factor`.
-        use wide::CmpEq;
         let f = f.cmp_eq(f).blend(f, f32x8::ZERO);
         f.fast_max(f32x8::ZERO).fast_min(f32x8::ONE)
+    }
+}
+
+/// Fog factors with the coordinate and mode fixed by type.
+pub trait FogFactors {
+    /// Factors for eight samples of row `y` from column `x` with depths `z`.
+    fn at(&self, x: i32, y: i32, z: f32x8) -> f32x8;
+}
+
+/// Work generic over a fog's [`FogFactors`] (see [`FogPass::specialized`]).
+pub trait FogVisitor {
+    /// What the work returns.
+    type Output;
+    /// Does the work with `factors`.
+    fn visit<F: FogFactors>(self, factors: F) -> Self::Output;
+}
+
+/// A [`FogPass`] with its coordinate `C` and falloff `M` as types.
+struct Specialized<'a, C, M> {
+    pass: &'a FogPass,
+    falloff: M,
+    coordinate: PhantomData<C>,
+}
+
+impl<C: Coordinate, M: Falloff> FogFactors for Specialized<'_, C, M> {
+    #[inline(always)]
+    fn at(&self, x: i32, y: i32, z: f32x8) -> f32x8 {
+        self.pass.factors_with::<C>(self.falloff, x, y, z)
+    }
+}
+
+/// How the fog coordinate comes from the recovered eye position.
+trait Coordinate {
+    /// The distance, given the rows of eye_from_clip and `row(r)` = r·(x, y, z, 1).
+    fn distance(rows: &[Vec4; 4], row: impl Fn(Vec4) -> f32x8) -> f32x8;
+}
+
+/// The eye-plane distance −z_eye.
+struct EyePlane;
+
+/// The radial distance |p_eye|.
+struct Radial;
+
+impl Coordinate for EyePlane {
+    #[inline(always)]
+    fn distance(rows: &[Vec4; 4], row: impl Fn(Vec4) -> f32x8) -> f32x8 {
+        let w = row(rows[3]);
+        -row(rows[2]) / w
+    }
+}
+
+impl Coordinate for Radial {
+    #[inline(always)]
+    fn distance(rows: &[Vec4; 4], row: impl Fn(Vec4) -> f32x8) -> f32x8 {
+        let w = row(rows[3]);
+        let (ex, ey, ez) = (row(rows[0]), row(rows[1]), row(rows[2]));
+        (ex * ex + ey * ey + ez * ez).sqrt() / w.abs()
+    }
+}
+
+/// The fog factor as a function of distance (SPEC §8), before the clamp.
+trait Falloff: Copy {
+    fn factor(self, distance: f32x8) -> f32x8;
+}
+
+/// Linear fog with start = end: a step.
+#[derive(Clone, Copy)]
+struct Step {
+    start: f32,
+}
+
+/// Linear fog.
+#[derive(Clone, Copy)]
+struct Linear {
+    start: f32,
+    end: f32,
+}
+
+/// Exponential fog.
+#[derive(Clone, Copy)]
+struct Exp {
+    density: f32,
+}
+
+/// Squared exponential fog.
+#[derive(Clone, Copy)]
+struct Exp2 {
+    density: f32,
+}
+
+/// Any of the four, chosen per call.
+#[derive(Clone, Copy)]
+enum Falloffs {
+    Step(Step),
+    Linear(Linear),
+    Exp(Exp),
+    Exp2(Exp2),
+}
+
+impl Falloffs {
+    #[inline(always)]
+    fn new(mode: FogMode) -> Falloffs {
+        match mode {
+            FogMode::Linear { start, end } if end == start => Falloffs::Step(Step { start }),
+            FogMode::Linear { start, end } => Falloffs::Linear(Linear { start, end }),
+            FogMode::Exponential { density } => Falloffs::Exp(Exp { density }),
+            FogMode::SquaredExponential { density } => Falloffs::Exp2(Exp2 { density }),
+        }
+    }
+}
+
+impl Falloff for Step {
+    #[inline(always)]
+    fn factor(self, distance: f32x8) -> f32x8 {
+        distance.cmp_lt(f32x8::splat(self.start)).blend(f32x8::ONE, f32x8::ZERO)
+    }
+}
+
+impl Falloff for Linear {
+    #[inline(always)]
+    fn factor(self, distance: f32x8) -> f32x8 {
+        (f32x8::splat(self.end) - distance) / f32x8::splat(self.end - self.start)
+    }
+}
+
+impl Falloff for Exp {
+    #[inline(always)]
+    fn factor(self, distance: f32x8) -> f32x8 {
+        (-f32x8::splat(self.density) * distance).exp()
+    }
+}
+
+impl Falloff for Exp2 {
+    #[inline(always)]
+    fn factor(self, distance: f32x8) -> f32x8 {
+        let d = f32x8::splat(self.density) * distance;
+        (-(d * d)).exp()
+    }
+}
+
+impl Falloff for Falloffs {
+    #[inline(always)]
+    fn factor(self, distance: f32x8) -> f32x8 {
+        match self {
+            Falloffs::Step(f) => f.factor(distance),
+            Falloffs::Linear(f) => f.factor(distance),
+            Falloffs::Exp(f) => f.factor(distance),
+            Falloffs::Exp2(f) => f.factor(distance),
+        }
     }
 }

@@ -263,29 +263,35 @@ struct Shortcuts {
     interpolation: Interpolation,
     /// The material drawn (its index in the frame's table).
     material: u32,
-    /// Gouraud drawn flat with this colour.
-    flat_color: Option<Vec3>,
-    /// Phong lit once at the centroid with these parts.
-    lit_once: Option<LitParts>,
+    lighting: Shortcut,
 }
 
-/// The adaptive mode's choice for one triangle, or the full evaluation when
-/// it is off.
-fn shortcuts(tri: [&ClipVertex; 3], p: &[Projected; 3], ctx: &SetupContext<'_>) -> Shortcuts {
-    let mut s = Shortcuts {
-        interpolation: ctx.interpolation,
-        material: ctx.material.1,
-        flat_color: None,
-        lit_once: None,
-    };
-    let Some(adaptive) = ctx.adaptive else {
-        return s;
-    };
+/// The adaptive mode's lighting shortcut for one triangle.
+#[derive(Clone, Copy, Debug)]
+enum Shortcut {
+    /// The full evaluation.
+    None,
+    /// Gouraud drawn flat with this colour.
+    Flat(Vec3),
+    /// Phong lit once at the centroid with these parts.
+    LitOnce(LitParts),
+}
+
+/// The adaptive mode's choice for one triangle ([`crate::adaptive`]).
+#[inline(never)]
+fn adaptive_shortcuts(
+    adaptive: &Adaptive,
+    tri: [&ClipVertex; 3],
+    p: &[Projected; 3],
+    ctx: &SetupContext<'_>,
+) -> Shortcuts {
+    let mut s =
+        Shortcuts { interpolation: ctx.interpolation, material: ctx.material.1, lighting: Shortcut::None };
     match (ctx.shading, ctx.texture) {
         (ShadingMode::Gouraud, None) => {
             let perspective = ctx.interpolation == Interpolation::PerspectiveCorrect;
             match adaptive.gouraud(tri.map(|v| v.color), p.map(|v| v.inv_w), perspective) {
-                GouraudChoice::Flat(c) => s.flat_color = Some(c),
+                GouraudChoice::Flat(c) => s.lighting = Shortcut::Flat(c),
                 GouraudChoice::Linear => s.interpolation = Interpolation::ScreenLinear,
                 GouraudChoice::Full => {}
             }
@@ -302,7 +308,7 @@ fn shortcuts(tri: [&ClipVertex; 3], p: &[Projected; 3], ctx: &SetupContext<'_>) 
                     .normalize_or_zero();
                     let centroid = (eye[0] + eye[1] + eye[2]) / 3.0;
                     let parts = ctx.lighting.shade_parts(ctx.diffuse_only.0, centroid, normal, Vec3::ZERO);
-                    s.lit_once = Some(parts);
+                    s.lighting = Shortcut::LitOnce(parts);
                 }
                 PhongChoice::NoSpecular if ctx.material.0.specular => s.material = ctx.diffuse_only.1,
                 PhongChoice::NoSpecular | PhongChoice::Full => {}
@@ -331,7 +337,12 @@ fn emit(
         return;
     };
     let depth = DepthPlane::new(&basis, std::array::from_fn(|k| ctx.depth.value(tri[k], &p[k])));
-    let sc = shortcuts(tri, &p, ctx);
+    let sc = match ctx.adaptive {
+        None => {
+            Shortcuts { interpolation: ctx.interpolation, material: ctx.material.1, lighting: Shortcut::None }
+        }
+        Some(adaptive) => adaptive_shortcuts(adaptive, tri, &p, ctx),
+    };
     let interpolation = sc.interpolation;
     let q = match interpolation {
         Interpolation::PerspectiveCorrect => p.map(|v| v.inv_w),
@@ -353,15 +364,15 @@ fn emit(
     }
     let Some(texture) = ctx.texture else {
         // Untextured: only the attributes the shading mode needs.
-        match (ctx.shading, sc.flat_color, sc.lit_once) {
-            (_, Some(color), _) => push!(t.flat, Kernel::Flat, Flat { color }),
-            (_, None, Some(parts)) => push!(t.flat, Kernel::Flat, Flat { color: parts.color() }),
-            (ShadingMode::Flat, None, None) => push!(t.flat, Kernel::Flat, Flat { color: flat.color() }),
-            (ShadingMode::Gouraud, None, None) => {
+        match (ctx.shading, sc.lighting) {
+            (_, Shortcut::Flat(color)) => push!(t.flat, Kernel::Flat, Flat { color }),
+            (_, Shortcut::LitOnce(parts)) => push!(t.flat, Kernel::Flat, Flat { color: parts.color() }),
+            (ShadingMode::Flat, Shortcut::None) => push!(t.flat, Kernel::Flat, Flat { color: flat.color() }),
+            (ShadingMode::Gouraud, Shortcut::None) => {
                 let planes = planes.build(|v| [v.color]);
                 push!(t.gouraud, Kernel::Gouraud(interpolation), Gouraud { planes })
             }
-            (ShadingMode::Phong, None, None) => match ctx.vertex_colors {
+            (ShadingMode::Phong, Shortcut::None) => match ctx.vertex_colors {
                 VertexColors::Absent => {
                     let planes = planes.build(|v| [v.normal, v.eye]);
                     let shader = Phong { planes, material: sc.material };
@@ -378,9 +389,9 @@ fn emit(
     };
     // Textured: texture coordinates plus what the lighting interpolates.
     // The adaptive mode's Phong lit once is drawn as textured flat.
-    let (shading, flat) = match sc.lit_once {
-        Some(parts) => (ShadingMode::Flat, parts),
-        None => (ctx.shading, flat),
+    let (shading, flat) = match sc.lighting {
+        Shortcut::LitOnce(parts) => (ShadingMode::Flat, parts),
+        Shortcut::None | Shortcut::Flat(_) => (ctx.shading, flat),
     };
     let lighting = match (shading, ctx.vertex_colors) {
         (ShadingMode::Flat, _) => TexturedLighting::Flat,
@@ -423,7 +434,7 @@ struct Planes<'a> {
 
 impl Planes<'_> {
     /// [q, then the triples `f` gives, each times q].
-    #[inline]
+    #[inline(always)]
     fn build<const K: usize, const N: usize>(
         &self,
         f: impl Fn(&ClipVertex) -> [Vec3; K],
@@ -438,7 +449,7 @@ impl Planes<'_> {
     }
 
     /// [q, s·q, t·q, then the triples `f` gives, each times q].
-    #[inline]
+    #[inline(always)]
     fn textured<const K: usize, const N: usize>(
         &self,
         f: impl Fn(&ClipVertex) -> [Vec3; K],

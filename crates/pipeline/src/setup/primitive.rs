@@ -294,8 +294,9 @@ impl PrimitiveChunk {
         self.pass = pass;
     }
 
-    /// Appends a primitive to `table`, to the draw list and its bounds.
-    #[inline]
+    /// Appends a primitive to `table`, to the draw list and its bounds
+    /// (inlined so the primitive is built in place, not copied).
+    #[inline(always)]
     pub(crate) fn push<S>(
         (draws, bounds): (&mut Vec<Draw>, &mut Vec<Rect>),
         table: &mut Vec<Primitive<S>>,

@@ -271,6 +271,13 @@ fn triple<const N: usize>(a: &[f32x8; N], i: usize, w: f32x8) -> Vec3x8 {
 
 impl TileTarget {
     /// Scan-converts one primitive and runs [`Self::blocks`] on each span.
+    ///
+    /// The planes are copied to the stack first, so the compiler knows the
+    /// kernel's stores into the tile's buffers leave them alone, and the
+    /// shading closure is passed by value (it holds only references), so it
+    /// is inlined into the block loop (through `&mut F` it was a call per
+    /// block: 6 % more instructions in the Phong kernel, measured with
+    /// callgrind).
     #[inline(always)]
     fn scan<const N: usize, P: Pass, A: Alpha>(
         &mut self,
@@ -278,10 +285,11 @@ impl TileTarget {
         planes: &AttributePlanes<N>,
         pass: &P,
         alpha: &A,
-        mut shade: impl FnMut(&[f32x8; N]) -> (Vec3x8, f32x8),
+        shade: impl Fn(&[f32x8; N]) -> (Vec3x8, f32x8) + Copy,
     ) -> u64 {
+        let (depth, planes) = (*depth, *planes);
         let mut n = 0;
-        edges.scan(self.rect, |s| n += self.blocks(depth, planes, s, pass, alpha, &mut shade));
+        edges.scan(self.rect, |s| n += self.blocks(&depth, &planes, s, pass, alpha, shade));
         n
     }
 
@@ -298,7 +306,7 @@ impl TileTarget {
         span: Span,
         pass: &P,
         alpha_use: &A,
-        mut shade: impl FnMut(&[f32x8; N]) -> (Vec3x8, f32x8),
+        shade: impl Fn(&[f32x8; N]) -> (Vec3x8, f32x8),
     ) -> u64 {
         let row = self.index(self.origin, span.y);
         let origin = self.origin;
@@ -401,7 +409,7 @@ impl TileTarget {
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
         map: &FrameTexture,
         pass: &P,
-        mut parts: impl FnMut(&[f32x8; N], f32x8) -> (Vec3x8, Vec3x8),
+        parts: impl Fn(&[f32x8; N], f32x8) -> (Vec3x8, Vec3x8) + Copy,
     ) -> u64 {
         let derivatives = Derivatives::new(planes, map);
         let (texture, sampler) = (&*map.texture, &map.sampler);

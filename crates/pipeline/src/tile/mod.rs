@@ -30,7 +30,7 @@ use zline_scene::Interpolation;
 use zline_shading::Vec3x8;
 
 use crate::bin::PrimitiveRef;
-use crate::fog::FogPass;
+use crate::fog::{FogFactors, FogPass, FogVisitor};
 use crate::setup::{AlphaUse, Draw, Kernel, LevelOfDetail, PassKind, PrimitiveChunk, TexturedLighting};
 
 use kernel::{
@@ -118,27 +118,10 @@ impl TileTarget {
         self.colors_valid = true;
     }
 
-    /// Fogs every drawn sample of the tile (see [`crate::fog`]).
+    /// Fogs every drawn sample of the tile (see [`crate::fog`]), with the
+    /// fog's coordinate and mode chosen once for the tile.
     pub fn fog_pass(&mut self, pass: &FogPass) {
-        let fog = Vec3x8::splat(pass.color());
-        let [red, green, blue] = &mut self.rgb;
-        for row in 0..self.rect.height() as usize {
-            let y = self.rect.y0 + row as i32;
-            for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
-                let i = row * self.stride + (x - self.origin) as usize;
-                let z = load(&self.depth, i);
-                let drawn = z.cmp_lt(f32x8::splat(self.far));
-                if drawn.none() {
-                    continue;
-                }
-                let f = pass.factors(x, y, z);
-                let g = f32x8::ONE - f;
-                for (plane, c) in [(&mut *red, fog.x), (&mut *green, fog.y), (&mut *blue, fog.z)] {
-                    let old = load(plane, i);
-                    store(plane, i, drawn.blend(old * f + c * g, old));
-                }
-            }
-        }
+        pass.specialized(FogTile { target: self, color: Vec3x8::splat(pass.color()) });
     }
 
     /// Draws one primitive with its kernel in `pass`: the one place where a
@@ -253,4 +236,36 @@ struct TexturedChoice {
     lod: LevelOfDetail,
     alpha: AlphaUse,
     index: usize,
+}
+
+/// The fog pass over one tile, generic over the fog's factors.
+struct FogTile<'a> {
+    target: &'a mut TileTarget,
+    color: Vec3x8,
+}
+
+impl FogVisitor for FogTile<'_> {
+    type Output = ();
+
+    fn visit<F: FogFactors>(self, factors: F) {
+        let (t, fog) = (self.target, self.color);
+        let [red, green, blue] = &mut t.rgb;
+        for row in 0..t.rect.height() as usize {
+            let y = t.rect.y0 + row as i32;
+            for x in (t.origin..t.origin + t.stride as i32).step_by(LANES) {
+                let i = row * t.stride + (x - t.origin) as usize;
+                let z = load(&t.depth, i);
+                let drawn = z.cmp_lt(f32x8::splat(t.far));
+                if drawn.none() {
+                    continue;
+                }
+                let f = factors.at(x, y, z);
+                let g = f32x8::ONE - f;
+                for (plane, c) in [(&mut *red, fog.x), (&mut *green, fog.y), (&mut *blue, fog.z)] {
+                    let old = load(plane, i);
+                    store(plane, i, drawn.blend(old * f + c * g, old));
+                }
+            }
+        }
+    }
 }
