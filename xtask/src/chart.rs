@@ -8,9 +8,16 @@ use std::path::Path;
 use anyhow::{anyhow, Context, Result};
 use plotters::prelude::*;
 
-use crate::report::Point;
-
 const SIZE: (u32, u32) = (1200, 800);
+
+/// A setting's place on the chart: summed time and mean RMSE over the
+/// benchmark scenes.
+pub(crate) struct Point {
+    pub(crate) name: &'static str,
+    pub(crate) ms: f64,
+    pub(crate) rmse: f64,
+    pub(crate) pareto: bool,
+}
 
 pub(crate) fn draw(out: &Path, font: &Path, points: &[Point]) -> Result<()> {
     let bytes = std::fs::read(font).with_context(|| {

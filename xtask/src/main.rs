@@ -1,5 +1,6 @@
 //! zline developer tasks. `cargo xtask bench` measures frame times;
-//! `cargo xtask regress` compares renders with reference images.
+//! `cargo xtask regress` compares renders with reference images;
+//! `cargo xtask modules` checks that no crate has a module cycle.
 
 use std::path::PathBuf;
 
@@ -10,6 +11,7 @@ mod bench;
 mod chart;
 mod contact;
 mod docs;
+mod modules;
 mod regress;
 mod report;
 
@@ -103,6 +105,14 @@ enum Task {
         #[arg(long, default_value = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")]
         font: PathBuf,
     },
+    /// The module import graph of every crate (crates/*/src, xtask/src):
+    /// module, edge and cycle counts; fails if a module imports one that
+    /// imports it back.
+    Modules {
+        /// Print every module's imports too.
+        #[arg(long)]
+        verbose: bool,
+    },
 }
 
 fn main() -> Result<()> {
@@ -118,5 +128,6 @@ fn main() -> Result<()> {
         Task::Report { assets, out, chart, frames, size, filter, font } => {
             report::run(&report::Args { assets, out, chart, frames, size, filter, font })
         }
+        Task::Modules { verbose } => modules::run(verbose),
     }
 }

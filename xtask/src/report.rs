@@ -16,6 +16,8 @@ use zline::scene::{DepthMode, Interpolation, RenderSettings, Scene, ShadingMode}
 use zline::scenes::hard_cases;
 use zline_truth::{render_truth, ErrorStats, TruthImage};
 
+use crate::chart::Point;
+
 /// Where the report's inputs and outputs go.
 pub(crate) struct Args {
     pub(crate) assets: PathBuf,
@@ -320,15 +322,6 @@ fn table(
         md.push('\n');
     }
     md
-}
-
-/// A setting's place on the chart: summed time and mean RMSE over the
-/// benchmark scenes.
-pub(crate) struct Point {
-    pub(crate) name: &'static str,
-    pub(crate) ms: f64,
-    pub(crate) rmse: f64,
-    pub(crate) pareto: bool,
 }
 
 fn chart_points(scenes: &[ReportScene], settings: &[Setting], rows: &[Row]) -> Vec<Point> {
