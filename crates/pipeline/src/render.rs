@@ -98,8 +98,10 @@ struct FrameTables {
     object_textures: Vec<Option<(TextureUse, bool)>>,
 }
 
-/// A band's tile buffers and the transparency pass's sort scratch.
+/// A band's tile buffers and the transparency pass's sort scratch, aligned
+/// to 128 bytes so that two threads never write the same cache line.
 #[derive(Debug, Default)]
+#[repr(align(128))]
 struct BandBuffers {
     target: TileTarget,
     order: Vec<(f32, PrimitiveRef)>,
