@@ -176,16 +176,24 @@ pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut P
     } else {
         tri
     };
-    let flat = match ctx.shading {
+    // Flat shading lights the original triangle once, also when clipping
+    // makes a fan of it.
+    let flat = || match ctx.shading {
         ShadingMode::Flat => flat_parts(&tri, back, ctx),
         _ => LitParts::default(),
     };
     let code = tri[0].clip_code | tri[1].clip_code | tri[2].clip_code;
     if code == 0 {
         // The common case: projected once per vertex by the vertex stage.
-        emit(tri, [tri[0].projected, tri[1].projected, tri[2].projected], flat, ctx, out);
+        // Back faces are culled here already, before lighting and the call
+        // (about half of a closed mesh's triangles).
+        let p = [tri[0].projected, tri[1].projected, tri[2].projected];
+        if ctx.faces == Faces::Both || is_front_facing(&p.map(|v| v.fixed)) {
+            emit(tri, p, flat(), ctx, out);
+        }
         return;
     }
+    let flat = flat();
     if !tri.iter().all(|v| v.clip.is_finite()) {
         return;
     }
