@@ -5,15 +5,19 @@
 //! 8-bit output then moves by at most ⌊τ⌋ + 1 steps (a shift below one step
 //! can still cross one rounding boundary).
 //!
-//! The shortcuts and the bounds they rest on (all values are colours in
-//! [0, 1] per channel before the final clamp, which only shrinks
-//! differences):
+//! The shortcuts and the bounds they rest on (all values are colours per
+//! channel before the final clamp to [0, 1], which is 1-Lipschitz and so
+//! only shrinks differences; Gouraud vertex colours are in [0, 1] with
+//! `GouraudClamp::PerVertex` and unclamped sums with `PerSample`, and
+//! bounds 1 and 2 hold for any values):
 //!
 //! 1. **Gouraud → flat.** Interpolated colours are convex combinations of
 //!    the three vertex colours (perspective-correct or not), so each channel
 //!    lies in [min, max] of its vertex values; the midpoint is within
 //!    (max − min)/2 of every one. Taken when (max − min)/2 ≤ τ/255 in every
-//!    channel: the triangle is drawn as flat, with no attribute planes.
+//!    channel: the triangle is drawn as flat, with no attribute planes, in
+//!    the midpoint clamped to [0, 1] (what the per-sample clamp would have
+//!    done to it, so the bound holds after both clamps).
 //! 2. **Perspective-correct → screen-linear** (Gouraud). With q = 1/w at
 //!    the vertices and ρ = q_max/q_min, the perspective weights λᵢ and the
 //!    screen-linear weights bᵢ satisfy λᵢ/bᵢ ∈ [1/ρ, ρ], so Σ|λᵢ − bᵢ| ≤

@@ -255,6 +255,8 @@ impl Renderer {
             vertex_lighting,
             interpolation: scene.settings.interpolation,
             faces: if object.cull_back_faces { Faces::Front } else { Faces::Both },
+            sides: scene.settings.lighting_sides,
+            gouraud_clamp: scene.settings.gouraud_clamp,
             viewer: frame.viewer,
             material: (material, index as u32),
             lighting: &t.lighting,
@@ -271,7 +273,9 @@ impl Renderer {
         };
 
         let lights = match vertex_lighting {
-            VertexLighting::VertexStage => Some(VertexLights { lights: &t.lighting, material }),
+            VertexLighting::VertexStage => {
+                Some(VertexLights { lights: &t.lighting, material, clamp: scene.settings.gouraud_clamp })
+            }
             VertexLighting::Unlit | VertexLighting::Setup => None,
         };
         let screen = Screen { viewport: ctx.viewport, volume: ctx.volume };

@@ -4,7 +4,8 @@
 //! clipping and the divide); normals go through the inverse transpose of
 //! eye_from_object and are normalized here, before any interpolation. For
 //! Gouraud objects without texture or vertex colours the lighting model is
-//! evaluated at every vertex now ([`VertexLighting`] says where each
+//! evaluated at every vertex now (clamped or not, as the scene's
+//! [`GouraudClamp`] says) ([`VertexLighting`] says where each
 //! object is lit). Output: [`ClipVertex`]es with their outcodes and, when
 //! they need no clipping, their [`Projected`] window positions.
 
@@ -12,7 +13,7 @@ use glam::{Mat3, Mat4, Vec3, Vec4};
 use rayon::prelude::*;
 use wide::f32x8;
 use zline_raster::FixedPoint;
-use zline_scene::Mesh;
+use zline_scene::{GouraudClamp, Mesh};
 use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode, Vec3x8};
 
 use crate::volume::{view_code, ClipVolume};
@@ -66,12 +67,16 @@ pub enum VertexLighting {
     Unlit,
     /// Gouraud without texture or vertex colours, lit by the vertex stage,
     /// eight vertices at a time: `color` is the lit colour, clamped to
-    /// [0, 1] per vertex (SPEC's reading used by fixed-function GL).
+    /// [0, 1] per vertex ([`GouraudClamp::PerVertex`], the reading of
+    /// fixed-function GL), or the unclamped sum ambient + diffuse +
+    /// specular that the kernel clamps per sample
+    /// ([`GouraudClamp::PerSample`]).
     VertexStage,
     /// Gouraud with a texture or vertex colours, lit by setup on the
     /// original vertices before clipping (so clipped vertices interpolate
     /// lit values, SPEC §2). Until then `color` is the vertex colour; after,
-    /// untextured: `color` is the clamped lit colour; textured: `color` is
+    /// untextured: `color` is the lit colour, clamped or not as for
+    /// `VertexStage`; textured (whatever the [`GouraudClamp`]): `color` is
     /// the unclamped ambient+diffuse part and `normal` the specular part,
     /// which the textured kernel combines with the texel and clamps.
     Setup,
@@ -176,6 +181,8 @@ pub struct VertexLights<'a> {
     pub lights: &'a PreparedLights,
     /// The object's material.
     pub material: &'a PreparedMaterial,
+    /// Whether the lit colour is clamped here or per sample.
+    pub clamp: GouraudClamp,
 }
 
 /// Transforms every vertex of `mesh` into `out` (resized), in parallel, and
@@ -206,16 +213,21 @@ pub fn transform_mesh(
                 v.color = c;
             }
         }
-        if let Some(VertexLights { lights, material }) = lighting {
-            light_vertices(out, lights, material);
+        if let Some(VertexLights { lights, material, clamp }) = lighting {
+            light_vertices(out, lights, material, clamp);
         }
     });
 }
 
 /// Gouraud: the lighting model at every vertex, eight at a time (the lanes
-/// compute exactly what [`PreparedLights::shade`] would, see
-/// `zline_shading::Vec3x8`).
-fn light_vertices(vertices: &mut [ClipVertex], lights: &PreparedLights, material: &PreparedMaterial) {
+/// compute exactly what [`PreparedLights::shade`] would, or the sum of
+/// [`PreparedLights::shade_parts`] unclamped, see `zline_shading::Vec3x8`).
+fn light_vertices(
+    vertices: &mut [ClipVertex],
+    lights: &PreparedLights,
+    material: &PreparedMaterial,
+    clamp: GouraudClamp,
+) {
     for group in vertices.chunks_mut(8) {
         let lane = |k: usize| &group[k.min(group.len() - 1)];
         let gather = |f: fn(&ClipVertex) -> Vec3| {
@@ -226,7 +238,14 @@ fn light_vertices(vertices: &mut [ClipVertex], lights: &PreparedLights, material
                 z: f32x8::from(v.map(|p| p.z)),
             }
         };
-        let c = lights.shade_x8(material, gather(|v| v.eye), gather(|v| v.normal));
+        let (eye, normal) = (gather(|v| v.eye), gather(|v| v.normal));
+        let c = match clamp {
+            GouraudClamp::PerVertex => lights.shade_x8(material, eye, normal),
+            GouraudClamp::PerSample => {
+                let (ambient_diffuse, specular) = lights.shade_parts_x8(material, eye, normal);
+                ambient_diffuse + specular
+            }
+        };
         for (k, v) in group.iter_mut().enumerate() {
             v.color = c.lane(k);
         }

@@ -21,7 +21,8 @@ pub use error::MeshError;
 pub use limits::{MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_PRIMITIVE_DIVISIONS, MAX_SSAA};
 pub use mesh::{face_normal, FALLBACK_NORMAL};
 pub use model::{
-    Camera, DepthMode, Interpolation, Mesh, Object, Projection, RenderSettings, Scene, TextureMap,
+    Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, Object, Projection, RenderSettings,
+    Scene, TextureMap,
 };
 pub use primitives::{cube, plane, torus, uv_sphere};
 pub use zline_shading::{

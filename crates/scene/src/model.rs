@@ -232,6 +232,64 @@ pub struct RenderSettings {
     /// triangle the pipeline takes the cheapest evaluation whose error it
     /// can bound below this (see the pipeline's `adaptive` module).
     pub adaptive_tolerance: Option<f32>,
+    /// Where untextured Gouraud shading clamps the lit colour (SPEC §11).
+    pub gouraud_clamp: GouraudClamp,
+    /// How triangles seen from behind are lit when not culled (SPEC §11).
+    pub lighting_sides: LightingSides,
+}
+
+/// Where untextured Gouraud shading clamps the lit colour to [0, 1] (SPEC
+/// §5 clamps the lit colour, §6 interpolates colours lit at the vertices;
+/// SPEC §11 states the choice). Textured Gouraud is not affected: it keeps
+/// the two parts apart and clamps per sample after the texel (SPEC §7).
+/// Vertex colours (which multiply ka and kd at each vertex) follow it. Flat
+/// and Phong shading light where they clamp, so it does not concern them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum GouraudClamp {
+    /// The lit colour is clamped at each vertex, then interpolated (as
+    /// fixed-function OpenGL does).
+    #[default]
+    PerVertex,
+    /// The unclamped lit colour (ambient + diffuse + specular) is
+    /// interpolated and clamped at each sample: a highlight above 1 at one
+    /// vertex spreads further over the triangle.
+    PerSample,
+}
+
+impl GouraudClamp {
+    /// The name used by the CLI and scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            GouraudClamp::PerVertex => "vertex",
+            GouraudClamp::PerSample => "sample",
+        }
+    }
+}
+
+/// How a triangle drawn without back-face culling and seen from behind is
+/// lit (SPEC §11), in every shading mode. Which triangles are drawn does
+/// not change.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum LightingSides {
+    /// Two-sided lighting: its normals (vertex normals, and flat shading's
+    /// face normal) are turned towards the viewer, as OpenGL's two-sided
+    /// lighting model and glTF's doubleSided do.
+    #[default]
+    TwoSided,
+    /// One-sided lighting: normals as given, so the far side of an open or
+    /// transparent mesh is lit as if the viewer stood behind it (usually
+    /// only ambient and emission).
+    OneSided,
+}
+
+impl LightingSides {
+    /// The name used by the CLI and scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            LightingSides::TwoSided => "two-sided",
+            LightingSides::OneSided => "one-sided",
+        }
+    }
 }
 
 /// The depth buffer's representation (SPEC §4 and its stated deviation).
@@ -270,6 +328,8 @@ impl Default for RenderSettings {
             ssaa: 1,
             depth: DepthMode::Normalized,
             adaptive_tolerance: None,
+            gouraud_clamp: GouraudClamp::PerVertex,
+            lighting_sides: LightingSides::TwoSided,
         }
     }
 }

@@ -9,16 +9,18 @@
 //! the viewer (negative doubled area, window y down) is dropped. Nothing
 //! else is special about mirrored (negative-determinant) model matrices,
 //! as in the fast renderer: the window winding alone decides. Without
-//! culling, a triangle whose front faces away from the viewer — decided in
-//! eye space on the original triangle, against −p for a perspective camera
-//! and +z for an orthographic one — is lit with its normals turned around
-//! (two-sided lighting, as the fast renderer's setup does).
+//! culling and with two-sided lighting (`LightingSides::TwoSided`, the
+//! default), a triangle whose front faces away from the viewer — decided
+//! in eye space on the original triangle, against −p for a perspective
+//! camera and +z for an orthographic one — is lit with its normals turned
+//! around, as the fast renderer's setup does; one-sided lighting keeps the
+//! normals as given.
 
 use std::sync::Arc;
 
 use glam::DVec3;
 use rayon::prelude::*;
-use zline_scene::{Interpolation, Mesh, Projection, Scene, TextureMap};
+use zline_scene::{Interpolation, LightingSides, Mesh, Projection, Scene, TextureMap};
 use zline_shading::ShadingMode;
 
 use crate::camera::{self, Corner, ObjectTransforms, SampleSpace, Vertex};
@@ -62,7 +64,8 @@ pub(crate) struct Prim {
     pub(crate) object: u32,
     /// Index of the triangle in the object's mesh.
     pub(crate) triangle: u32,
-    /// Seen from behind without culling: normals are turned around.
+    /// Seen from behind without culling, with two-sided lighting: normals
+    /// are turned around.
     pub(crate) back: bool,
     /// The piece's corners when the triangle was clipped (rare, so boxed).
     pub(crate) clipped: Option<Box<[ClippedCorner; 3]>>,
@@ -113,8 +116,13 @@ impl<'a> Frame<'a> {
             let world_from_object = object.world_from_object.as_dmat4();
             let t = ObjectTransforms::new(clip_from_eye, eye_from_world, world_from_object);
             let frame_object = object_frame(scene, index, &t, &space);
-            let ctx =
-                SetupContext { object: index as u32, cull: object.cull_back_faces, orthographic, space };
+            let ctx = SetupContext {
+                object: index as u32,
+                cull: object.cull_back_faces,
+                sides: s.lighting_sides,
+                orthographic,
+                space,
+            };
             prims.extend(setup_object(&frame_object, &ctx));
             objects.push(frame_object);
         }
@@ -186,6 +194,8 @@ fn object_frame(scene: &Scene, index: usize, t: &ObjectTransforms, space: &Sampl
 struct SetupContext {
     object: u32,
     cull: bool,
+    /// How back faces that are drawn are lit.
+    sides: LightingSides,
     orthographic: bool,
     space: SampleSpace,
 }
@@ -215,7 +225,7 @@ fn setup_triangle(vertices: &[Vertex], tri: [u32; 3], index: u32, ctx: &SetupCon
     if !v.iter().all(|v| v.eye.is_finite() && v.clip.is_finite()) {
         return;
     }
-    let back = !ctx.cull && seen_from_behind(&v, ctx.orthographic);
+    let back = !ctx.cull && ctx.sides == LightingSides::TwoSided && seen_from_behind(&v, ctx.orthographic);
     let prim = |clipped| Prim { object: ctx.object, triangle: index, back, clipped };
     if let [Some(a), Some(b), Some(c)] = v.map(|v| v.corner) {
         if drawn([a, b, c], ctx.cull) {

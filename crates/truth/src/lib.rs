@@ -9,11 +9,14 @@
 //! dev-dependency: the property tests compare it with the truth.) Lighting, fog,
 //! filtering and level of detail are re-derived here from the spec; where
 //! the spec leaves a choice, the truth follows the fast renderer's stated
-//! convention, so that it is the truth of the same model.
+//! convention (SPEC §11), so that it is the truth of the same model —
+//! including the two the scene chooses: where untextured Gouraud clamps
+//! (`RenderSettings::gouraud_clamp`) and whether back faces are lit
+//! two-sided (`RenderSettings::lighting_sides`).
 //!
 //! Steps, one module each: `camera` (f64 matrices, window mapping onto the
 //! sample grid), `clip` (near/far in clip space), `frame` (vertices and the
-//! drawn triangles, culling, two-sided lighting), `coverage` (edge
+//! drawn triangles, culling, two- or one-sided lighting), `coverage` (edge
 //! functions, top-left rule, depth), `tile` (binning, opaque and
 //! transparency passes, box filter, diagnostics), `shade` (interpolation and
 //! shading modes), `lighting`, `texture`, `fog`, `image` and [`metrics`].

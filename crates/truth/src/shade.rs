@@ -13,9 +13,12 @@
 //! - Flat: the lighting model at the original triangle's eye-space centroid
 //!   with its face normal (p1 − p0) × (p2 − p0), normalized.
 //! - Gouraud: the lighting model at the three original vertices, colours
-//!   interpolated: untextured, the clamped vertex colours; textured, the
-//!   ambient+diffuse and specular parts separately (SPEC §7). A clipped
-//!   piece's new vertices carry interpolated colours, not relit ones.
+//!   interpolated: untextured, the clamped vertex colours
+//!   (`GouraudClamp::PerVertex`, the default) or the unclamped ones,
+//!   clamped per sample (`GouraudClamp::PerSample`); textured, whatever the
+//!   clamp setting, the ambient+diffuse and specular parts separately (SPEC
+//!   §7). A clipped piece's new vertices carry interpolated colours, not
+//!   relit ones.
 //! - Phong: eye position and normal interpolated, the normal renormalized
 //!   (a zero normal stays zero), the lighting model per sample.
 //!
@@ -33,6 +36,7 @@
 //! (quotient rule for perspective-correct s = S/Q) in sample space.
 
 use glam::{DVec2, DVec3, DVec4};
+use zline_scene::GouraudClamp;
 use zline_shading::ShadingMode;
 
 use crate::coverage::SampleTriangle;
@@ -168,7 +172,10 @@ impl Frame<'_> {
                 let at_vertices =
                     [0, 1, 2].map(|k| tinted(lights.shade(m, eye(k), normal(k)), tint.map(|c| c[k])));
                 if texel.is_none() {
-                    let color = blend3(&s.attr, |k| at_vertices[k].color());
+                    let color = match self.scene.settings.gouraud_clamp {
+                        GouraudClamp::PerVertex => blend3(&s.attr, |k| at_vertices[k].color()),
+                        GouraudClamp::PerSample => Parts::blend(&at_vertices, &s.attr).color(),
+                    };
                     let margin = at_vertices.iter().map(|p| p.switch_margin).fold(f64::INFINITY, f64::min);
                     return (color, margin);
                 }

@@ -9,7 +9,8 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
 use zline::pipeline::{render, RenderOptions};
 use zline::scene::{
-    DepthMode, Fog, FogCoordinate, FogMode, Interpolation, RenderSettings, Scene, ShadingMode,
+    DepthMode, Fog, FogCoordinate, FogMode, GouraudClamp, Interpolation, LightingSides, RenderSettings,
+    Scene, ShadingMode,
 };
 use zline::shading::Filter;
 
@@ -79,6 +80,12 @@ struct Common {
     /// What the depth buffer stores.
     #[arg(long, value_enum)]
     depth: Option<Depth>,
+    /// Where untextured Gouraud shading clamps the lit colour (SPEC §11).
+    #[arg(long, value_enum)]
+    gouraud_clamp: Option<Clamp>,
+    /// How back faces drawn without culling are lit (SPEC §11).
+    #[arg(long, value_enum)]
+    lighting: Option<Sides>,
     /// Tile edge in pixels; the image does not depend on it.
     #[arg(long, value_name = "PIXELS", default_value_t = RenderOptions::default().tile_size)]
     tile_size: u32,
@@ -115,6 +122,22 @@ enum Depth {
     Normalized,
     /// Reversed depth in f32: far more precise far from the camera.
     Reversed,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Clamp {
+    /// At each vertex, then interpolated (fixed-function GL; the default).
+    Vertex,
+    /// The unclamped colour interpolated, clamped per sample.
+    Sample,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Sides {
+    /// Normals turned towards the viewer (the default).
+    TwoSided,
+    /// Normals as given.
+    OneSided,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -306,6 +329,18 @@ fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
         settings.depth = match d {
             Depth::Normalized => DepthMode::Normalized,
             Depth::Reversed => DepthMode::ReversedFloat,
+        };
+    }
+    if let Some(c) = common.gouraud_clamp {
+        settings.gouraud_clamp = match c {
+            Clamp::Vertex => GouraudClamp::PerVertex,
+            Clamp::Sample => GouraudClamp::PerSample,
+        };
+    }
+    if let Some(l) = common.lighting {
+        settings.lighting_sides = match l {
+            Sides::TwoSided => LightingSides::TwoSided,
+            Sides::OneSided => LightingSides::OneSided,
         };
     }
     if let Some(i) = common.interpolation {

@@ -50,6 +50,8 @@ use render::{settings, RenderDef, ShadingDef};
 /// ssaa = 1                          # n×n supersampling, 1..=8; default 1 (off)
 /// depth = "normalized"              # normalized (default) | reversed (reversed-Z float)
 /// adaptive = 0.5                    # adaptive mode's tolerance in 8-bit units, in [0, 255]; default off
+/// gouraud_clamp = "vertex"          # vertex (default) | sample: where untextured Gouraud clamps (SPEC §11)
+/// lighting = "two-sided"            # two-sided (default) | one-sided: back faces drawn without culling
 ///
 /// [camera]                          # omitted: the scene is framed
 /// eye = [0, 1, 5]                   # required

@@ -1,12 +1,14 @@
 //! The `[render]` table of a scene file → [`RenderSettings`]: image size,
-//! shading, interpolation, texture filter, supersampling, depth mode and
-//! the adaptive mode's tolerance, each checked and located on error.
+//! shading, interpolation, texture filter, supersampling, depth mode, the
+//! adaptive mode's tolerance and the two conventions of SPEC §11 (Gouraud
+//! clamp, lighting sides), each checked and located on error.
 
 use serde::Deserialize;
 use zline_shading::Filter;
 
 use zline_scene::{
-    DepthMode, Interpolation, RenderSettings, MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_SSAA,
+    DepthMode, GouraudClamp, Interpolation, LightingSides, RenderSettings, MAX_ADAPTIVE_TOLERANCE,
+    MAX_IMAGE_SIDE, MAX_SSAA,
 };
 use zline_shading::ShadingMode;
 
@@ -23,6 +25,8 @@ pub(super) struct RenderDef {
     ssaa: Option<S<u32>>,
     depth: Option<DepthDef>,
     adaptive: Option<S<f32>>,
+    gouraud_clamp: Option<GouraudClampDef>,
+    lighting: Option<LightingDef>,
 }
 
 /// A shading mode: `[render] shading` and an object's `shading`.
@@ -67,6 +71,22 @@ enum DepthDef {
     Reversed,
 }
 
+/// The names are [`GouraudClamp::name`]'s.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum GouraudClampDef {
+    Vertex,
+    Sample,
+}
+
+/// The names are [`LightingSides::name`]'s.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+enum LightingDef {
+    TwoSided,
+    OneSided,
+}
+
 /// The render settings of the `[render]` table, the defaults without one.
 pub(super) fn settings(check: &Checker, render: Option<RenderDef>) -> Result<RenderSettings> {
     let mut settings = RenderSettings::default();
@@ -104,6 +124,18 @@ pub(super) fn settings(check: &Checker, render: Option<RenderDef>) -> Result<Ren
         let tolerance =
             check.optional(&render.adaptive, "render.adaptive", 0.0, 0.0, MAX_ADAPTIVE_TOLERANCE)?;
         settings.adaptive_tolerance = Some(tolerance);
+    }
+    if let Some(c) = render.gouraud_clamp {
+        settings.gouraud_clamp = match c {
+            GouraudClampDef::Vertex => GouraudClamp::PerVertex,
+            GouraudClampDef::Sample => GouraudClamp::PerSample,
+        };
+    }
+    if let Some(l) = render.lighting {
+        settings.lighting_sides = match l {
+            LightingDef::TwoSided => LightingSides::TwoSided,
+            LightingDef::OneSided => LightingSides::OneSided,
+        };
     }
     Ok(settings)
 }

@@ -7,8 +7,8 @@ use std::sync::Arc;
 use glam::Vec3;
 use zline_io::{default_lights, load_scene, DEFAULT_AMBIENT};
 use zline_scene::{
-    Attenuation, DepthMode, FogCoordinate, FogMode, Interpolation, Light, Projection, RenderSettings,
-    ShadingMode,
+    Attenuation, DepthMode, FogCoordinate, FogMode, GouraudClamp, Interpolation, Light, LightingSides,
+    Projection, RenderSettings, ShadingMode,
 };
 
 use crate::{check_message, data, repo, temp_file};
@@ -277,6 +277,38 @@ fn bad_supersampling_depth_and_adaptive_are_rejected() {
     );
     check_scene_error("adaptinf.toml", &render("adaptive = inf"), &["render.adaptive: must be finite"]);
     check_scene_error("adaptstr.toml", &render("adaptive = \"low\""), &["line 2, column 12", "string"]);
+}
+
+#[test]
+fn gouraud_clamp_and_lighting_sides_are_read_as_written() {
+    let s = settings_of("conv.toml", "gouraud_clamp = \"sample\"\nlighting = \"one-sided\"");
+    assert_eq!((s.gouraud_clamp, s.lighting_sides), (GouraudClamp::PerSample, LightingSides::OneSided));
+    let s = settings_of("noconv.toml", "width = 64");
+    assert_eq!((s.gouraud_clamp, s.lighting_sides), (GouraudClamp::PerVertex, LightingSides::TwoSided));
+    for clamp in [GouraudClamp::PerVertex, GouraudClamp::PerSample] {
+        let s = settings_of("clamp.toml", &format!("gouraud_clamp = {:?}", clamp.name()));
+        assert_eq!(s.gouraud_clamp, clamp, "the scene-file name is GouraudClamp::name");
+    }
+    for sides in [LightingSides::TwoSided, LightingSides::OneSided] {
+        let s = settings_of("sides.toml", &format!("lighting = {:?}", sides.name()));
+        assert_eq!(s.lighting_sides, sides, "the scene-file name is LightingSides::name");
+    }
+}
+
+#[test]
+fn bad_gouraud_clamp_and_lighting_sides_are_rejected() {
+    let render = |body: &str| format!("[render]\n{body}\n{OBJECT}");
+    check_scene_error(
+        "clamp.toml",
+        &render("gouraud_clamp = \"pixel\""),
+        &["line 2, column 17", "unknown variant `pixel`, expected `vertex` or `sample`"],
+    );
+    check_scene_error(
+        "sides.toml",
+        &render("lighting = \"two_sided\""),
+        &["line 2, column 12", "unknown variant `two_sided`, expected `two-sided` or `one-sided`"],
+    );
+    check_scene_error("clampnum.toml", &render("gouraud_clamp = 1"), &["line 2, column 17", "wanted string"]);
 }
 
 #[test]

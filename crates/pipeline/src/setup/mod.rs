@@ -18,7 +18,7 @@ pub use primitive::{
 
 use glam::Vec3;
 use zline_raster::{AttributePlanes, DepthPlane, EdgeTable, FixedPoint, PlaneBasis};
-use zline_scene::Interpolation;
+use zline_scene::{GouraudClamp, Interpolation, LightingSides};
 use zline_shading::{LitParts, PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::adaptive::{Adaptive, GouraudChoice, PhongChoice};
@@ -73,8 +73,8 @@ impl DepthEncoding {
 pub enum Faces {
     /// Front faces only: back faces are culled.
     Front,
-    /// Both sides: a triangle seen from behind is lit with its normals
-    /// turned towards the viewer (two-sided lighting).
+    /// Both sides; how a triangle seen from behind is lit is the frame's
+    /// [`LightingSides`].
     Both,
 }
 
@@ -128,6 +128,11 @@ pub struct SetupContext<'a> {
     pub interpolation: Interpolation,
     /// Which faces are drawn.
     pub faces: Faces,
+    /// How a triangle seen from behind is lit (when `faces` draws it).
+    pub sides: LightingSides,
+    /// Where untextured Gouraud clamps the lit colour: what
+    /// [`ClipVertex::color`] holds once lit, and which kernel draws it.
+    pub gouraud_clamp: GouraudClamp,
     /// Where the viewer is.
     pub viewer: Viewer,
     /// The object's material and its index in the frame's table.
@@ -153,13 +158,15 @@ pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut P
     if tri[0].view_code & tri[1].view_code & tri[2].view_code != 0 {
         return; // entirely outside one plane of the view volume (NaN vertices included)
     }
-    // Two-sided lighting: a triangle seen from behind (possible only when
-    // culling is off) is lit with its normals turned towards the viewer, as
-    // OpenGL's two-sided lighting model and glTF's doubleSided do; with
-    // one-sided lighting the far side of an open mesh would be lit as if
-    // the viewer stood behind it.
+    // Two-sided lighting (the default): a triangle seen from behind
+    // (possible only when culling is off) is lit with its normals turned
+    // towards the viewer, as OpenGL's two-sided lighting model and glTF's
+    // doubleSided do. One-sided lighting keeps the normals as given, so the
+    // far side of an open mesh is lit as if the viewer stood behind it.
     let flipped: [ClipVertex; 3];
-    let back = ctx.faces == Faces::Both && seen_from_behind(&tri, ctx.viewer);
+    let back = ctx.faces == Faces::Both
+        && ctx.sides == LightingSides::TwoSided
+        && seen_from_behind(&tri, ctx.viewer);
     let tri = if back {
         flipped = tri.map(|v| turned(v, ctx));
         [&flipped[0], &flipped[1], &flipped[2]]
@@ -210,7 +217,8 @@ pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut P
 
 /// SPEC §6 flat shading: the lighting model at the centroid of the original
 /// triangle with its face normal (computed in f64 so huge coordinates do not
-/// overflow), turned towards the viewer when `back` (two-sided lighting).
+/// overflow), turned towards the viewer when `back` (two-sided lighting of
+/// a triangle seen from behind).
 fn flat_parts(tri: &[&ClipVertex; 3], back: bool, ctx: &SetupContext<'_>) -> LitParts {
     let p = tri.map(|v| v.eye.as_dvec3());
     let mut normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero().as_vec3();
@@ -227,9 +235,9 @@ fn flat_parts(tri: &[&ClipVertex; 3], back: bool, ctx: &SetupContext<'_>) -> Lit
 
 /// A vertex of a Gouraud triangle lit in setup ([`VertexLighting::Setup`]):
 /// the ambient+diffuse part multiplied by the vertex colour when the mesh
-/// has them; untextured, `color` becomes the clamped lit colour; textured,
-/// `color` and `normal` carry the unclamped ambient+diffuse and specular
-/// parts (the normal is not needed once lit).
+/// has them; untextured, `color` becomes the lit colour ([`lit_color`]:
+/// clamped or not); textured, `color` and `normal` carry the unclamped
+/// ambient+diffuse and specular parts (the normal is not needed once lit).
 fn lit_in_setup(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
     let mut parts = ctx.lighting.shade_parts(ctx.material.0, v.eye, v.normal, Vec3::ZERO);
     if ctx.vertex_colors == VertexColors::Present {
@@ -238,7 +246,18 @@ fn lit_in_setup(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
     if ctx.texture.is_some() {
         ClipVertex { color: parts.ambient_diffuse, normal: parts.specular, ..*v }
     } else {
-        ClipVertex { color: parts.color(), ..*v }
+        ClipVertex { color: lit_color(parts, ctx.gouraud_clamp), ..*v }
+    }
+}
+
+/// An untextured Gouraud vertex's colour attribute: the lit colour clamped
+/// to [0, 1] ([`GouraudClamp::PerVertex`]), or the unclamped sum that the
+/// kernel clamps per sample ([`GouraudClamp::PerSample`]).
+#[inline]
+fn lit_color(parts: LitParts, clamp: GouraudClamp) -> Vec3 {
+    match clamp {
+        GouraudClamp::PerVertex => parts.color(),
+        GouraudClamp::PerSample => parts.ambient_diffuse + parts.specular,
     }
 }
 
@@ -259,7 +278,9 @@ fn seen_from_behind(tri: &[&ClipVertex; 3], viewer: Viewer) -> bool {
 fn turned(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
     let normal = -v.normal;
     let color = match ctx.vertex_lighting {
-        VertexLighting::VertexStage => ctx.lighting.shade(ctx.material.0, v.eye, normal, Vec3::ZERO),
+        VertexLighting::VertexStage => {
+            lit_color(ctx.lighting.shade_parts(ctx.material.0, v.eye, normal, Vec3::ZERO), ctx.gouraud_clamp)
+        }
         VertexLighting::Unlit | VertexLighting::Setup => v.color,
     };
     ClipVertex { normal, color, ..*v }
@@ -299,7 +320,10 @@ fn adaptive_shortcuts(
         (ShadingMode::Gouraud, None) => {
             let perspective = ctx.interpolation == Interpolation::PerspectiveCorrect;
             match adaptive.gouraud(tri.map(|v| v.color), p.map(|v| v.inv_w), perspective) {
-                GouraudChoice::Flat(c) => s.lighting = Shortcut::Flat(c),
+                // With GouraudClamp::PerSample the vertex colours, and so
+                // their midpoint, are unclamped, and the flat kernel does
+                // not clamp (a no-op for colours clamped at the vertices).
+                GouraudChoice::Flat(c) => s.lighting = Shortcut::Flat(c.clamp(Vec3::ZERO, Vec3::ONE)),
                 GouraudChoice::Linear => s.interpolation = Interpolation::ScreenLinear,
                 GouraudChoice::Full => {}
             }
@@ -378,7 +402,8 @@ fn emit(
             (ShadingMode::Flat, Shortcut::None) => push!(t.flat, Kernel::Flat, Flat { color: flat.color() }),
             (ShadingMode::Gouraud, Shortcut::None) => {
                 let planes = planes.build(|v| [v.color]);
-                push!(t.gouraud, Kernel::Gouraud(interpolation), Gouraud { planes })
+                let kernel = Kernel::Gouraud { interpolation, clamp: ctx.gouraud_clamp };
+                push!(t.gouraud, kernel, Gouraud { planes })
             }
             (ShadingMode::Phong, Shortcut::None) => match ctx.vertex_colors {
                 VertexColors::Absent => {

@@ -8,14 +8,15 @@
 
 use glam::Vec3;
 use zline_raster::{AttributePlanes, DepthPlane, EdgeTable, Rect};
-use zline_scene::Interpolation;
+use zline_scene::{GouraudClamp, Interpolation};
 
 /// The plane sets of the kernels: the index of each attribute in a
 /// primitive's [`AttributePlanes`], and their count. Plane `Q` is 1/w when
 /// interpolation is perspective-correct (every other plane then holds a/w)
 /// and 1 when it is screen-linear.
 pub mod layout {
-    /// Gouraud: the lit colour.
+    /// Gouraud: the lit colour (clamped at the vertices or not, as
+    /// [`super::Kernel::Gouraud`]'s `clamp` says).
     pub mod gouraud {
         /// 1/w.
         pub const Q: usize = 0;
@@ -188,7 +189,14 @@ pub enum Kernel {
     /// [`Flat`] (no attributes, so no interpolation).
     Flat,
     /// [`Gouraud`].
-    Gouraud(Interpolation),
+    Gouraud {
+        /// How attributes are interpolated.
+        interpolation: Interpolation,
+        /// [`GouraudClamp::PerVertex`]: the colours were clamped at the
+        /// vertices and are drawn as interpolated;
+        /// [`GouraudClamp::PerSample`]: each sample's colour is clamped.
+        clamp: GouraudClamp,
+    },
     /// [`Phong`] without vertex colours.
     Phong(Interpolation),
     /// [`Phong`] with vertex colours.

@@ -13,6 +13,7 @@
 //! | [`Pass`] | [`Opaque`], [`Blend`], [`BlendFogged`] | depth write and replace, or blend (fogged per sample) |
 //! | [`Alpha`] | [`IgnoreAlpha`], [`MaskAlpha`], [`TextureAlpha`] | the texel's alpha ignored, tested against the cutoff, or blended |
 //! | [`Lod`] | [`BaseLod`], [`DerivativeLod`] | level 0, or the level from the exact derivatives of s and t |
+//! | [`Clamp`] | [`ClampedAtVertices`], [`ClampPerSample`] | Gouraud: colours used as interpolated, or clamped per sample |
 //!
 //! [`Kernel`]: crate::setup::Kernel
 
@@ -62,6 +63,34 @@ impl Interp for Linear {
     #[inline(always)]
     fn divide(v: f32x8, _: f32x8) -> f32x8 {
         v
+    }
+}
+
+/// What the Gouraud kernel does with a sample's interpolated colour
+/// (`zline_scene::GouraudClamp`).
+pub(crate) trait Clamp {
+    /// The colour drawn.
+    fn clamp(c: Vec3x8) -> Vec3x8;
+}
+
+/// The vertex colours were clamped to [0, 1]: their interpolation is used
+/// as it is.
+pub(crate) struct ClampedAtVertices;
+
+/// The vertex colours are unclamped: each sample is clamped to [0, 1].
+pub(crate) struct ClampPerSample;
+
+impl Clamp for ClampedAtVertices {
+    #[inline(always)]
+    fn clamp(c: Vec3x8) -> Vec3x8 {
+        c
+    }
+}
+
+impl Clamp for ClampPerSample {
+    #[inline(always)]
+    fn clamp(c: Vec3x8) -> Vec3x8 {
+        c.clamp01()
     }
 }
 
@@ -356,12 +385,13 @@ impl TileTarget {
         self.scan((&p.edges, &p.depth), &planes, pass, &IgnoreAlpha, |_| (c, f32x8::ONE))
     }
 
-    /// SPEC §6 Gouraud: the lit vertex colours interpolated.
-    pub(super) fn gouraud<I: Interp, P: Pass>(&mut self, p: &Primitive<Gouraud>, pass: &P) -> u64 {
+    /// SPEC §6 Gouraud: the lit vertex colours interpolated (and clamped
+    /// per sample when `C` says so).
+    pub(super) fn gouraud<I: Interp, C: Clamp, P: Pass>(&mut self, p: &Primitive<Gouraud>, pass: &P) -> u64 {
         self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a| {
             let (q, c) = (a[gouraud::Q], gouraud::COLOR);
             let c = Vec3x8 { x: I::divide(a[c], q), y: I::divide(a[c + 1], q), z: I::divide(a[c + 2], q) };
-            (c, f32x8::ONE)
+            (C::clamp(c), f32x8::ONE)
         })
     }
 

@@ -26,7 +26,7 @@ pub use target::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEA
 
 use wide::{f32x8, CmpEq, CmpLt};
 use zline_raster::LANES;
-use zline_scene::Interpolation;
+use zline_scene::{GouraudClamp, Interpolation};
 use zline_shading::Vec3x8;
 
 use crate::bin::PrimitiveRef;
@@ -34,8 +34,8 @@ use crate::fog::{FogFactors, FogPass, FogVisitor};
 use crate::setup::{AlphaUse, Draw, Kernel, LevelOfDetail, PassKind, PrimitiveChunk, TexturedLighting};
 
 use kernel::{
-    Alpha, BaseLod, Blend, BlendFogged, DerivativeLod, IgnoreAlpha, Interp, Linear, Lod, MaskAlpha, Opaque,
-    Pass, Perspective, TextureAlpha,
+    Alpha, BaseLod, Blend, BlendFogged, ClampPerSample, ClampedAtVertices, DerivativeLod, IgnoreAlpha,
+    Interp, Linear, Lod, MaskAlpha, Opaque, Pass, Perspective, TextureAlpha,
 };
 
 impl TileTarget {
@@ -131,10 +131,17 @@ impl TileTarget {
         let (t, i) = (&chunk.tables, d.index as usize);
         match d.kernel {
             Kernel::Flat => self.flat(&t.flat[i], pass),
-            Kernel::Gouraud(Interpolation::PerspectiveCorrect) => {
-                self.gouraud::<Perspective, P>(&t.gouraud[i], pass)
+            Kernel::Gouraud { interpolation, clamp: GouraudClamp::PerVertex } => match interpolation {
+                Interpolation::PerspectiveCorrect => {
+                    self.gouraud::<Perspective, ClampedAtVertices, P>(&t.gouraud[i], pass)
+                }
+                Interpolation::ScreenLinear => {
+                    self.gouraud::<Linear, ClampedAtVertices, P>(&t.gouraud[i], pass)
+                }
+            },
+            Kernel::Gouraud { interpolation, clamp: GouraudClamp::PerSample } => {
+                self.gouraud_clamped_per_sample(&t.gouraud[i], interpolation, pass)
             }
-            Kernel::Gouraud(Interpolation::ScreenLinear) => self.gouraud::<Linear, P>(&t.gouraud[i], pass),
             Kernel::Phong(Interpolation::PerspectiveCorrect) => {
                 self.phong::<Perspective, P>(&t.phong[i], ctx, pass)
             }
@@ -151,6 +158,21 @@ impl TileTarget {
                     Interpolation::ScreenLinear => self.textured_lod::<Linear, P>(chunk, k, ctx, pass),
                 }
             }
+        }
+    }
+
+    /// Gouraud clamped per sample, out of line so that the default kernels
+    /// are compiled as if these did not exist.
+    #[inline(never)]
+    fn gouraud_clamped_per_sample<P: Pass>(
+        &mut self,
+        p: &crate::setup::Primitive<crate::setup::Gouraud>,
+        interpolation: Interpolation,
+        pass: &P,
+    ) -> u64 {
+        match interpolation {
+            Interpolation::PerspectiveCorrect => self.gouraud::<Perspective, ClampPerSample, P>(p, pass),
+            Interpolation::ScreenLinear => self.gouraud::<Linear, ClampPerSample, P>(p, pass),
         }
     }
 

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
 use proptest::prelude::*;
-use zline_scene::{uv_sphere, Interpolation, Object, Scene};
+use zline_scene::{uv_sphere, GouraudClamp, Interpolation, Object, Scene};
 use zline_shading::{Attenuation, Light, Material, ShadingMode};
 
 use crate::support::{colored, draw, object, scene, wavy_grid};
@@ -58,11 +58,17 @@ proptest! {
         distance in 2.5f32..12.0,
         tolerance in prop_oneof![Just(0.25f32), Just(0.5), Just(1.0), Just(2.0), Just(4.0), Just(8.0)],
         ks in prop_oneof![Just(0.0f32), Just(0.6)],
+        per_sample in any::<bool>(),
     ) {
         let mode = if phong { ShadingMode::Phong } else { ShadingMode::Gouraud };
         let mut s = shiny_scene(mode, Vec3::from(light), Vec3::from(color), a2, distance, ks);
         if linear {
             s.settings.interpolation = Interpolation::ScreenLinear;
+        }
+        if per_sample {
+            // Unclamped vertex colours (the light reaches 1.5): the
+            // bounds hold for any values (see the module).
+            s.settings.gouraud_clamp = GouraudClamp::PerSample;
         }
         let full = draw(&s);
         s.settings.adaptive_tolerance = Some(tolerance);

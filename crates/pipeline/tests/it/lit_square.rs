@@ -77,7 +77,8 @@ fn gouraud_centre_averages_the_diagonal_vertices() {
     // The centre is the midpoint of the shared diagonal: barycentrics (½, ½)
     // on its two vertices. w is the same at every vertex, so perspective
     // correction changes nothing. Vertex colours are clamped before
-    // interpolation (SPEC §5).
+    // interpolation (the default `GouraudClamp::PerVertex`, SPEC §11; the
+    // other reading is tested in `conventions`).
     let at = |x: f64, y: f64| lighting(DVec3::new(x, y, -2.0), DVec3::Z).clamp(DVec3::ZERO, DVec3::ONE);
     check_centre(ShadingMode::Gouraud, (at(-1.0, -1.0) + at(1.0, 1.0)) * 0.5);
 }
@@ -136,7 +137,8 @@ fn a_square_seen_from_behind_is_lit_like_its_front_when_culling_is_off() {
     // The same square twice: wound counter-clockwise with normals towards
     // the viewer, and clockwise with normals away (its back faces us). With
     // culling off, two-sided lighting turns the back's normals around, so
-    // both light alike; one-sided lighting would leave the back at ka·Ia.
+    // both light alike; one-sided lighting (`LightingSides::OneSided`,
+    // tested in `conventions`) would leave the back at ka·Ia.
     let light =
         Light::Point { position: Vec3::new(0.3, 0.8, 0.5), color: Vec3::ONE, attenuation: Attenuation::NONE };
     let m = Material::plastic(Vec3::new(0.7, 0.4, 0.2), 0.5, 16.0);

@@ -3,6 +3,7 @@
 
 mod adaptive;
 mod clipping;
+mod conventions;
 mod depth_modes;
 mod determinism;
 mod fog;

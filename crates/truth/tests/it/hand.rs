@@ -2,7 +2,7 @@
 //! independently of the truth's code.
 
 use glam::{DVec2, DVec3, Vec3};
-use zline_scene::{Camera, Projection, RenderSettings, Scene};
+use zline_scene::{Camera, GouraudClamp, LightingSides, Projection, RenderSettings, Scene};
 use zline_shading::{Attenuation, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
 use zline_truth::{render_truth, TruthImage};
 
@@ -67,6 +67,67 @@ fn lit_square_centre_pixel_in_each_mode() {
     // The modes really differ here, so the test tells them apart.
     assert!((lighting(centroid, DVec3::Z) - lighting(p, DVec3::Z)).abs().max_element() > 0.01);
     assert!((gouraud - lighting(p, DVec3::Z)).abs().max_element() > 0.001);
+}
+
+/// The lit square's centre pixel (as in `lit_square_centre_pixel_in_each_mode`)
+/// with an emission of 0.75 that lifts the vertex nearest the light above 1
+/// in red and leaves the farthest below: Gouraud clamped per vertex blends
+/// the clamped vertex colours, clamped per sample clamps the blend of the
+/// unclamped ones (SPEC §11).
+#[test]
+fn gouraud_clamped_per_vertex_or_per_sample() {
+    let m = Material { ke: Vec3::splat(0.75), ..MATERIAL };
+    let unclamped = |c: DVec2| {
+        let (ambient_diffuse, specular) = parts(&m, c.extend(-2.0), DVec3::Z);
+        ambient_diffuse + specular
+    };
+    let corners = [DVec2::new(-1.0, -1.0), DVec2::new(1.0, -1.0), DVec2::new(1.0, 1.0)];
+    let lit = corners.map(unclamped);
+    assert!(lit[2].x > 1.05 && lit[0].x < 0.95, "{lit:?}");
+    // Barycentric weights of eye point (1/32, −1/32, −2) in that triangle:
+    // areas of the sub-triangles opposite each corner over the whole (4).
+    let w = [31.0 / 64.0, 2.0 / 64.0, 31.0 / 64.0];
+    let clamp = |c: DVec3| c.clamp(DVec3::ZERO, DVec3::ONE);
+    let per_vertex: DVec3 = (0..3).map(|k| clamp(lit[k]) * w[k]).sum();
+    let per_sample = clamp((0..3).map(|k| lit[k] * w[k]).sum());
+    assert!((per_vertex - per_sample).abs().max_element() > 0.01, "the readings differ");
+    for (reading, want) in [(GouraudClamp::PerVertex, per_vertex), (GouraudClamp::PerSample, per_sample)] {
+        let light = Light::Point { position: LIGHT, color: LIGHT_COLOR, attenuation: ATTENUATION };
+        let square = square(0.0, 0.0, 1.0, -2.0, m);
+        let mut s = scene(64, AMBIENT, vec![light], vec![object(square, Some(ShadingMode::Gouraud))]);
+        s.settings.gouraud_clamp = reading;
+        check_close(render_truth(&s).pixel(32, 32), want, F64_TOLERANCE);
+    }
+}
+
+/// The lit square wound the other way with normals −z, culling off: its
+/// front faces away from the viewer, and the light is on the viewer's
+/// side. Two-sided lighting turns the normals to +z and lights it like the
+/// front; one-sided lighting leaves N·L < 0, so only ka·Ia remains, in
+/// every shading mode (SPEC §11).
+#[test]
+fn a_back_face_lit_two_sided_or_one_sided() {
+    let front = square(0.0, 0.0, 1.0, -2.0, MATERIAL);
+    let back = mesh(
+        front.positions.clone(),
+        vec![-Vec3::Z; 4],
+        front.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect(),
+        MATERIAL,
+    );
+    let light = Light::Point { position: LIGHT, color: LIGHT_COLOR, attenuation: ATTENUATION };
+    let p = DVec3::new(1.0 / 32.0, -1.0 / 32.0, -2.0);
+    for mode in [ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong] {
+        let mut s = scene(64, AMBIENT, vec![light], vec![object(back.clone(), Some(mode))]);
+        let two_sided = render_truth(&s).pixel(32, 32);
+        s.settings.lighting_sides = LightingSides::OneSided;
+        let one_sided = render_truth(&s).pixel(32, 32);
+        check_close(two_sided, lit_square(mode).pixel(32, 32), F64_TOLERANCE);
+        check_close(one_sided, d(MATERIAL.ka) * d(AMBIENT), F64_TOLERANCE);
+        if mode == ShadingMode::Phong {
+            check_close(two_sided, lighting(p, DVec3::Z), F64_TOLERANCE);
+        }
+        assert!((two_sided - one_sided).abs().max_element() > 0.05, "{mode:?}: the readings differ");
+    }
 }
 
 /// An orthographic camera whose window coordinates are (x, 16 − y) for

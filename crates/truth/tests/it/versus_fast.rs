@@ -4,8 +4,10 @@
 //! mirrored), materials with a small emission, vertex colours (on flat and
 //! Gouraud objects), textures, culling, every shading mode, point and
 //! directional lights with attenuation, perspective and orthographic
-//! cameras, perspective-correct and screen-linear interpolation, fog, and a
-//! transparent planar quad.
+//! cameras, perspective-correct and screen-linear interpolation, fog, a
+//! transparent planar quad, and both readings of each convention the scene
+//! chooses (Gouraud clamped per vertex or per sample, back faces lit
+//! two-sided or one-sided; SPEC §11).
 //!
 //! The bound. Away from places where the image may change abruptly — the
 //! truth's `boundary_distance` at least [`MARGIN`] — every channel of the
@@ -47,7 +49,10 @@ use std::sync::Arc;
 use glam::{Mat4, Quat, Vec2, Vec3};
 use proptest::prelude::*;
 use zline_pipeline::{render, RenderOptions};
-use zline_scene::{Camera, Interpolation, Mesh, Object, Projection, RenderSettings, Scene, TextureMap};
+use zline_scene::{
+    Camera, GouraudClamp, Interpolation, LightingSides, Mesh, Object, Projection, RenderSettings, Scene,
+    TextureMap,
+};
 use zline_shading::{
     Attenuation, Filter, Fog, FogCoordinate, FogMode, Light, Material, Sampler, ShadingMode, Texture, Wrap,
 };
@@ -282,6 +287,8 @@ prop_compose! {
         fog in fog(),
         shading in prop::sample::select(ShadingMode::ALL.to_vec()),
         linear in any::<bool>(),
+        gouraud_clamp in prop::sample::select(vec![GouraudClamp::PerVertex, GouraudClamp::PerSample]),
+        lighting_sides in prop::sample::select(vec![LightingSides::TwoSided, LightingSides::OneSided]),
     ) -> Scene {
         objects.extend(glass);
         let interpolation = if linear { Interpolation::ScreenLinear } else { Interpolation::PerspectiveCorrect };
@@ -291,7 +298,15 @@ prop_compose! {
             ambient: ambient * 0.4,
             lights,
             objects,
-            settings: RenderSettings { width: SIZE, height: SIZE, shading, interpolation, ..RenderSettings::default() },
+            settings: RenderSettings {
+                width: SIZE,
+                height: SIZE,
+                shading,
+                interpolation,
+                gouraud_clamp,
+                lighting_sides,
+                ..RenderSettings::default()
+            },
             fog,
         }
     }

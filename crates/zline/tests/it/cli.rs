@@ -111,3 +111,42 @@ fn the_filter_flag_changes_textured_output() {
     check_png(&run(&tri, "trilinear"), &tri, (64, 48));
     assert_ne!(std::fs::read(&near).unwrap(), std::fs::read(&tri).unwrap(), "filtering made no difference");
 }
+
+#[test]
+fn convention_flags_change_the_image_and_override_the_scene_file() {
+    // A transparent Gouraud sphere (culling off, so its inside shows through)
+    // under a light bright enough to lift vertex colours above 1.
+    let dir = tempfile::tempdir().unwrap();
+    let body = "[camera]\neye = [0, 0, 4]\n\n[[lights]]\ntype = \"point\"\nposition = [1, 2, 3]\n\
+                color = [2.5, 2.5, 2.5]\n\n[[objects]]\nprimitive = \"sphere\"\nrings = 8\nsegments = 12\n\
+                shading = \"gouraud\"\n[objects.material]\ncolor = [0.6, 0.3, 0.2]\nks = [0.8, 0.8, 0.8]\n\
+                opacity = 0.5\n";
+    let plain = dir.path().join("plain.toml");
+    std::fs::write(&plain, body).unwrap();
+    let chosen = dir.path().join("chosen.toml");
+    std::fs::write(
+        &chosen,
+        format!("[render]\ngouraud_clamp = \"sample\"\nlighting = \"one-sided\"\n\n{body}"),
+    )
+    .unwrap();
+    let run = |scene: &std::path::Path, name: &str, flags: &[&str]| {
+        let png = dir.path().join(name);
+        let args =
+            [&["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "64x48"][..], flags];
+        check_png(&zline(&args.concat()), &png, (64, 48));
+        std::fs::read(&png).unwrap()
+    };
+    let default = run(&plain, "default.png", &[]);
+    let sample = run(&plain, "sample.png", &["--gouraud-clamp", "sample"]);
+    let one_sided = run(&plain, "one.png", &["--lighting", "one-sided"]);
+    assert_ne!(default, sample, "--gouraud-clamp sample made no difference");
+    assert_ne!(default, one_sided, "--lighting one-sided made no difference");
+    let both = run(&plain, "both.png", &["--gouraud-clamp", "sample", "--lighting", "one-sided"]);
+    assert_eq!(run(&chosen, "chosen.png", &[]), both, "the scene-file keys and the flags disagree");
+    let overridden =
+        run(&chosen, "overridden.png", &["--gouraud-clamp", "vertex", "--lighting", "two-sided"]);
+    assert_eq!(overridden, default, "the flags do not override the scene file");
+    let out = zline(&["demo", "-o", "x.png", "--lighting", "three-sided"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("one-sided"));
+}
