@@ -15,7 +15,7 @@ use std::arch::x86_64::{
     _mm256_setzero_ps, _mm256_shuffle_ps, _mm256_unpackhi_ps, _mm256_unpacklo_ps, _mm_loadu_ps,
 };
 
-use crate::{all_in_range, scalar, Isa};
+use crate::{all_in_range, cold, scalar, Isa};
 
 /// Proof that the CPU has AVX2: only [`token`] makes one.
 #[derive(Clone, Copy, Debug)]
@@ -79,14 +79,6 @@ impl Avx2 {
             cold(|| scalar::gather_adjacent_texels_x8(texels, a))
         }
     }
-}
-
-/// The scalar twin on an index out of range (it panics), out of line so
-/// that callers keep the kernels' results in registers.
-#[cold]
-#[inline(never)]
-fn cold<T>(twin: impl FnOnce() -> T) -> T {
-    twin()
 }
 
 /// Texel `idx[k]` in the low half of row k and texel `idx[k + 4]` in its

@@ -28,10 +28,11 @@
 //! the scalar sampler per block.
 //!
 //! The texels move into lanes through `zline_simd`, the workspace's one
-//! crate with explicit SIMD (AVX2 chosen at run time, scalar twins that
-//! define the results elsewhere): a texel pair per lane is two 16-byte
-//! loads and a 4×4 transpose inside each 128-bit half, or, where no lane's
-//! columns wrap apart, one 32-byte load and an 8×8 transpose. Against the
+//! crate with explicit SIMD (AVX2 chosen at run time, else SSE2 on x86-64,
+//! else scalar twins that define the results): with AVX2 a texel pair per
+//! lane is two 16-byte loads and a 4×4 transpose inside each 128-bit half,
+//! or, where no lane's columns wrap apart, one 32-byte load and an 8×8
+//! transpose. Against the
 //! same moves built from `wide` (each lane's texels inserted into a vector
 //! element by element, with a bounds check per index) the textured floor
 //! went from 20.1 to 18.0 ms per frame on one thread (ratio 0.90 over ten
@@ -131,7 +132,9 @@ impl Texture {
     }
 
     /// [`Self::gather_pair`] for b = a + 1: one 8-float load per lane.
-    #[inline]
+    /// Always inlined: the usual case, and out of line (as the compiler
+    /// chose once) its eight result vectors went through memory.
+    #[inline(always)]
     fn gather_adjacent(&self, a: [i32; 8]) -> ([f32x8; 4], [f32x8; 4]) {
         split(zline_simd::gather_adjacent_texels_x8(self.texel_array(), a))
     }
