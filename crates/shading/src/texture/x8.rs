@@ -155,7 +155,7 @@ impl Texture {
         let last = self.levels.len() - 1;
         let beyond = lod.cmp_ge(f32x8::splat(last as f32));
         let between = lod.cmp_gt(f32x8::ZERO) & !beyond;
-        let level = between.blend(lod.floor(), f32x8::ZERO);
+        let level = between.blend(floor(lod), f32x8::ZERO);
         // Lanes beyond the chain read the last level; `level` < last
         // elsewhere, so `finer + 1` stays in the chain.
         let finer = beyond.blend(f32x8::splat(last as f32), level).trunc_int();
@@ -192,6 +192,45 @@ fn split(c: [[f32; 8]; 8]) -> ([f32x8; 4], [f32x8; 4]) {
     ([r0.into(), g0.into(), b0.into(), a0.into()], [r1.into(), g1.into(), b1.into(), a1.into()])
 }
 
+/// `f32::floor` per lane, bit for bit. `wide` rounds with one instruction
+/// where the target has one (SSE4.1, as in x86-64-v3; NEON), but plain
+/// x86-64 has none and `wide` then calls libm's `floorf` once per lane:
+/// there [`floor_sse2`] does it with conversions.
+#[inline(always)]
+fn floor(x: f32x8) -> f32x8 {
+    if cfg!(all(target_arch = "x86_64", not(target_feature = "sse4.1"))) {
+        floor_sse2(x)
+    } else {
+        x.floor()
+    }
+}
+
+/// ⌊x⌋ from SSE2 conversions: below 2^23 in magnitude, truncation to an
+/// integer and back is exact, minus one where that rounded up (negative
+/// non-integers); the sign of x is ORed back in, which gives −0.0 for
+/// −0.0 and changes nothing else (a negative x has a negative floor). At
+/// 2^23 and beyond every float is an integer, and infinities and NaN stay
+/// as they are: x itself. (`f32::floor` of a signalling NaN is quiet or not
+/// depending on the build; the sampler discards non-finite lanes anyway.)
+#[inline(always)]
+fn floor_sse2(x: f32x8) -> f32x8 {
+    let small = x.abs().cmp_lt(f32x8::splat(8_388_608.0)); // 2^23; false for NaN
+    let t = f32x8::from_i32x8(x.trunc_int());
+    let down = t - (t.cmp_gt(x) & f32x8::ONE);
+    small.blend(down | (x & f32x8::splat(-0.0)), x)
+}
+
+/// Whether `got` is `f32::floor(v)`: bit for bit, except that a NaN only
+/// has to stay NaN (see [`floor_sse2`]).
+#[cfg(test)]
+fn is_floor_of(got: f32, v: f32) -> bool {
+    if v.is_nan() {
+        got.is_nan()
+    } else {
+        got.to_bits() == v.floor().to_bits()
+    }
+}
+
 /// a + (b − a)·f per channel, as the scalar `lerp`.
 #[inline]
 fn lerp4(a: [f32x8; 4], b: [f32x8; 4], f: f32x8) -> [f32x8; 4] {
@@ -203,7 +242,7 @@ fn lerp4(a: [f32x8; 4], b: [f32x8; 4], f: f32x8) -> [f32x8; 4] {
 #[inline]
 fn nearest_index(coord: f32x8, size_f: f32x8, size: i32x8, wrap: Wrap) -> i32x8 {
     let u = coord * size_f;
-    let i = u.is_finite().blend(u.floor(), f32x8::ZERO).trunc_int();
+    let i = u.is_finite().blend(floor(u), f32x8::ZERO).trunc_int();
     match wrap {
         Wrap::Repeat => repeat(i, size),
         Wrap::ClampToEdge => i.max(i32x8::ZERO).min(size - i32x8::splat(1)),
@@ -216,7 +255,7 @@ fn nearest_index(coord: f32x8, size_f: f32x8, size: i32x8, wrap: Wrap) -> i32x8 
 fn linear_taps(coord: f32x8, size_f: f32x8, size: i32x8, wrap: Wrap) -> (i32x8, i32x8, f32x8) {
     let u = coord * size_f - f32x8::splat(0.5);
     let finite = u.is_finite();
-    let below = u.floor();
+    let below = floor(u);
     let i = finite.blend(below, f32x8::ZERO).trunc_int();
     let f = finite.blend(u - below, f32x8::ZERO);
     let one = i32x8::splat(1);
@@ -261,7 +300,7 @@ fn repeat(i: i32x8, size: i32x8) -> i32x8 {
 fn rem_euclid(i: i32x8, size: i32x8) -> i32x8 {
     let size_f = f32x8::from_i32x8(size);
     let step = |v: i32x8| {
-        let q = (f32x8::from_i32x8(v) / size_f).floor().trunc_int();
+        let q = floor(f32x8::from_i32x8(v) / size_f).trunc_int();
         v - q * size
     };
     step(step(i))
@@ -288,7 +327,59 @@ mod tests {
         }
     }
 
+    /// Floats where floor is delicate: zeros, halves, the 2^23 boundary,
+    /// the i32 range, infinities and NaNs (signalling included).
+    const FLOOR_EDGES: [f32; 24] = [
+        0.0,
+        -0.0,
+        0.5,
+        -0.5,
+        1.0,
+        -1.0,
+        1.5,
+        -1.5,
+        8_388_607.5,
+        -8_388_607.5,
+        8_388_608.0,
+        -8_388_608.0,
+        16_777_217.0,
+        2.147_483_6e9,
+        -2.147_483_6e9,
+        3.0e9,
+        -3.0e9,
+        f32::MAX,
+        -f32::MAX,
+        f32::MIN_POSITIVE,
+        -1.0e-45,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+    ];
+
+    #[test]
+    fn sse2_floor_matches_f32_floor_at_the_edges() {
+        let snan = f32::from_bits(0x7f80_0001);
+        let mut values = FLOOR_EDGES.to_vec();
+        values.extend([snan, -snan, f32::from_bits(0xffc0_1234), -0.999_999_94, 0.999_999_94]);
+        for chunk in values.chunks(8) {
+            let mut lanes = [0.0; 8];
+            lanes[..chunk.len()].copy_from_slice(chunk);
+            let got = floor_sse2(f32x8::from(lanes)).to_array();
+            for (k, v) in lanes.iter().enumerate() {
+                assert!(is_floor_of(got[k], *v), "floor({v:e}) = {}", got[k]);
+            }
+        }
+    }
+
     proptest! {
+        #[test]
+        fn sse2_floor_matches_f32_floor(bits in any::<u32>(), small in -1.0e7f32..1.0e7) {
+            for v in [f32::from_bits(bits), small] {
+                let got = floor_sse2(f32x8::splat(v)).to_array()[0];
+                prop_assert!(is_floor_of(got, v), "floor({:e}) = {}", v, got);
+            }
+        }
+
         #[test]
         fn rem_euclid_matches_the_scalar_one(i in any::<i32>(), size in 1i32..=16384) {
             let got = rem_euclid(i32x8::splat(i), i32x8::splat(size)).to_array()[0];
