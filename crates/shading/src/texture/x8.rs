@@ -32,13 +32,12 @@
 //! else scalar twins that define the results): with AVX2 a texel pair per
 //! lane is two 16-byte loads and a 4×4 transpose inside each 128-bit half,
 //! or, where no lane's columns wrap apart, one 32-byte load and an 8×8
-//! transpose. Against the
-//! same moves built from `wide` (each lane's texels inserted into a vector
-//! element by element, with a bounds check per index) the textured floor
-//! went from 20.1 to 18.0 ms per frame on one thread (ratio 0.90 over ten
-//! alternating runs), the transparent spheres over it from 24.9 to 23.3 ms
-//! (0.94). AVX2's `vgatherdps`, one gather per channel, measured 2–3×
-//! slower than these loads and transposes.
+//! transpose. Against the same moves built from `wide` (each lane's
+//! texels inserted element by element, with a bounds check per index) the
+//! textured floor went from 20.1 to 18.1 ms per frame on one thread (ratio
+//! 0.90 over eight alternating runs), the transparent spheres over it from
+//! 25.0 to 23.0 ms (0.92). AVX2's `vgatherdps`, one gather per channel,
+//! measured 2–3× slower than these loads and transposes.
 
 use wide::{f32x8, i32x8, CmpEq, CmpGe, CmpGt, CmpLt};
 
