@@ -1,7 +1,7 @@
 //! The AVX2 kernels. Each `unsafe fn` here has `#[target_feature(enable =
 //! "avx2")]` and is reached only through an [`Avx2`] token, which exists
 //! only when the CPU has AVX2, and only after the indices were checked in
-//! safe code ([`crate::all_in_range`]).
+//! safe code ([`crate::bounds::all_in_range`]).
 //!
 //! Texels are moved into lanes by 16-byte loads (two texels per 256-bit
 //! row: lane k's in the low half, lane k + 4's in the high half) and 4×4
@@ -15,7 +15,9 @@ use std::arch::x86_64::{
     _mm256_setzero_ps, _mm256_shuffle_ps, _mm256_unpackhi_ps, _mm256_unpacklo_ps, _mm_loadu_ps,
 };
 
-use crate::{all_in_range, cold, scalar, Isa};
+use crate::bounds::{all_in_range, cold};
+use crate::isa::Isa;
+use crate::scalar;
 
 /// Proof that the CPU has AVX2: only [`token`] makes one.
 #[derive(Clone, Copy, Debug)]

@@ -31,83 +31,15 @@
 //! so equality with the twins is exact by construction, NaN payloads
 //! included. Measurements: BENCHMARKS.md ("Explicit SIMD").
 
-use std::sync::atomic::{AtomicU8, Ordering};
-
 #[cfg(target_arch = "x86_64")]
 #[allow(unsafe_code, reason = "the AVX2 kernels call std::arch intrinsics (see the crate policy)")]
 mod avx2;
+mod bounds;
+mod isa;
 pub mod scalar;
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 #[allow(unsafe_code, reason = "the SSE2 kernels call std::arch intrinsics (see the crate policy)")]
 mod sse2;
-
-/// [`Isa::current`] once known: 1 + its position in [`Isa::ALL`]; 0 before.
-static CURRENT: AtomicU8 = AtomicU8::new(0);
-
-/// An explicit SIMD instruction set for the functions of this crate,
-/// ordered from least to most capable.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Isa {
-    /// No explicit SIMD: the portable [`scalar`] twins.
-    Scalar,
-    /// x86-64's own SSE2 (every x86-64 processor; no detection needed).
-    Sse2,
-    /// x86-64 with AVX2 (Intel Haswell, AMD Excavator and later), detected
-    /// at run time.
-    Avx2,
-}
-
-impl Isa {
-    /// Every instruction set, least capable first.
-    pub const ALL: [Isa; 3] = [Isa::Scalar, Isa::Sse2, Isa::Avx2];
-
-    /// The instruction set in use: the best one this CPU has, lowered to
-    /// `ZLINE_SIMD` when the environment names a less capable one
-    /// ("scalar", "sse2"). Detected on the first call, then cached (one
-    /// relaxed atomic load).
-    #[inline]
-    pub fn current() -> Isa {
-        match CURRENT.load(Ordering::Relaxed) {
-            0 => Isa::detect(),
-            n => Isa::ALL[usize::from(n - 1) % Isa::ALL.len()],
-        }
-    }
-
-    /// The first [`Isa::current`]: reads the environment and the CPU, and
-    /// caches the answer (threads racing here all store the same value).
-    #[cold]
-    #[inline(never)]
-    fn detect() -> Isa {
-        let wanted =
-            std::env::var("ZLINE_SIMD").ok().and_then(|name| Isa::ALL.into_iter().find(|i| i.name() == name));
-        let isa = wanted.map_or(Isa::best(), |w| w.min(Isa::best()));
-        let index = Isa::ALL.iter().position(|&i| i == isa).unwrap_or(0);
-        CURRENT.store(index as u8 + 1, Ordering::Relaxed);
-        isa
-    }
-
-    /// The best instruction set this CPU has, ignoring the environment.
-    pub fn best() -> Isa {
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            return Isa::Avx2;
-        }
-        if cfg!(all(target_arch = "x86_64", target_feature = "sse2")) {
-            Isa::Sse2
-        } else {
-            Isa::Scalar
-        }
-    }
-
-    /// The name `ZLINE_SIMD` takes: "scalar", "sse2", "avx2".
-    pub fn name(self) -> &'static str {
-        match self {
-            Isa::Scalar => "scalar",
-            Isa::Sse2 => "sse2",
-            Isa::Avx2 => "avx2",
-        }
-    }
-}
 
 /// Calls `$avx2` with the AVX2 token, `$sse2` or `$scalar` as
 /// [`Isa::current`] says; where SSE2 (x86-64) or AVX2 code does not
@@ -178,24 +110,7 @@ fn out_of_line<T>(twin: impl FnOnce() -> T) -> T {
     twin()
 }
 
-/// The scalar twin on an index out of range (it panics), out of line so
-/// that callers keep the kernels' results in registers.
-#[cfg(target_arch = "x86_64")]
-#[cold]
-#[inline(never)]
-fn cold<T>(twin: impl FnOnce() -> T) -> T {
-    twin()
-}
-
-/// Whether every index lies in `0..len`: as `u32`, a negative index is at
-/// least 2^31, and `len` is capped at 2^31, so one unsigned maximum over
-/// the lanes decides (a few vector instructions).
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn all_in_range(idx: &[[i32; 8]], len: usize) -> bool {
-    let cap = len.min(1 << 31) as u32;
-    idx.iter().flatten().fold(0, |max, &i| max.max(i as u32)) < cap
-}
+pub use isa::Isa;
 
 #[cfg(test)]
 mod tests;

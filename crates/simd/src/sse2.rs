@@ -12,7 +12,8 @@ use std::arch::x86_64::{
     __m128, _mm_loadu_ps, _mm_movehl_ps, _mm_movelh_ps, _mm_setzero_ps, _mm_unpackhi_ps, _mm_unpacklo_ps,
 };
 
-use crate::{all_in_range, cold, scalar};
+use crate::bounds::{all_in_range, cold};
+use crate::scalar;
 
 /// [`crate::gather_texels_x8`].
 #[inline(always)]

@@ -155,6 +155,7 @@ fn the_largest_index_panics_without_wrapping() {
 fn the_range_check_caps_the_length_at_2_pow_31() {
     #[cfg(target_arch = "x86_64")]
     {
+        use crate::bounds::all_in_range;
         assert!(all_in_range(&[[0, 1, i32::MAX, 5, 0, 0, 0, 0]], usize::MAX));
         assert!(!all_in_range(&[[0, 1, i32::MIN, 5, 0, 0, 0, 0]], usize::MAX));
         assert!(!all_in_range(&[[0, 1, -1, 5, 0, 0, 0, 0]], usize::MAX));
