@@ -8,7 +8,7 @@ use wide::{f32x8, i32x8, CmpEq};
 use zline_raster::LANES;
 use zline_shading::Vec3x8;
 
-use crate::tile::{load, TileTarget};
+use crate::tile::{load, sample, TileTarget};
 
 impl TileTarget {
     /// Quantizes the tile into `band`, the packed RGBA image rows that hold
@@ -31,7 +31,7 @@ impl TileTarget {
                 } else {
                     load(&self.depth, i).cmp_eq(f32x8::splat(self.far))
                 };
-                let c = |plane: &[f32], b: f32x8| empty.blend(b, load(plane, i));
+                let c = |plane: &[f32x8], b: f32x8| empty.blend(b, load(plane, i));
                 let px = pack_rgba(c(red, bg.x), c(green, bg.y), c(blue, bg.z));
                 if x >= self.rect.x0 && x + lanes <= self.rect.x1 {
                     out[x as usize..x as usize + LANES].copy_from_slice(&px);
@@ -64,8 +64,9 @@ impl TileTarget {
                 for sy in py * n..(py + 1) * n {
                     for sx in px * n..(px + 1) * n {
                         let i = self.index(sx, sy);
-                        let drawn = self.colors_valid || self.depth[i] != self.far;
-                        sum += if drawn { Vec3::new(red[i], green[i], blue[i]) } else { self.background };
+                        let drawn = self.colors_valid || sample(&self.depth, i) != self.far;
+                        let color = Vec3::new(sample(red, i), sample(green, i), sample(blue, i));
+                        sum += if drawn { color } else { self.background };
                     }
                 }
                 out[px as usize] = crate::image::quantize_rgba((sum * scale).extend(1.0));

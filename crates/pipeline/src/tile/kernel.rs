@@ -163,14 +163,21 @@ impl Pass for BlendFogged<'_> {
     }
 }
 
-/// What the texel's alpha does.
+/// What the texel's alpha does. By default nothing: every lane stays live
+/// and the pass's opacity is used as it is.
 pub(crate) trait Alpha: Sized {
     /// The use for a texture.
     fn new(texture: &FrameTexture) -> Self;
     /// The lanes still live after the alpha test.
-    fn test(&self, live: f32x8, alpha: f32x8) -> f32x8;
+    #[inline(always)]
+    fn test(&self, live: f32x8, _alpha: f32x8) -> f32x8 {
+        live
+    }
     /// The factor on the pass's opacity.
-    fn weight(alpha: f32x8) -> f32x8;
+    #[inline(always)]
+    fn weight(_alpha: f32x8) -> f32x8 {
+        f32x8::ONE
+    }
 }
 
 /// The alpha is ignored (and untextured kernels have none).
@@ -188,14 +195,6 @@ impl Alpha for IgnoreAlpha {
     fn new(_: &FrameTexture) -> Self {
         IgnoreAlpha
     }
-    #[inline(always)]
-    fn test(&self, live: f32x8, _: f32x8) -> f32x8 {
-        live
-    }
-    #[inline(always)]
-    fn weight(_: f32x8) -> f32x8 {
-        f32x8::ONE
-    }
 }
 
 impl Alpha for MaskAlpha {
@@ -207,20 +206,12 @@ impl Alpha for MaskAlpha {
     fn test(&self, live: f32x8, alpha: f32x8) -> f32x8 {
         live & alpha.cmp_ge(self.0)
     }
-    #[inline(always)]
-    fn weight(_: f32x8) -> f32x8 {
-        f32x8::ONE
-    }
 }
 
 impl Alpha for TextureAlpha {
     #[inline(always)]
     fn new(_: &FrameTexture) -> Self {
         TextureAlpha
-    }
-    #[inline(always)]
-    fn test(&self, live: f32x8, _: f32x8) -> f32x8 {
-        live
     }
     #[inline(always)]
     fn weight(alpha: f32x8) -> f32x8 {

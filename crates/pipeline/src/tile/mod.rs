@@ -21,7 +21,7 @@
 mod kernel;
 mod target;
 
-pub(crate) use target::{load, store};
+pub(crate) use target::{load, sample, store};
 pub use target::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 
 use wide::{f32x8, CmpEq, CmpLt};
@@ -108,7 +108,7 @@ impl TileTarget {
     fn materialize_background(&mut self) {
         let bg = Vec3x8::splat(self.background);
         let [red, green, blue] = &mut self.rgb;
-        for i in (0..self.depth.len()).step_by(LANES) {
+        for i in (0..self.depth.len() * LANES).step_by(LANES) {
             let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
             for (plane, c) in [(&mut *red, bg.x), (&mut *green, bg.y), (&mut *blue, bg.z)] {
                 let old = load(plane, i);

@@ -45,10 +45,12 @@ pub struct TileTarget {
     pub(crate) rect: Rect,
     pub(crate) origin: i32,
     pub(crate) stride: usize,
-    pub(crate) depth: Vec<f32>,
+    /// Depth, eight samples a vector: `f32x8` keeps every block of the
+    /// buffers 32-byte aligned, inside one cache line.
+    pub(crate) depth: Vec<f32x8>,
     /// The far plane's depth: [`DEPTH_CLEAR`] or [`DEPTH_CLEAR_REVERSED`].
     pub(crate) far: f32,
-    pub(crate) rgb: [Vec<f32>; 3],
+    pub(crate) rgb: [Vec<f32x8>; 3],
     pub(crate) background: Vec3,
     /// False while undrawn samples (depth `far`) hold stale colours that
     /// the resolve replaces by the background.
@@ -72,12 +74,12 @@ impl TileTarget {
         self.stride = ((rect.x1 + lanes - 1) & !(lanes - 1)).saturating_sub(self.origin).max(0) as usize;
         let n = self.stride * rect.height() as usize;
         self.depth.clear();
-        self.depth.resize(n, far);
+        self.depth.resize(n / LANES, f32x8::splat(far));
         self.far = far;
         self.background = background;
         self.colors_valid = false;
         for plane in &mut self.rgb {
-            plane.resize(n, 0.0);
+            plane.resize(n / LANES, f32x8::ZERO);
         }
     }
 
@@ -87,15 +89,20 @@ impl TileTarget {
     }
 }
 
-/// Eight floats from `buf[i..i + 8]`.
+/// Samples `i..i + 8` of a buffer (`i` a multiple of [`LANES`]).
 #[inline(always)]
-pub(crate) fn load(buf: &[f32], i: usize) -> f32x8 {
-    let lanes: [f32; LANES] = buf[i..i + LANES].try_into().unwrap_or([0.0; LANES]);
-    f32x8::from(lanes)
+pub(crate) fn load(buf: &[f32x8], i: usize) -> f32x8 {
+    buf[i / LANES]
 }
 
-/// Writes eight floats to `buf[i..i + 8]`.
+/// Writes samples `i..i + 8` of a buffer (`i` a multiple of [`LANES`]).
 #[inline(always)]
-pub(crate) fn store(buf: &mut [f32], i: usize, v: f32x8) {
-    buf[i..i + LANES].copy_from_slice(&v.to_array());
+pub(crate) fn store(buf: &mut [f32x8], i: usize, v: f32x8) {
+    buf[i / LANES] = v;
+}
+
+/// Sample `i` of a buffer.
+#[inline(always)]
+pub(crate) fn sample(buf: &[f32x8], i: usize) -> f32 {
+    bytemuck::cast_slice::<f32x8, f32>(buf)[i]
 }
