@@ -5,6 +5,7 @@
 //! parallel, each: opaque pass → fog → transparency pass → resolve).
 
 use rayon::prelude::*;
+use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
 use glam::{Mat4, Vec3};
@@ -81,8 +82,10 @@ pub struct Renderer {
     used: usize,
     bins: Bins,
     tables: FrameTables,
-    /// One per band of tiles.
-    bands: Vec<BandBuffers>,
+    /// One per thread of the pool: a band is drawn with its thread's
+    /// buffers, so the tile buffers a frame touches stay as few as the
+    /// threads (hot in cache) rather than one set per band.
+    buffers: Vec<Mutex<BandBuffers>>,
 }
 
 /// The frame's lights, materials and textures, indexed by the primitives.
@@ -98,8 +101,9 @@ struct FrameTables {
     object_textures: Vec<Option<(TextureUse, bool)>>,
 }
 
-/// A band's tile buffers and the transparency pass's sort scratch, aligned
-/// to 128 bytes so that two threads never write the same cache line.
+/// A thread's tile buffers and the transparency pass's sort scratch,
+/// aligned to 128 bytes so that two threads never write the same cache
+/// line.
 #[derive(Debug, Default)]
 #[repr(align(128))]
 struct BandBuffers {
@@ -309,9 +313,11 @@ impl Renderer {
         image.height = frame.height;
         image.pixels.resize(width as usize * frame.height as usize, 0);
         let band_len = width as usize * tile_size as usize;
-        if self.bands.len() < grid.rows as usize {
-            self.bands.resize_with(grid.rows as usize, BandBuffers::default);
+        let threads = rayon::current_num_threads().max(1);
+        if self.buffers.len() < threads {
+            self.buffers.resize_with(threads, Mutex::default);
         }
+        let buffers = &self.buffers[..threads];
         let t = &self.tables;
         let shade = ShadeContext { lighting: &t.lighting, materials: &t.materials, textures: &t.textures };
         let (bins, chunks) = (&self.bins, &self.chunks[..self.used]);
@@ -325,10 +331,13 @@ impl Renderer {
         image
             .pixels
             .par_chunks_mut(band_len)
-            .zip(self.bands.par_iter_mut())
             .enumerate()
-            .map(|(row, (band, buffers))| {
-                let BandBuffers { target, order } = buffers;
+            .map(|(row, band)| {
+                // Only this thread takes its own buffers: the lock is never
+                // contended (and a poisoned one holds plain buffers).
+                let thread = rayon::current_thread_index().unwrap_or(0) % threads;
+                let mut guard = buffers[thread].lock().unwrap_or_else(PoisonError::into_inner);
+                let BandBuffers { target, order } = &mut *guard;
                 let mut shaded = 0;
                 for col in 0..grid.cols {
                     let tile = row * grid.cols as usize + col as usize;

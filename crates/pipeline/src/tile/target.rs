@@ -39,7 +39,7 @@ pub struct ShadeContext<'a> {
 
 /// A tile's depth buffer and colour planes, one value per sample, covering
 /// columns `origin..origin + stride` (the tile widened to multiples of
-/// [`LANES`]). One per band of tiles, kept from frame to frame.
+/// [`LANES`]). One per thread, kept from frame to frame.
 #[derive(Clone, Debug, Default)]
 pub struct TileTarget {
     pub(crate) rect: Rect,
