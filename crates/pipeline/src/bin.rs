@@ -2,7 +2,7 @@
 
 use zline_raster::Rect;
 
-use crate::setup::{PassKind, PrimitiveChunk};
+use crate::setup::{Kernel, PassKind, PrimitiveChunk};
 
 /// The window cut into square tiles, row-major.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -64,6 +64,19 @@ pub struct PrimitiveRef {
     pub index: u32,
 }
 
+/// An opaque primitive in a tile's bin: its chunk, its kernel and its index
+/// in that kernel's table, so the tile reaches the primitive in one load,
+/// not through the chunk's draw list.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OpaqueRef {
+    /// The chunk.
+    pub chunk: u32,
+    /// The kernel that draws it.
+    pub kernel: Kernel,
+    /// Its index in the kernel's table.
+    pub index: u32,
+}
+
 /// Per tile (row-major), the primitives whose bounds touch it, in draw order
 /// (chunks in order, then primitives in order): opaque ones in `opaque`,
 /// those of transparent chunks ([`PassKind::Transparent`]) in `transparent`. The inner vectors keep their
@@ -71,37 +84,44 @@ pub struct PrimitiveRef {
 #[derive(Debug, Default)]
 pub struct Bins {
     /// Opaque primitives per tile.
-    pub opaque: Vec<Vec<PrimitiveRef>>,
+    pub opaque: Vec<Vec<OpaqueRef>>,
     /// Transparent primitives per tile.
     pub transparent: Vec<Vec<PrimitiveRef>>,
 }
 
 /// Fills `bins` for this frame's primitives (see [`Bins`]).
 pub fn bin_primitives(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins) {
-    for set in [&mut bins.opaque, &mut bins.transparent] {
-        set.resize_with(grid.len(), Vec::new);
-        set.truncate(grid.len());
-        set.iter_mut().for_each(Vec::clear);
-    }
+    reset(&mut bins.opaque, grid.len());
+    reset(&mut bins.transparent, grid.len());
     let window = grid.window();
     let ts = grid.tile_size as i32;
     for (c, chunk) in chunks.iter().enumerate() {
-        for (i, b) in chunk.bounds.iter().enumerate() {
+        for (i, (b, d)) in chunk.bounds.iter().zip(&chunk.draws).enumerate() {
             let b = b.intersect(&window);
             if b.is_empty() {
                 continue;
             }
-            let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
-            let set = match chunk.pass {
-                PassKind::Opaque => &mut bins.opaque,
-                PassKind::Transparent { .. } => &mut bins.transparent,
-            };
-            for row in b.y0 / ts..=(b.y1 - 1) / ts {
-                let tiles = row as usize * grid.cols as usize;
-                for col in b.x0 / ts..=(b.x1 - 1) / ts {
-                    set[tiles + col as usize].push(r);
+            let tiles = (b.y0 / ts..=(b.y1 - 1) / ts).flat_map(|row| {
+                let first = row as usize * grid.cols as usize;
+                (b.x0 / ts..=(b.x1 - 1) / ts).map(move |col| first + col as usize)
+            });
+            match chunk.pass {
+                PassKind::Opaque => {
+                    let r = OpaqueRef { chunk: c as u32, kernel: d.kernel, index: d.index };
+                    tiles.for_each(|t| bins.opaque[t].push(r));
+                }
+                PassKind::Transparent { .. } => {
+                    let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
+                    tiles.for_each(|t| bins.transparent[t].push(r));
                 }
             }
         }
     }
+}
+
+/// `n` empty lists, keeping the lists' capacity.
+fn reset<T>(lists: &mut Vec<Vec<T>>, n: usize) {
+    lists.resize_with(n, Vec::new);
+    lists.truncate(n);
+    lists.iter_mut().for_each(Vec::clear);
 }

@@ -29,9 +29,9 @@ use zline_raster::LANES;
 use zline_scene::{GouraudClamp, Interpolation};
 use zline_shading::Vec3x8;
 
-use crate::bin::PrimitiveRef;
+use crate::bin::{OpaqueRef, PrimitiveRef};
 use crate::fog::{FogFactors, FogPass, FogVisitor};
-use crate::setup::{AlphaUse, Draw, Kernel, LevelOfDetail, PassKind, PrimitiveChunk, TexturedLighting};
+use crate::setup::{AlphaUse, Kernel, LevelOfDetail, PassKind, PrimitiveChunk, TexturedLighting};
 
 use kernel::{
     Alpha, BaseLod, Blend, BlendFogged, ClampPerSample, ClampedAtVertices, DerivativeLod, IgnoreAlpha,
@@ -44,13 +44,12 @@ impl TileTarget {
     pub fn opaque_pass(
         &mut self,
         chunks: &[PrimitiveChunk],
-        bin: &[PrimitiveRef],
+        bin: &[OpaqueRef],
         ctx: &ShadeContext<'_>,
     ) -> u64 {
         let mut shaded = 0;
         for r in bin {
-            let chunk = &chunks[r.chunk as usize];
-            shaded += self.draw(chunk, chunk.draws[r.index as usize], ctx, &Opaque);
+            shaded += self.draw(&chunks[r.chunk as usize], (r.kernel, r.index), ctx, &Opaque);
         }
         shaded
     }
@@ -93,10 +92,10 @@ impl TileTarget {
             let opacity = f32x8::splat(1.0 - kt);
             let d = draw(r);
             shaded += match fog {
-                None => self.draw(chunk, d, ctx, &Blend { opacity }),
+                None => self.draw(chunk, (d.kernel, d.index), ctx, &Blend { opacity }),
                 Some(fog) => {
                     let pass = BlendFogged { opacity, fog, color: Vec3x8::splat(fog.color()) };
-                    self.draw(chunk, d, ctx, &pass)
+                    self.draw(chunk, (d.kernel, d.index), ctx, &pass)
                 }
             };
         }
@@ -127,9 +126,15 @@ impl TileTarget {
     /// Draws one primitive with its kernel in `pass`: the one place where a
     /// primitive's [`Kernel`] becomes a monomorphized span function.
     #[inline]
-    fn draw<P: Pass>(&mut self, chunk: &PrimitiveChunk, d: Draw, ctx: &ShadeContext<'_>, pass: &P) -> u64 {
-        let (t, i) = (&chunk.tables, d.index as usize);
-        match d.kernel {
+    fn draw<P: Pass>(
+        &mut self,
+        chunk: &PrimitiveChunk,
+        (kernel, index): (Kernel, u32),
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        let (t, i) = (&chunk.tables, index as usize);
+        match kernel {
             Kernel::Flat => self.flat(&t.flat[i], pass),
             Kernel::Gouraud { interpolation, clamp: GouraudClamp::PerVertex } => match interpolation {
                 Interpolation::PerspectiveCorrect => {
