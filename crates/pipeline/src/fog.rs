@@ -73,34 +73,28 @@ impl FogPass {
     /// Runs `visitor` with this fog's factors as a type: the coordinate and
     /// the mode are decided here, once, not per block.
     pub fn specialized<V: FogVisitor>(&self, visitor: V) -> V::Output {
-        macro_rules! visit {
-            ($coordinate:ty, $falloff:expr) => {
-                visitor.visit(Specialized::<$coordinate, _> {
-                    pass: self,
-                    falloff: $falloff,
-                    coordinate: PhantomData,
-                })
-            };
+        let falloff = Falloffs::new(self.fog.mode);
+        match self.fog.coordinate {
+            FogCoordinate::EyePlane => self.specialized_with::<EyePlane, V>(falloff, visitor),
+            FogCoordinate::Radial => self.specialized_with::<Radial, V>(falloff, visitor),
         }
-        match (self.fog.coordinate, self.fog.mode) {
-            (FogCoordinate::EyePlane, FogMode::Linear { start, end }) if end == start => {
-                visit!(EyePlane, Step { start })
-            }
-            (FogCoordinate::EyePlane, FogMode::Linear { start, end }) => {
-                visit!(EyePlane, Linear { start, end })
-            }
-            (FogCoordinate::EyePlane, FogMode::Exponential { density }) => visit!(EyePlane, Exp { density }),
-            (FogCoordinate::EyePlane, FogMode::SquaredExponential { density }) => {
-                visit!(EyePlane, Exp2 { density })
-            }
-            (FogCoordinate::Radial, FogMode::Linear { start, end }) if end == start => {
-                visit!(Radial, Step { start })
-            }
-            (FogCoordinate::Radial, FogMode::Linear { start, end }) => visit!(Radial, Linear { start, end }),
-            (FogCoordinate::Radial, FogMode::Exponential { density }) => visit!(Radial, Exp { density }),
-            (FogCoordinate::Radial, FogMode::SquaredExponential { density }) => {
-                visit!(Radial, Exp2 { density })
-            }
+    }
+
+    /// [`Self::specialized`] once the coordinate is a type: the falloff
+    /// becomes one too.
+    fn specialized_with<C: Coordinate, V: FogVisitor>(&self, falloff: Falloffs, visitor: V) -> V::Output {
+        fn visit<C: Coordinate, M: Falloff, V: FogVisitor>(
+            pass: &FogPass,
+            falloff: M,
+            visitor: V,
+        ) -> V::Output {
+            visitor.visit(Specialized::<C, M> { pass, falloff, coordinate: PhantomData })
+        }
+        match falloff {
+            Falloffs::Step(f) => visit::<C, _, V>(self, f, visitor),
+            Falloffs::Linear(f) => visit::<C, _, V>(self, f, visitor),
+            Falloffs::Exp(f) => visit::<C, _, V>(self, f, visitor),
+            Falloffs::Exp2(f) => visit::<C, _, V>(self, f, visitor),
         }
     }
 

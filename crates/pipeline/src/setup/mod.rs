@@ -195,7 +195,7 @@ pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut P
         // Back faces are culled here already, before lighting and the call
         // (about half of a closed mesh's triangles).
         let p = [tri[0].projected, tri[1].projected, tri[2].projected];
-        if ctx.faces == Faces::Both || is_front_facing(&p.map(|v| v.fixed)) {
+        if drawn_side(&p, ctx) {
             emit(tri, p, flat(), ctx, out);
         }
         return;
@@ -210,7 +210,10 @@ pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut P
         let t = [&poly[0], &poly[i], &poly[i + 1]];
         let p = t.map(|v| Projected::new(v.clip, ctx.viewport));
         if let [Some(a), Some(b), Some(c)] = p {
-            emit(t, [a, b, c], flat, ctx, out);
+            let p = [a, b, c];
+            if drawn_side(&p, ctx) {
+                emit(t, p, flat, ctx, out);
+            }
         }
     }
 }
@@ -351,8 +354,16 @@ fn adaptive_shortcuts(
     s
 }
 
-/// Projects, snaps, culls and builds the planes of one clipped triangle,
-/// and appends it to the table of the kernel that will draw it.
+/// False for a back face of an object that culls them (SPEC §2): decided
+/// before a triangle is lit or its planes are built.
+#[inline]
+fn drawn_side(p: &[Projected; 3], ctx: &SetupContext<'_>) -> bool {
+    ctx.faces == Faces::Both || is_front_facing(&p.map(|v| v.fixed))
+}
+
+/// Builds the edge table and planes of one projected triangle that
+/// survived culling, and appends it to the table of the kernel that will
+/// draw it.
 #[inline]
 fn emit(
     tri: [&ClipVertex; 3],
@@ -362,9 +373,6 @@ fn emit(
     out: &mut PrimitiveChunk,
 ) {
     let fixed = p.map(|v| v.fixed);
-    if ctx.faces == Faces::Front && !is_front_facing(&fixed) {
-        return;
-    }
     let (Some(edges), Some(basis)) = (EdgeTable::new(fixed), PlaneBasis::new(fixed)) else {
         return;
     };

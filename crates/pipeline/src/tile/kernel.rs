@@ -283,6 +283,14 @@ impl Lod for DerivativeLod {
     }
 }
 
+/// What both Phong kernels recover per sample ([`phong`] layout): the
+/// factor w, the eye position and the re-normalized normal.
+#[inline(always)]
+fn phong_point<const N: usize, I: Interp>(a: &[f32x8; N]) -> (f32x8, Vec3x8, Vec3x8) {
+    let w = I::w(a[phong::Q]);
+    (w, triple(a, phong::EYE, w), triple(a, phong::NORMAL, w).normalize_or_zero())
+}
+
 /// Three consecutive planes from `i`, each times `w`.
 #[inline(always)]
 fn triple<const N: usize>(a: &[f32x8; N], i: usize, w: f32x8) -> Vec3x8 {
@@ -396,9 +404,8 @@ impl TileTarget {
     ) -> u64 {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a| {
-            let w = I::w(a[phong::Q]);
-            let normal = triple(a, phong::NORMAL, w).normalize_or_zero();
-            (l.shade_x8(m, triple(a, phong::EYE, w), normal), f32x8::ONE)
+            let (_, eye, normal) = phong_point::<_, I>(a);
+            (l.shade_x8(m, eye, normal), f32x8::ONE)
         })
     }
 
@@ -412,11 +419,9 @@ impl TileTarget {
     ) -> u64 {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a| {
-            let w = I::w(a[phong::Q]);
-            let normal = triple(a, phong::NORMAL, w).normalize_or_zero();
-            let tint = triple(a, phong::COLOR, w);
-            let (ambient_diffuse, specular) = l.shade_parts_x8(m, triple(a, phong::EYE, w), normal);
-            ((tint * ambient_diffuse + specular).clamp01(), f32x8::ONE)
+            let (w, eye, normal) = phong_point::<_, I>(a);
+            let (ambient_diffuse, specular) = l.shade_parts_x8(m, eye, normal);
+            ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
         })
     }
 
