@@ -14,6 +14,7 @@ mod docs;
 mod modules;
 mod regress;
 mod report;
+mod versus;
 
 /// Developer tasks for zline.
 #[derive(Parser)]
@@ -105,6 +106,31 @@ enum Task {
         #[arg(long, default_value = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")]
         font: PathBuf,
     },
+    /// zline against Mesa's llvmpipe on glref's benchmark scenes
+    /// (benches/glref/*.toml beside <glref>/scenes/*.json), timed
+    /// interleaved: per round every scene with zline at each thread count,
+    /// then with llvmpipe; prints the median of the round medians and the
+    /// ratio. Needs glref built by its setup.sh.
+    Versus {
+        /// glref's folder (its setup.sh builds glref and the meshes).
+        #[arg(long, default_value = "../shared/tools/glref")]
+        glref: PathBuf,
+        /// Interleaved rounds.
+        #[arg(long, default_value_t = 3)]
+        rounds: usize,
+        /// Warm frames timed per scene and renderer in a round.
+        #[arg(long, default_value_t = 15)]
+        frames: usize,
+        /// zline's thread counts; the ratio uses the last.
+        #[arg(long, value_delimiter = ',', default_value = "1,2")]
+        threads: Vec<usize>,
+        /// llvmpipe's rasterizer threads (LP_NUM_THREADS).
+        #[arg(long, default_value_t = 2)]
+        lp_threads: usize,
+        /// Only scenes whose name contains this text.
+        #[arg(long)]
+        filter: Option<String>,
+    },
     /// The module import graph of every crate (crates/*/src, xtask/src):
     /// module, edge and cycle counts; fails if a module imports one that
     /// imports it back.
@@ -127,6 +153,9 @@ fn main() -> Result<()> {
         Task::Bless { filter } => regress::run(regress::Mode::Bless, filter.as_deref()),
         Task::Report { assets, out, chart, frames, size, filter, font } => {
             report::run(&report::Args { assets, out, chart, frames, size, filter, font })
+        }
+        Task::Versus { glref, rounds, frames, threads, lp_threads, filter } => {
+            versus::run(&versus::Args { glref, rounds, frames, threads, lp_threads, filter })
         }
         Task::Modules { verbose } => modules::run(verbose),
     }

@@ -1,0 +1,205 @@
+//! `cargo xtask versus`: zline against Mesa's llvmpipe on glref's benchmark
+//! scenes, timed interleaved in one run.
+//!
+//! Each scene exists twice: as glref's JSON (`<glref>/scenes/*.json`) and as
+//! a zline scene file with the same camera, lights, meshes and materials
+//! (`benches/glref/*.toml`, whose meshes are glref's generated ones). A round
+//! times every scene with zline at each thread count (in this process, warm
+//! frames) and then with glref under llvmpipe (a child process that prints
+//! the median of its own warm frames); the table reports the median of the
+//! round medians and llvmpipe's time divided by zline's. The machine's speed
+//! drifts over minutes, so only ratios from one interleaved run mean much.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use zline::pipeline::{Image, RenderOptions, Renderer};
+use zline::scene::Scene;
+
+/// The benchmark scenes, in the order of issue 9's table: glref's JSON name
+/// and a label.
+const SCENES: [(&str, &str); 6] = [
+    ("sphere_flat", "sphere flat"),
+    ("sphere_gouraud", "sphere Gouraud"),
+    ("sphere_phong", "sphere Phong"),
+    ("textured_plane_fog", "textured plane + fog (bilinear)"),
+    ("transparent", "transparent spheres"),
+    ("big", "1M-triangle sphere"),
+];
+
+/// What `versus` is asked to do.
+pub(crate) struct Args {
+    pub glref: PathBuf,
+    pub rounds: usize,
+    pub frames: usize,
+    pub threads: Vec<usize>,
+    pub lp_threads: usize,
+    pub filter: Option<String>,
+}
+
+/// The zline scene files, next to the workspace root.
+fn scene_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../benches/glref")
+}
+
+struct Entry {
+    label: &'static str,
+    json: PathBuf,
+    scene: Scene,
+    triangles: usize,
+    /// Per thread count (in `Args::threads` order), the median of each round.
+    zline: Vec<Vec<f64>>,
+    llvmpipe: Vec<f64>,
+}
+
+pub(crate) fn run(args: &Args) -> Result<()> {
+    let program = args.glref.join("glref");
+    if !program.exists() {
+        bail!(
+            "{} is missing: build glref first ({}/setup.sh installs Mesa and makes it)",
+            program.display(),
+            args.glref.display()
+        );
+    }
+    let mut entries = Vec::new();
+    for (name, label) in SCENES {
+        if args.filter.as_deref().is_some_and(|f| !name.contains(f) && !label.contains(f)) {
+            continue;
+        }
+        let toml = scene_dir().join(format!("{name}.toml"));
+        let scene = zline::io::load_scene(&toml)
+            .with_context(|| format!("{}: (the meshes come from glref's setup.sh)", toml.display()))?;
+        let triangles = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
+        entries.push(Entry {
+            label,
+            json: args.glref.join("scenes").join(format!("{name}.json")),
+            scene,
+            triangles,
+            zline: vec![Vec::new(); args.threads.len()],
+            llvmpipe: Vec::new(),
+        });
+    }
+    let pools = args
+        .threads
+        .iter()
+        .map(|&t| rayon::ThreadPoolBuilder::new().num_threads(t).build().context("thread pool"))
+        .collect::<Result<Vec<_>>>()?;
+    for round in 1..=args.rounds {
+        for entry in &mut entries {
+            eprintln!("round {round}/{}: {}", args.rounds, entry.label);
+            for (pool, times) in pools.iter().zip(&mut entry.zline) {
+                times.push(time_zline(&entry.scene, pool, args.frames));
+            }
+            entry.llvmpipe.push(time_llvmpipe(&program, &entry.json, args)?);
+        }
+    }
+
+    let mut header = String::from("| scene | triangles |");
+    let mut rule = String::from("|---|---:|");
+    for t in &args.threads {
+        header += &format!(" zline {t} thread{} |", if *t == 1 { "" } else { "s" });
+        rule += "---:|";
+    }
+    header += &format!(
+        " llvmpipe {} threads | llvmpipe ÷ zline ({} threads) |",
+        args.lp_threads,
+        last(&args.threads)
+    );
+    rule += "---:|---:|";
+    println!("{header}\n{rule}");
+    for entry in &entries {
+        let mut row = format!("| {} | {} |", entry.label, entry.triangles);
+        for times in &entry.zline {
+            row += &format!(" {:.2} ms |", median(times));
+        }
+        let lp = median(&entry.llvmpipe);
+        let ours = median(entry.zline.last().map_or(&[][..], |v| &v[..]));
+        row += &format!(" {lp:.2} ms | {:.2} |", lp / ours);
+        println!("{row}");
+    }
+    println!(
+        "\n{} rounds; a round times each scene with zline ({} warm frames per thread count, median) then llvmpipe (glref -n {}, LP_NUM_THREADS={}); the table shows the median of the round medians.",
+        args.rounds, args.frames, args.frames, args.lp_threads
+    );
+    Ok(())
+}
+
+fn last(threads: &[usize]) -> usize {
+    threads.last().copied().unwrap_or(1)
+}
+
+/// Median ms of `frames` warm frames of `scene` drawn in `pool`.
+fn time_zline(scene: &Scene, pool: &rayon::ThreadPool, frames: usize) -> f64 {
+    let options = RenderOptions::default();
+    let mut renderer = Renderer::default();
+    let mut image = Image::empty();
+    pool.install(|| renderer.render_into(scene, &options, &mut image)); // warm-up
+    let times: Vec<f64> = (0..frames.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            pool.install(|| renderer.render_into(scene, &options, &mut image));
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    median(&times)
+}
+
+/// glref's own median over `frames` warm frames under llvmpipe.
+fn time_llvmpipe(program: &Path, json: &Path, args: &Args) -> Result<f64> {
+    let out = Command::new(program)
+        .arg(json)
+        .args(["-n", &args.frames.max(1).to_string(), "-q", "--size", "1920x1080"])
+        .env("GALLIUM_DRIVER", "llvmpipe")
+        .env("LP_NUM_THREADS", args.lp_threads.to_string())
+        .output()
+        .with_context(|| format!("running {}", program.display()))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    if !out.status.success() {
+        bail!(
+            "{} {} failed: {}{}",
+            program.display(),
+            json.display(),
+            text,
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    parse_median(&text).with_context(|| format!("no median_ms in glref's output: {text}"))
+}
+
+/// The number after `median_ms:` in glref's summary line.
+fn parse_median(text: &str) -> Option<f64> {
+    let mut words = text.split_whitespace();
+    words.by_ref().find(|w| *w == "median_ms:")?;
+    words.next()?.parse().ok()
+}
+
+fn median(values: &[f64]) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sorted[sorted.len() / 2]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_glref_summary() {
+        let line =
+            "frames: 15 size: 1920x1080 median_ms: 4.903 min_ms: 4.7 first_ms: 30.1 renderer: llvmpipe";
+        assert_eq!(parse_median(line), Some(4.903));
+        assert_eq!(parse_median("frames: 15"), None);
+    }
+
+    #[test]
+    fn every_scene_has_its_zline_file() {
+        for (name, _) in SCENES {
+            assert!(scene_dir().join(format!("{name}.toml")).exists(), "{name}.toml");
+        }
+    }
+}
