@@ -130,6 +130,10 @@ enum Task {
         /// Only scenes whose name contains this text.
         #[arg(long)]
         filter: Option<String>,
+        /// Time zline alone (llvmpipe's columns stay empty): for comparing
+        /// two builds of zline run alternately.
+        #[arg(long)]
+        zline_only: bool,
     },
     /// The module import graph of every crate (crates/*/src, xtask/src):
     /// module, edge and cycle counts; fails if a module imports one that
@@ -154,8 +158,8 @@ fn main() -> Result<()> {
         Task::Report { assets, out, chart, frames, size, filter, font } => {
             report::run(&report::Args { assets, out, chart, frames, size, filter, font })
         }
-        Task::Versus { glref, rounds, frames, threads, lp_threads, filter } => {
-            versus::run(&versus::Args { glref, rounds, frames, threads, lp_threads, filter })
+        Task::Versus { glref, rounds, frames, threads, lp_threads, filter, zline_only } => {
+            versus::run(&versus::Args { glref, rounds, frames, threads, lp_threads, filter, zline_only })
         }
         Task::Modules { verbose } => modules::run(verbose),
     }

@@ -37,6 +37,8 @@ pub(crate) struct Args {
     pub threads: Vec<usize>,
     pub lp_threads: usize,
     pub filter: Option<String>,
+    /// Time zline alone (to compare two builds of zline, run alternately).
+    pub zline_only: bool,
 }
 
 /// The zline scene files, next to the workspace root.
@@ -56,7 +58,7 @@ struct Entry {
 
 pub(crate) fn run(args: &Args) -> Result<()> {
     let program = args.glref.join("glref");
-    if !program.exists() {
+    if !program.exists() && !args.zline_only {
         bail!(
             "{} is missing: build glref first ({}/setup.sh installs Mesa and makes it)",
             program.display(),
@@ -92,7 +94,9 @@ pub(crate) fn run(args: &Args) -> Result<()> {
             for (pool, times) in pools.iter().zip(&mut entry.zline) {
                 times.push(time_zline(&entry.scene, pool, args.frames));
             }
-            entry.llvmpipe.push(time_llvmpipe(&program, &entry.json, args)?);
+            if !args.zline_only {
+                entry.llvmpipe.push(time_llvmpipe(&program, &entry.json, args)?);
+            }
         }
     }
 

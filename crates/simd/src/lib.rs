@@ -5,7 +5,9 @@
 //! - Every other crate forbids `unsafe` (`[workspace.lints.rust]
 //!   unsafe_code = "forbid"`). This crate denies it too (its own `[lints]`
 //!   table) and allows it only on the modules that call `std::arch`,
-//!   `avx2` and `sse2` (`#[allow(unsafe_code, reason = …)]`).
+//!   `avx2` and `sse2`, and on `opaque`, whose one volatile read keeps
+//!   LLVM from turning a kernel's read-blend-write into a masked store
+//!   (`#[allow(unsafe_code, reason = …)]`).
 //! - Every `unsafe` block carries a `// SAFETY:` comment saying why its
 //!   preconditions hold (`clippy::undocumented_unsafe_blocks` is on), and
 //!   every `unsafe fn` a `# Safety` section. The preconditions are always
@@ -36,6 +38,11 @@
 mod avx2;
 mod bounds;
 mod isa;
+#[allow(
+    unsafe_code,
+    reason = "one volatile read that keeps LLVM from forming masked stores (see the module)"
+)]
+mod opaque;
 pub mod scalar;
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 #[allow(unsafe_code, reason = "the SSE2 kernels call std::arch intrinsics (see the crate policy)")]
@@ -111,6 +118,7 @@ fn out_of_line<T>(twin: impl FnOnce() -> T) -> T {
 }
 
 pub use isa::Isa;
+pub use opaque::read_opaque;
 
 #[cfg(test)]
 mod tests;

@@ -21,7 +21,7 @@ use wide::{f32x8, i32x8, CmpEq, CmpGe, CmpLt};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, Span};
 use zline_shading::Vec3x8;
 
-use super::target::{load, store, FrameTexture, ShadeContext, TileTarget};
+use super::target::{load, load_for_blend, store, FrameTexture, ShadeContext, TileTarget};
 use crate::fog::FogPass;
 use crate::setup::layout::{gouraud, phong, textured};
 use crate::setup::{Flat, Gouraud, Phong, Primitive, TexturedFlat, TexturedGouraud, TexturedPhong};
@@ -363,13 +363,13 @@ impl TileTarget {
                 let behind = f32x8::ONE - keep;
                 let c = pass.fog(c, b.x, span.y, z);
                 for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
-                    let old = load(plane, i);
+                    let old = load_for_blend(plane, i);
                     store(plane, i, live.blend(v * keep + old * behind, old));
                 }
             } else {
                 store(zbuf, i, live.blend(z, stored));
                 for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
-                    let old = load(plane, i);
+                    let old = load_for_blend(plane, i);
                     store(plane, i, live.blend(v, old));
                 }
             }

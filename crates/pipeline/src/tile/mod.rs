@@ -21,7 +21,7 @@
 mod kernel;
 mod target;
 
-pub(crate) use target::{load, sample, store};
+pub(crate) use target::{load, load_for_blend, sample, store};
 pub use target::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 
 use wide::{f32x8, CmpEq, CmpLt};
@@ -110,7 +110,7 @@ impl TileTarget {
         for i in (0..self.depth.len() * LANES).step_by(LANES) {
             let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
             for (plane, c) in [(&mut *red, bg.x), (&mut *green, bg.y), (&mut *blue, bg.z)] {
-                let old = load(plane, i);
+                let old = load_for_blend(plane, i);
                 store(plane, i, empty.blend(c, old));
             }
         }
@@ -289,7 +289,7 @@ impl FogVisitor for FogTile<'_> {
                 let f = factors.at(x, y, z);
                 let g = f32x8::ONE - f;
                 for (plane, c) in [(&mut *red, fog.x), (&mut *green, fog.y), (&mut *blue, fog.z)] {
-                    let old = load(plane, i);
+                    let old = load_for_blend(plane, i);
                     store(plane, i, drawn.blend(old * f + c * g, old));
                 }
             }

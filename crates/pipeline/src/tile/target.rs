@@ -95,6 +95,14 @@ pub(crate) fn load(buf: &[f32x8], i: usize) -> f32x8 {
     buf[i / LANES]
 }
 
+/// [`load`] for a block that is then written back blended: read so that
+/// the compiler keeps a plain load, blend and store instead of forming a
+/// masked store (microcoded and slow on AMD cores; `zline_simd::read_opaque`).
+#[inline(always)]
+pub(crate) fn load_for_blend(buf: &[f32x8], i: usize) -> f32x8 {
+    zline_simd::read_opaque(&buf[i / LANES])
+}
+
 /// Writes samples `i..i + 8` of a buffer (`i` a multiple of [`LANES`]).
 #[inline(always)]
 pub(crate) fn store(buf: &mut [f32x8], i: usize, v: f32x8) {
