@@ -42,6 +42,7 @@ use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
+use rayon::prelude::*;
 use zline_scene::{Mesh, TextureMap};
 use zline_shading::{Material, Sampler, Wrap};
 
@@ -367,7 +368,7 @@ fn check_mtl_text(text: &str) -> Result<String, (usize, String)> {
 }
 
 /// Counts of the vertex attributes defined so far while scanning an OBJ.
-#[derive(Default)]
+#[derive(Clone, Copy, Default)]
 struct Defined {
     positions: usize,
     texcoords: usize,
@@ -417,26 +418,93 @@ fn check_obj_text(path: &Path, text: &str) -> Result<(), SceneError> {
             message: "binary data, not an OBJ text file".into(),
         });
     }
-    let mut defined = Defined::default();
-    for (i, line) in text.lines().enumerate() {
-        check_obj_line(line, &mut defined).map_err(|message| SceneError::Line {
-            path: path.to_path_buf(),
-            line: i + 1,
-            message,
-        })?;
+    // The text in pieces of whole lines, checked in parallel: a first pass
+    // counts each piece's lines and definitions, so each piece starts from
+    // the counts before it, as a scan from the top would; the first error
+    // in file order is reported.
+    let pieces = line_pieces(text, CHECK_PIECE);
+    let totals: Vec<(usize, Defined)> = pieces.par_iter().map(|piece| count_definitions(piece)).collect();
+    let mut starts = Vec::with_capacity(pieces.len());
+    let (mut line, mut defined) = (0, Defined::default());
+    for (lines, d) in &totals {
+        starts.push((line, defined));
+        line += lines;
+        defined = Defined {
+            positions: defined.positions + d.positions,
+            texcoords: defined.texcoords + d.texcoords,
+            normals: defined.normals + d.normals,
+        };
     }
-    Ok(())
+    let errors: Vec<Option<(usize, String)>> = pieces
+        .par_iter()
+        .zip(starts)
+        .map(|(piece, (first_line, mut defined))| {
+            let mut args = Vec::new();
+            for (i, line) in piece.lines().enumerate() {
+                if let Err(message) = check_obj_line(line, &mut defined, &mut args) {
+                    return Some((first_line + i + 1, message));
+                }
+            }
+            None
+        })
+        .collect();
+    match errors.into_iter().flatten().next() {
+        Some((line, message)) => Err(SceneError::Line { path: path.to_path_buf(), line, message }),
+        None => Ok(()),
+    }
 }
 
-fn check_obj_line(line: &str, defined: &mut Defined) -> Result<(), String> {
+/// Bytes of OBJ text checked by one task.
+const CHECK_PIECE: usize = 256 * 1024;
+
+/// `text` cut after the first line break at or beyond every `size` bytes:
+/// pieces of whole lines (each but the last ends with `\n`).
+fn line_pieces(text: &str, size: usize) -> Vec<&str> {
+    let mut pieces = Vec::new();
+    let mut rest = text;
+    while rest.len() > size {
+        match rest.as_bytes()[size..].iter().position(|&b| b == b'\n') {
+            Some(at) => {
+                let (piece, tail) = rest.split_at(size + at + 1);
+                pieces.push(piece);
+                rest = tail;
+            }
+            None => break,
+        }
+    }
+    pieces.push(rest);
+    pieces
+}
+
+/// The lines of `piece` and its `v`, `vt` and `vn` statements.
+fn count_definitions(piece: &str) -> (usize, Defined) {
+    let mut d = Defined::default();
+    let mut lines = 0;
+    for line in piece.lines() {
+        lines += 1;
+        match line.split_whitespace().next() {
+            Some("v") => d.positions += 1,
+            Some("vt") => d.texcoords += 1,
+            Some("vn") => d.normals += 1,
+            _ => {}
+        }
+    }
+    (lines, d)
+}
+
+/// Checks one line, counting what it defines. `args` is scratch space for
+/// the line's words (kept across lines, so checking allocates nothing).
+fn check_obj_line<'a>(line: &'a str, defined: &mut Defined, args: &mut Vec<&'a str>) -> Result<(), String> {
     let mut words = line.split_whitespace();
     let Some(key) = words.next() else { return Ok(()) };
-    let args: Vec<&str> = words.collect();
+    args.clear();
+    args.extend(words);
+    let args = &args[..];
     match key {
-        "v" => check_vertex(line, &args).map(|()| defined.positions += 1),
-        "vt" => check_numbers(line, &args, 2, "texture coordinate").map(|()| defined.texcoords += 1),
-        "vn" => check_numbers(line, &args, 3, "normal").map(|()| defined.normals += 1),
-        "f" | "l" => check_face(line, &args, defined),
+        "v" => check_vertex(line, args).map(|()| defined.positions += 1),
+        "vt" => check_numbers(line, args, 2, "texture coordinate").map(|()| defined.texcoords += 1),
+        "vn" => check_numbers(line, args, 3, "normal").map(|()| defined.normals += 1),
+        "f" | "l" => check_face(line, args, defined),
         "usemtl" if args.is_empty() => Err(format!("'usemtl' without a material name in {}", quote(line))),
         "o" | "g" | "mtllib" | "usemtl" => Ok(()),
         k if k.starts_with('#') || IGNORED_STATEMENTS.contains(&k) => Ok(()),
@@ -485,11 +553,10 @@ fn check_face(line: &str, args: &[&str], defined: &Defined) -> Result<(), String
         ("normal", defined.normals),
     ];
     for corner in args {
-        let parts: Vec<&str> = corner.split('/').collect();
-        if parts.len() > 3 || parts[0].is_empty() {
+        if corner.split('/').count() > 3 || corner.starts_with('/') {
             return Err(format!("cannot parse face vertex '{}' in {}", truncate(corner), quote(line)));
         }
-        for (part, &(what, count)) in parts.iter().zip(&kinds).filter(|(p, _)| !p.is_empty()) {
+        for (part, &(what, count)) in corner.split('/').zip(&kinds).filter(|(p, _)| !p.is_empty()) {
             let index: i64 = part
                 .parse()
                 .map_err(|_| format!("cannot parse face index '{}' in {}", truncate(part), quote(line)))?;
@@ -527,8 +594,48 @@ mod tests {
     #[track_caller]
     fn check_line_error(line: &str, expected: &str) {
         let mut defined = Defined { positions: 4, texcoords: 2, normals: 0 };
-        let message = check_obj_line(line, &mut defined).unwrap_err();
+        let message = check_obj_line(line, &mut defined, &mut Vec::new()).unwrap_err();
         assert!(message.contains(expected), "{message:?} does not contain {expected:?}");
+    }
+
+    #[test]
+    fn pieces_are_whole_lines() {
+        let text = "v 1 2 3\nvt 0 0\n\nf 1 2 3\n# end";
+        for size in 0..text.len() + 2 {
+            let pieces = line_pieces(text, size);
+            assert_eq!(pieces.concat(), text, "size {size}");
+            assert!(pieces[..pieces.len() - 1].iter().all(|p| p.ends_with('\n')), "size {size}");
+        }
+    }
+
+    /// A file of many pieces: faces see the definitions of earlier pieces,
+    /// and an error deep in the file names its line, as a scan from the
+    /// top would.
+    #[test]
+    fn pieces_are_checked_in_file_order() {
+        let path = Path::new("big.obj");
+        let mut text: String = (0..60_000).map(|i| format!("v {i} 0 0\n")).collect();
+        assert!(line_pieces(&text, CHECK_PIECE).len() > 2);
+        text += "f 1 2 60000\nf -1 -2 -60000\n";
+        check_obj_text(path, &text).unwrap();
+        let good = text.clone();
+        text += "f 1 2 60001\n";
+        match check_obj_text(path, &text) {
+            Err(SceneError::Line { line, message, .. }) => {
+                assert_eq!(line, 60_003);
+                assert!(message.contains("defines 60000 before this line"), "{message}");
+            }
+            other => panic!("{other:?}"),
+        }
+        let mut early = good.clone();
+        early.replace_range(0..0, "v 1 2\n");
+        let late = good.replacen("v 59000 0 0\n", "v 59000 0\n", 1);
+        for (text, want) in [(early, 1), (late, 59_001)] {
+            match check_obj_text(path, &text) {
+                Err(SceneError::Line { line, .. }) => assert_eq!(line, want),
+                other => panic!("{other:?}"),
+            }
+        }
     }
 
     #[test]
@@ -555,7 +662,7 @@ mod tests {
             "mtllib a b.mtl",
             "l 1 2",
         ] {
-            check_obj_line(line, &mut defined).unwrap_or_else(|e| panic!("{line:?}: {e}"));
+            check_obj_line(line, &mut defined, &mut Vec::new()).unwrap_or_else(|e| panic!("{line:?}: {e}"));
         }
     }
 

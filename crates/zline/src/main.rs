@@ -45,6 +45,9 @@ struct Common {
     /// Output PNG file.
     #[arg(short, long, value_name = "OUT.png")]
     output: PathBuf,
+    /// Also print the time of each step: load, render, PNG encode and write.
+    #[arg(long)]
+    timings: bool,
     /// Image size, e.g. 1280x720 (default: the scene's, or 800x600).
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     size: Option<(u32, u32)>,
@@ -225,6 +228,7 @@ fn one_line(e: &anyhow::Error) -> String {
 }
 
 fn run(cli: Cli) -> Result<()> {
+    let loading = Instant::now();
     let (mut scene, common) = match cli.command {
         Command::Render { input, common } => (load_input(&input)?, common),
         Command::Demo { common } => (zline::scenes::demo_scene(), common),
@@ -239,12 +243,15 @@ fn run(cli: Cli) -> Result<()> {
         pool = pool.num_threads(n);
     }
     let pool = pool.build().context("cannot start the worker threads")?;
+    let loaded = loading.elapsed();
     let options = RenderOptions { tile_size: common.tile_size.max(1) };
     let start = Instant::now();
     let (image, stats) = pool.install(|| render(&scene, &options));
     let elapsed = start.elapsed();
+    let saving = Instant::now();
     zline::save_png(&image, &common.output)
         .with_context(|| format!("{}: cannot write PNG", common.output.display()))?;
+    let saved = saving.elapsed();
     let count = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     eprintln!(
         "wrote {} ({}x{}, {}, {} drawn, {} shaded, {:.2} ms)",
@@ -256,6 +263,19 @@ fn run(cli: Cli) -> Result<()> {
         count(stats.fragments, "sample", "samples"),
         elapsed.as_secs_f64() * 1e3
     );
+    if common.timings {
+        let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+        eprintln!(
+            "timings: load {:.1} ms, render {:.1} ms (geometry {:.1}, binning {:.1}, raster {:.1}), PNG {:.1} ms ({} bytes)",
+            ms(loaded),
+            ms(elapsed),
+            ms(stats.geometry),
+            ms(stats.binning),
+            ms(stats.raster),
+            ms(saved),
+            std::fs::metadata(&common.output).map_or(0, |m| m.len())
+        );
+    }
     Ok(())
 }
 
