@@ -204,7 +204,8 @@ fn next_word(s: &str) -> (&str, &str) {
 /// become U+FFFD rather than an error.
 pub(crate) fn read_text(path: &Path) -> Result<String, SceneError> {
     let bytes = std::fs::read(path).map_err(|source| SceneError::Io { path: path.to_path_buf(), source })?;
-    Ok(String::from_utf8_lossy(&bytes).into_owned())
+    // Valid UTF-8 (nearly every file) is taken as it is, without a copy.
+    Ok(String::from_utf8(bytes).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned()))
 }
 
 fn meshes_from_models(
