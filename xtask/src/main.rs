@@ -134,6 +134,10 @@ enum Task {
         /// two builds of zline run alternately.
         #[arg(long)]
         zline_only: bool,
+        /// Also print zline's stage times (geometry, binning, raster;
+        /// medians) per scene and thread count.
+        #[arg(long)]
+        stages: bool,
     },
     /// The module import graph of every crate (crates/*/src, xtask/src):
     /// module, edge and cycle counts; fails if a module imports one that
@@ -158,8 +162,17 @@ fn main() -> Result<()> {
         Task::Report { assets, out, chart, frames, size, filter, font } => {
             report::run(&report::Args { assets, out, chart, frames, size, filter, font })
         }
-        Task::Versus { glref, rounds, frames, threads, lp_threads, filter, zline_only } => {
-            versus::run(&versus::Args { glref, rounds, frames, threads, lp_threads, filter, zline_only })
+        Task::Versus { glref, rounds, frames, threads, lp_threads, filter, zline_only, stages } => {
+            versus::run(&versus::Args {
+                glref,
+                rounds,
+                frames,
+                threads,
+                lp_threads,
+                filter,
+                zline_only,
+                stages,
+            })
         }
         Task::Modules { verbose } => modules::run(verbose),
     }

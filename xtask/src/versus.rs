@@ -39,6 +39,8 @@ pub(crate) struct Args {
     pub filter: Option<String>,
     /// Time zline alone (to compare two builds of zline, run alternately).
     pub zline_only: bool,
+    /// Also print where zline's time goes, per scene and thread count.
+    pub stages: bool,
 }
 
 /// The zline scene files, next to the workspace root.
@@ -53,6 +55,8 @@ struct Entry {
     triangles: usize,
     /// Per thread count (in `Args::threads` order), the median of each round.
     zline: Vec<Vec<f64>>,
+    /// Per thread count, each round's median geometry, binning and raster ms.
+    stages: Vec<Vec<[f64; 3]>>,
     llvmpipe: Vec<f64>,
 }
 
@@ -80,6 +84,7 @@ pub(crate) fn run(args: &Args) -> Result<()> {
             scene,
             triangles,
             zline: vec![Vec::new(); args.threads.len()],
+            stages: vec![Vec::new(); args.threads.len()],
             llvmpipe: Vec::new(),
         });
     }
@@ -91,8 +96,10 @@ pub(crate) fn run(args: &Args) -> Result<()> {
     for round in 1..=args.rounds {
         for entry in &mut entries {
             eprintln!("round {round}/{}: {}", args.rounds, entry.label);
-            for (pool, times) in pools.iter().zip(&mut entry.zline) {
-                times.push(time_zline(&entry.scene, pool, args.frames));
+            for ((pool, times), stages) in pools.iter().zip(&mut entry.zline).zip(&mut entry.stages) {
+                let (time, split) = time_zline(&entry.scene, pool, args.frames);
+                times.push(time);
+                stages.push(split);
             }
             if !args.zline_only {
                 entry.llvmpipe.push(time_llvmpipe(&program, &entry.json, args)?);
@@ -118,10 +125,23 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         for times in &entry.zline {
             row += &format!(" {:.2} ms |", median(times));
         }
-        let lp = median(&entry.llvmpipe);
-        let ours = median(entry.zline.last().map_or(&[][..], |v| &v[..]));
-        row += &format!(" {lp:.2} ms | {:.2} |", lp / ours);
+        if args.zline_only {
+            row += " – | – |";
+        } else {
+            let lp = median(&entry.llvmpipe);
+            let ours = median(entry.zline.last().map_or(&[][..], |v| &v[..]));
+            row += &format!(" {lp:.2} ms | {:.2} |", lp / ours);
+        }
         println!("{row}");
+    }
+    if args.stages {
+        println!("\n| scene | threads | geometry ms | binning ms | raster ms |\n|---|---:|---:|---:|---:|");
+        for entry in &entries {
+            for (t, stages) in args.threads.iter().zip(&entry.stages) {
+                let m = |k: usize| median(&stages.iter().map(|s| s[k]).collect::<Vec<_>>());
+                println!("| {} | {t} | {:.2} | {:.2} | {:.2} |", entry.label, m(0), m(1), m(2));
+            }
+        }
     }
     println!(
         "\n{} rounds; a round times each scene with zline ({} warm frames per thread count, median) then llvmpipe (glref -n {}, LP_NUM_THREADS={}); the table shows the median of the round medians.",
@@ -134,20 +154,24 @@ fn last(threads: &[usize]) -> usize {
     threads.last().copied().unwrap_or(1)
 }
 
-/// Median ms of `frames` warm frames of `scene` drawn in `pool`.
-fn time_zline(scene: &Scene, pool: &rayon::ThreadPool, frames: usize) -> f64 {
+/// Median ms of `frames` warm frames of `scene` drawn in `pool`, and the
+/// medians of its stages (geometry, binning, raster).
+fn time_zline(scene: &Scene, pool: &rayon::ThreadPool, frames: usize) -> (f64, [f64; 3]) {
     let options = RenderOptions::default();
     let mut renderer = Renderer::default();
     let mut image = Image::empty();
     pool.install(|| renderer.render_into(scene, &options, &mut image)); // warm-up
-    let times: Vec<f64> = (0..frames.max(1))
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    let runs: Vec<(f64, [f64; 3])> = (0..frames.max(1))
         .map(|_| {
             let start = Instant::now();
-            pool.install(|| renderer.render_into(scene, &options, &mut image));
-            start.elapsed().as_secs_f64() * 1e3
+            let stats = pool.install(|| renderer.render_into(scene, &options, &mut image));
+            (ms(start.elapsed()), [ms(stats.geometry), ms(stats.binning), ms(stats.raster)])
         })
         .collect();
-    median(&times)
+    let times: Vec<f64> = runs.iter().map(|r| r.0).collect();
+    let stage = |k: usize| median(&runs.iter().map(|r| r.1[k]).collect::<Vec<_>>());
+    (median(&times), [stage(0), stage(1), stage(2)])
 }
 
 /// glref's own median over `frames` warm frames under llvmpipe.
