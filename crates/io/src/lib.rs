@@ -21,6 +21,7 @@ mod error;
 mod framing;
 mod gltf;
 mod obj;
+mod obj_read;
 mod scene_file;
 mod texture_file;
 

@@ -6,7 +6,11 @@
 //! Polygons are fan-triangulated, points and lines ignored, and each vertex
 //! split where its (v, vt, vn) index triple differs (tobj's `single_index`).
 //!
-//! tobj does the parsing, but its errors carry no location
+//! The OBJ statements are read in parallel by [`crate::obj_read`], which
+//! hands on tobj's own `Model` values (tests check it against
+//! `tobj::load_obj_buf` bit for bit); tobj reads the MTL files. tobj was
+//! the OBJ parser before and stays its definition, so what follows holds
+//! for both. tobj's errors carry no location
 //! (`PositionParseError`), some malformed input makes it panic (a negative
 //! texture index reaching before the first `vt` overflows; an MTL colour
 //! with two numbers fails an `unwrap`) and some it silently ignores (a
@@ -47,6 +51,7 @@ use zline_scene::{Mesh, TextureMap};
 use zline_shading::{Material, Sampler, Wrap};
 
 use crate::error::SceneError;
+use crate::obj_read;
 use crate::texture_file::TextureCache;
 
 /// Loads an OBJ file, printing warnings (such as a missing MTL file) to
@@ -68,21 +73,13 @@ pub fn load_obj_with_warnings(path: &Path) -> Result<(Vec<Mesh>, Vec<String>), S
 /// Loads OBJ text read from `path` (which names the file in messages and
 /// locates MTL files).
 fn parse_obj(path: &Path, text: &str) -> Result<(Vec<Mesh>, Vec<String>), SceneError> {
-    check_obj_text(path, text)?;
+    let (pieces, before) = check_obj_text(path, text)?;
     let warnings = RefCell::new(Vec::new());
-    // The MTL file each material came from, in tobj's order (it appends
-    // each library's materials as it reads `mtllib`).
+    // The MTL file each material came from, in the order libraries are
+    // read (their materials are appended as each `mtllib` comes).
     let material_files = RefCell::new(Vec::new());
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
-    #[allow(clippy::needless_update, reason = "tobj's `merging`/`reordering` features add fields")]
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ignore_points: true,
-        ignore_lines: true,
-        ..Default::default()
-    };
-    let loaded = tobj::load_obj_buf(&mut Cursor::new(text.as_bytes()), &options, |mtl| {
+    let loaded = obj_read::read_models(&pieces, &before, |mtl| {
         let mtl_path = dir.join(mtl);
         let result = load_mtl(&mtl_path, &mut warnings.borrow_mut());
         if let Ok((materials, _)) = &result {
@@ -412,7 +409,21 @@ const IGNORED_STATEMENTS: &[&str] = &[
 ];
 
 /// Checks every line of an OBJ file (see the module doc).
-fn check_obj_text(path: &Path, text: &str) -> Result<(), SceneError> {
+/// Checks every line (see [`check_obj_line`]) and returns the text's pieces
+/// with the definitions before each, for [`obj_read::read_models`].
+fn check_obj_text<'a>(
+    path: &Path,
+    text: &'a str,
+) -> Result<(Vec<&'a str>, Vec<obj_read::Before>), SceneError> {
+    check_obj_text_in(path, text, CHECK_PIECE)
+}
+
+/// [`check_obj_text`] with pieces of `piece` bytes.
+fn check_obj_text_in<'a>(
+    path: &Path,
+    text: &'a str,
+    piece: usize,
+) -> Result<(Vec<&'a str>, Vec<obj_read::Before>), SceneError> {
     if text.contains('\0') {
         return Err(SceneError::File {
             path: path.to_path_buf(),
@@ -423,7 +434,7 @@ fn check_obj_text(path: &Path, text: &str) -> Result<(), SceneError> {
     // counts each piece's lines and definitions, so each piece starts from
     // the counts before it, as a scan from the top would; the first error
     // in file order is reported.
-    let pieces = line_pieces(text, CHECK_PIECE);
+    let pieces = line_pieces(text, piece);
     let totals: Vec<(usize, Defined)> = pieces.par_iter().map(|piece| count_definitions(piece)).collect();
     let mut starts = Vec::with_capacity(pieces.len());
     let (mut line, mut defined) = (0, Defined::default());
@@ -438,8 +449,8 @@ fn check_obj_text(path: &Path, text: &str) -> Result<(), SceneError> {
     }
     let errors: Vec<Option<(usize, String)>> = pieces
         .par_iter()
-        .zip(starts)
-        .map(|(piece, (first_line, mut defined))| {
+        .zip(&starts)
+        .map(|(piece, &(first_line, mut defined))| {
             let mut args = Vec::new();
             for (i, line) in piece.lines().enumerate() {
                 if let Err(message) = check_obj_line(line, &mut defined, &mut args) {
@@ -449,10 +460,14 @@ fn check_obj_text(path: &Path, text: &str) -> Result<(), SceneError> {
             None
         })
         .collect();
-    match errors.into_iter().flatten().next() {
-        Some((line, message)) => Err(SceneError::Line { path: path.to_path_buf(), line, message }),
-        None => Ok(()),
+    if let Some((line, message)) = errors.into_iter().flatten().next() {
+        return Err(SceneError::Line { path: path.to_path_buf(), line, message });
     }
+    let before = starts
+        .iter()
+        .map(|(_, d)| obj_read::Before { positions: d.positions, texcoords: d.texcoords, normals: d.normals })
+        .collect();
+    Ok((pieces, before))
 }
 
 /// Bytes of OBJ text checked by one task.
@@ -755,6 +770,136 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The models and materials as tobj reads `text` (the definition
+    /// `obj_read` must match), and as `obj_read` does with `piece`-byte
+    /// pieces; `None` when the check rejects the text.
+    fn both_readers(text: &str, dir: &Path, piece: usize) -> Option<(String, String)> {
+        let (pieces, before) = check_obj_text_in(Path::new("t.obj"), text, piece).ok()?;
+        let loader = |mtl: &Path| load_mtl(&dir.join(mtl), &mut Vec::new());
+        #[allow(clippy::needless_update, reason = "tobj's `merging`/`reordering` features add fields")]
+        let options = tobj::LoadOptions {
+            triangulate: true,
+            single_index: true,
+            ignore_points: true,
+            ignore_lines: true,
+            ..Default::default()
+        };
+        let theirs = tobj::load_obj_buf(&mut Cursor::new(text.as_bytes()), &options, loader);
+        let ours = obj_read::read_models(&pieces, &before, loader);
+        Some((describe(theirs), describe(ours)))
+    }
+
+    /// Everything a load result holds, floats by their bits.
+    fn describe(r: tobj::LoadResult) -> String {
+        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        match r {
+            Err(e) => format!("error {e:?}"),
+            Ok((models, materials)) => {
+                let mut out = format!("materials {materials:?}\n");
+                for m in models {
+                    let x = &m.mesh;
+                    out += &format!(
+                        "model {:?} mat {:?}\n pos {:?}\n color {:?}\n normals {:?}\n uv {:?}\n idx {:?} {:?} {:?} {:?}\n",
+                        m.name,
+                        x.material_id,
+                        bits(&x.positions),
+                        bits(&x.vertex_color),
+                        bits(&x.normals),
+                        bits(&x.texcoords),
+                        x.indices,
+                        x.face_arities,
+                        x.texcoord_indices,
+                        x.normal_indices,
+                    );
+                }
+                out
+            }
+        }
+    }
+
+    /// The shipped models read both ways, whole and in small pieces.
+    #[test]
+    fn parallel_reader_matches_tobj_on_the_assets() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/obj");
+        let mut read = 0;
+        for model in ["spot/spot.obj", "suzanne/suzanne.obj"] {
+            let path = root.join(model);
+            let text = read_text(&path).unwrap();
+            for piece in [CHECK_PIECE, 4096, 100] {
+                let (theirs, ours) = both_readers(&text, path.parent().unwrap(), piece).unwrap();
+                assert!(theirs == ours, "{model}, pieces of {piece} bytes");
+                read += 1;
+            }
+        }
+        assert_eq!(read, 6);
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::test_runner::Config { cases: 256, ..Default::default() })]
+
+        /// Text that passes the check, in pieces of any size: the parallel
+        /// reader gives tobj's models and materials, bit for bit.
+        #[test]
+        fn parallel_reader_matches_tobj(lines in proptest::collection::vec(valid_obj_line(), 0..40), piece in 1usize..200) {
+            // Three of each attribute first, so that most faces are valid.
+            let head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nvn 0 1 0\nvn 1 0 0\n";
+            let text = head.to_owned() + &lines.join("\n");
+            let dir = materials_dir();
+            let (theirs, ours) = both_readers(&text, &dir, piece).expect("the lines pass the check");
+            proptest::prop_assert_eq!(theirs, ours);
+        }
+
+        /// The same on the troublesome lines of the panic test.
+        #[test]
+        fn parallel_reader_matches_tobj_on_odd_text(lines in proptest::collection::vec(obj_line(), 0..12), piece in 1usize..64) {
+            let text = lines.join("\n");
+            if let Some((theirs, ours)) = both_readers(&text, Path::new("/nonexistent"), piece) {
+                proptest::prop_assert_eq!(theirs, ours);
+            }
+        }
+    }
+
+    /// A folder with `m.mtl`, defining materials `ax` and `bx`.
+    fn materials_dir() -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("zline-obj-read-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("m.mtl"), "newmtl ax\nKd 1 0 0\nnewmtl bx\nKd 0 1 0\n").unwrap();
+        dir
+    }
+
+    /// Lines that pass the check after three of each attribute: vertices (with w or colours),
+    /// texture coordinates, normals, faces of 1–6 corners in every index
+    /// form, objects, groups, materials, comments.
+    fn valid_obj_line() -> impl proptest::strategy::Strategy<Value = String> {
+        use proptest::prelude::*;
+        let num = prop::sample::select(vec!["0", "1", "-2.5", "0.25", "3e2", "-0.0", "7"]);
+        let nums =
+            |n: std::ops::Range<usize>| prop::collection::vec(num.clone(), n).prop_map(|v| v.join(" "));
+        let index = prop::sample::select(vec!["1", "2", "3", "-1", "-2"]);
+        let corner = (index.clone(), prop::option::of(index.clone()), prop::option::of(index), 0..3u8)
+            .prop_map(|(v, t, n, form)| match form {
+                0 => v.to_owned(),
+                1 => format!("{v}/{}", t.unwrap_or("1")),
+                _ => format!("{v}/{}/{}", t.unwrap_or(""), n.unwrap_or("1")),
+            });
+        let face = prop::collection::vec(corner, 1..7).prop_map(|c| format!("f {}", c.join(" ")));
+        let name = prop::sample::select(vec!["a", "b", "two words", " "]);
+        prop_oneof![
+            4 => nums(3..4).prop_map(|n| format!("v {n}")),
+            1 => nums(3..4).prop_map(|n| format!("v {n} 2")),
+            1 => nums(6..7).prop_map(|n| format!("v {n}")),
+            2 => nums(2..3).prop_map(|n| format!("vt {n}")),
+            2 => nums(3..4).prop_map(|n| format!("vn {n}")),
+            6 => face,
+            1 => name.clone().prop_map(|n| format!("o {n}")),
+            1 => name.clone().prop_map(|n| format!("g {n}")),
+            1 => name.prop_map(|n| format!("usemtl {n}x")),
+            1 => prop::sample::select(vec!["mtllib m.mtl", "mtllib missing.mtl"]).prop_map(str::to_owned),
+            1 => Just("# comment".to_owned()),
+            1 => Just(String::new()),
+        ]
     }
 
     /// OBJ-like lines built from keywords and troublesome tokens.
