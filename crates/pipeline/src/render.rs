@@ -30,6 +30,9 @@ use crate::volume::ClipVolume;
 /// Triangles per rayon task in setup.
 const TRIANGLE_CHUNK: usize = 2048;
 
+/// The smallest setup chunk [`triangle_chunk`] makes.
+const MIN_TRIANGLE_CHUNK: usize = 256;
+
 /// Settings of the pipeline itself (the scene's settings say what to draw).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RenderOptions {
@@ -287,12 +290,13 @@ impl Renderer {
             ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, object.world_from_object);
         transform_mesh(mesh, &transforms, lights, &screen, &mut self.vertices);
         let vertices = &self.vertices;
-        let (first, n) = (self.used, mesh.triangles.len().div_ceil(TRIANGLE_CHUNK));
+        let chunk = triangle_chunk(mesh.triangles.len(), rayon::current_num_threads());
+        let (first, n) = (self.used, mesh.triangles.len().div_ceil(chunk));
         self.used += n;
         if self.chunks.len() < self.used {
             self.chunks.resize_with(self.used, PrimitiveChunk::default);
         }
-        let tris = mesh.triangles.par_chunks(TRIANGLE_CHUNK);
+        let tris = mesh.triangles.par_chunks(chunk);
         self.chunks[first..self.used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
             out.reset(pass);
             for t in tris {
@@ -373,6 +377,15 @@ impl Renderer {
 fn pixels_of(samples: Rect, n: u32) -> Rect {
     let n = n as i32;
     Rect { x0: samples.x0 / n, y0: samples.y0 / n, x1: samples.x1 / n, y1: samples.y1 / n }
+}
+
+/// Triangles per setup chunk for a mesh of `n` triangles: [`TRIANGLE_CHUNK`],
+/// or fewer for a small mesh so that every thread gets a few chunks (a 2k
+/// sphere in one chunk was set up on one thread). Chunks change only which
+/// thread sets a triangle up, never the draw order, so the image does not
+/// depend on them.
+fn triangle_chunk(n: usize, threads: usize) -> usize {
+    n.div_ceil(threads.max(1) * 4).clamp(MIN_TRIANGLE_CHUNK, TRIANGLE_CHUNK)
 }
 
 /// Fills a tile's pixels in `band` (the image rows from the tile's first
