@@ -5,7 +5,7 @@
 //! - Every other crate forbids `unsafe` (`[workspace.lints.rust]
 //!   unsafe_code = "forbid"`). This crate denies it too (its own `[lints]`
 //!   table) and allows it only on the modules that call `std::arch`,
-//!   `avx2` and `sse2`, and on `opaque`, whose one volatile read keeps
+//!   `avx2` and `sse2`, on `prefetch` (the cache hint) and on `opaque`, whose one volatile read keeps
 //!   LLVM from turning a kernel's read-blend-write into a masked store
 //!   (`#[allow(unsafe_code, reason = …)]`).
 //! - Every `unsafe` block carries a `// SAFETY:` comment saying why its
@@ -43,6 +43,8 @@ mod isa;
     reason = "one volatile read that keeps LLVM from forming masked stores (see the module)"
 )]
 mod opaque;
+#[allow(unsafe_code, reason = "the prefetch hint is an std::arch intrinsic (see the module)")]
+mod prefetch;
 pub mod scalar;
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 #[allow(unsafe_code, reason = "the SSE2 kernels call std::arch intrinsics (see the crate policy)")]
@@ -119,6 +121,7 @@ fn out_of_line<T>(twin: impl FnOnce() -> T) -> T {
 
 pub use isa::Isa;
 pub use opaque::read_opaque;
+pub use prefetch::prefetch;
 
 #[cfg(test)]
 mod tests;
