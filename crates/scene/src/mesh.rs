@@ -378,20 +378,6 @@ mod tests {
             && directed.iter().all(|(&(p, q), &n)| n == 1 && directed.get(&(q, p)) == Some(&1))
     }
 
-    #[test]
-    fn closedness_of_known_meshes() {
-        use crate::{cube, plane, uv_sphere};
-        assert!(uv_sphere(8, 12, 1.0).is_closed());
-        assert!(cube(1.0).is_closed(), "split vertices at the corners still close the cube");
-        assert!(!plane(1.0, 2).is_closed());
-        let mut flipped = uv_sphere(8, 12, 1.0);
-        flipped.triangles[3].swap(1, 2);
-        assert!(!flipped.is_closed(), "one triangle facing the other way");
-        let mut doubled = uv_sphere(8, 12, 1.0);
-        doubled.triangles.push(doubled.triangles[0]);
-        assert!(!doubled.is_closed(), "a triangle used twice");
-    }
-
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
         /// Random triangle lists over a few positions (some repeated, −0.0

@@ -148,6 +148,19 @@ mod tests {
     use super::*;
     use crate::mesh::face_normal;
 
+    #[test]
+    fn closedness_of_known_meshes() {
+        assert!(uv_sphere(8, 12, 1.0).is_closed());
+        assert!(cube(1.0).is_closed(), "split vertices at the corners still close the cube");
+        assert!(!plane(1.0, 2).is_closed());
+        let mut flipped = uv_sphere(8, 12, 1.0);
+        flipped.triangles[3].swap(1, 2);
+        assert!(!flipped.is_closed(), "one triangle facing the other way");
+        let mut doubled = uv_sphere(8, 12, 1.0);
+        doubled.triangles.push(doubled.triangles[0]);
+        assert!(!doubled.is_closed(), "a triangle used twice");
+    }
+
     /// Every triangle is non-degenerate, its geometric normal agrees with
     /// its vertex normals and points away from `inside(centroid)`.
     #[track_caller]
