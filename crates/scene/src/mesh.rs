@@ -140,7 +140,7 @@ impl Mesh {
         keys.sort_unstable();
         let edge = |k: u64| k >> 1;
         !keys.is_empty()
-            && keys.len() % 2 == 0
+            && keys.len().is_multiple_of(2)
             && keys.chunks_exact(2).all(|pair| pair[0] & 1 == 0 && pair[1] == pair[0] | 1)
             && keys.chunks_exact(2).zip(keys.chunks_exact(2).skip(1)).all(|(a, b)| edge(a[0]) != edge(b[0]))
     }
