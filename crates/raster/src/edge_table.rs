@@ -109,6 +109,7 @@ pub struct EdgeTable {
 impl EdgeTable {
     /// Builds the table for a triangle in either winding. Returns `None` for
     /// a triangle of zero area, which covers no sample.
+    #[inline]
     pub fn new(vertices: [FixedPoint; 3]) -> Option<EdgeTable> {
         let mut s = vertices;
         s.sort_by_key(|p| (p.y, p.x));
@@ -130,17 +131,20 @@ impl EdgeTable {
     }
 
     /// The pixels that may be covered: every emitted span lies inside.
+    #[inline]
     pub fn bounds(&self) -> Rect {
         self.bounds
     }
 
     /// The vertices sorted top to bottom.
+    #[inline]
     pub fn sorted_vertices(&self) -> [FixedPoint; 3] {
         self.sorted
     }
 
     /// True when the long edge (top vertex to bottom vertex) bounds the
     /// spans on the left.
+    #[inline]
     pub fn long_edge_is_left(&self) -> bool {
         self.long_is_left
     }

@@ -64,11 +64,13 @@ pub struct Rect {
 
 impl Rect {
     /// A rectangle from its corner and size.
+    #[inline]
     pub fn from_size(x0: i32, y0: i32, width: i32, height: i32) -> Rect {
         Rect { x0, y0, x1: x0 + width, y1: y0 + height }
     }
 
     /// The common part of two rectangles (possibly empty).
+    #[inline]
     pub fn intersect(&self, other: &Rect) -> Rect {
         Rect {
             x0: self.x0.max(other.x0),
@@ -79,16 +81,19 @@ impl Rect {
     }
 
     /// True when no pixel is inside.
+    #[inline]
     pub fn is_empty(&self) -> bool {
         self.x0 >= self.x1 || self.y0 >= self.y1
     }
 
     /// Width in pixels (0 when empty).
+    #[inline]
     pub fn width(&self) -> i32 {
         (self.x1 - self.x0).max(0)
     }
 
     /// Height in pixels (0 when empty).
+    #[inline]
     pub fn height(&self) -> i32 {
         (self.y1 - self.y0).max(0)
     }

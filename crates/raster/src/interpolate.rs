@@ -54,6 +54,7 @@ pub struct PlaneBasis {
 impl PlaneBasis {
     /// The basis for a triangle with snapped vertices `p` (in the order the
     /// values will be given). `None` for zero area.
+    #[inline]
     pub fn new(p: [FixedPoint; 3]) -> Option<PlaneBasis> {
         let [(x0, y0), (x1, y1), (x2, y2)] = p.map(FixedPoint::to_f64);
         let det = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0);
@@ -69,6 +70,7 @@ impl PlaneBasis {
     }
 
     /// The anchor: the first vertex, in pixels.
+    #[inline]
     pub fn anchor(&self) -> (f64, f64) {
         self.anchor
     }
@@ -95,6 +97,7 @@ impl DepthPlane {
     pub const RELATIVE_ERROR: f64 = 1.0 / (1u64 << 24) as f64;
 
     /// The depth plane through the vertices' NC depths.
+    #[inline]
     pub fn new(basis: &PlaneBasis, z: [f64; 3]) -> DepthPlane {
         let (dzdx, dzdy) = basis.gradient(z);
         DepthPlane { z0: z[0], dzdx, dzdy, anchor: basis.anchor }
@@ -118,6 +121,7 @@ impl DepthPlane {
     }
 
     /// ∂z/∂x.
+    #[inline]
     pub fn dzdx(&self) -> f64 {
         self.dzdx
     }
@@ -139,6 +143,7 @@ impl AttributePlanes<0> {
 
 impl<const N: usize> AttributePlanes<N> {
     /// Planes through the vertex values `v[k][i]` (vertex k, attribute i).
+    #[inline]
     pub fn new(basis: &PlaneBasis, v: [[f32; N]; 3]) -> AttributePlanes<N> {
         let mut dx = [0.0; N];
         let mut dy = [0.0; N];
@@ -159,11 +164,13 @@ impl<const N: usize> AttributePlanes<N> {
     }
 
     /// ∂v/∂x per attribute.
+    #[inline]
     pub fn dx(&self) -> [f32; N] {
         self.dx
     }
 
     /// ∂v/∂y per attribute.
+    #[inline]
     pub fn dy(&self) -> [f32; N] {
         self.dy
     }
