@@ -30,6 +30,7 @@ impl Attenuation {
     }
 
     /// True when f(d) = 1 for every distance, so `d` need not be computed.
+    #[inline]
     pub fn is_none(&self) -> bool {
         self.a0 <= 1.0 && self.a1 == 0.0 && self.a2 == 0.0
     }
@@ -65,6 +66,7 @@ pub enum Light {
 
 impl Light {
     /// The light's colour Il.
+    #[inline]
     pub fn color(&self) -> Vec3 {
         match *self {
             Light::Point { color, .. } | Light::Directional { color, .. } => color,

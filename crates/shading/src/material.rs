@@ -40,6 +40,7 @@ impl Material {
     }
 
     /// True when the specular term contributes nothing for any light.
+    #[inline]
     pub fn has_specular(&self) -> bool {
         self.ks.max_element() > 0.0
     }

@@ -209,22 +209,26 @@ impl Texture {
     }
 
     /// Width of level 0 in texels.
+    #[inline]
     pub fn width(&self) -> u32 {
         self.levels[0].width
     }
 
     /// Height of level 0 in texels.
+    #[inline]
     pub fn height(&self) -> u32 {
         self.levels[0].height
     }
 
     /// Number of mip levels, level 0 included: ⌊log2(max(w, h))⌋ + 1.
+    #[inline]
     pub fn levels(&self) -> usize {
         self.levels.len()
     }
 
     /// Width and height of mip `level` (level 0 is the full texture).
     /// Panics when `level >= self.levels()`.
+    #[inline]
     pub fn level_size(&self, level: usize) -> (u32, u32) {
         let lv = self.levels[level];
         (lv.width, lv.height)
