@@ -53,7 +53,6 @@ impl Fog {
     /// step: 1 before `start`, 0 from it on.
     #[inline]
     #[expect(clippy::manual_clamp, reason = "max/min map NaN to 0; clamp would keep it")]
-    #[inline]
     pub fn factor(&self, z: f32) -> f32 {
         let f = match self.mode {
             FogMode::Linear { start, end } => {
