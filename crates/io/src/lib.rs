@@ -21,7 +21,6 @@ mod error;
 mod framing;
 mod gltf;
 mod obj;
-mod obj_read;
 mod scene_file;
 mod texture_file;
 

@@ -4,8 +4,8 @@
 //! Stanford bunny that was 27–32 ms, the largest step of a whole-process
 //! thumbnail. This module reads the same statements in parallel pieces of
 //! whole lines (the pieces and the definition counts before each come from
-//! the OBJ check, which has already accepted every line) and then replays,
-//! in file order, what tobj does with them: objects and groups (`o`, `g`)
+//! [`super::check`], which has already accepted every line) and then
+//! replays, in file order, what tobj does with them: objects and groups (`o`, `g`)
 //! and material changes (`usemtl`) start new models, `mtllib` loads a
 //! material library through the caller's loader, and each model's faces
 //! become one single-index mesh — corners deduplicated by their
@@ -20,13 +20,7 @@ use std::path::Path;
 
 use rayon::prelude::*;
 
-/// Counts of the vertex attributes defined before a piece of OBJ text.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Before {
-    pub(crate) positions: usize,
-    pub(crate) texcoords: usize,
-    pub(crate) normals: usize,
-}
+use super::check::Defined;
 
 /// tobj's marker for an index a corner does not give.
 const MISSING: usize = usize::MAX;
@@ -73,7 +67,7 @@ struct Piece<'a> {
 /// library's error when none loaded.
 pub(crate) fn read_models(
     pieces: &[&str],
-    before: &[Before],
+    before: &[Defined],
     mut load_mtl: impl FnMut(&Path) -> tobj::MTLLoadResult,
 ) -> tobj::LoadResult {
     let read: Vec<Piece> = pieces
@@ -159,7 +153,7 @@ pub(crate) fn read_models(
 
 /// Reads one piece: attributes, faces (indices resolved against the counts
 /// so far, as tobj does) and events.
-fn read_piece(text: &str, before: Before) -> Result<Piece<'_>, tobj::LoadError> {
+fn read_piece(text: &str, before: Defined) -> Result<Piece<'_>, tobj::LoadError> {
     use tobj::LoadError as E;
     let mut p = Piece::default();
     let float = |s: &str| s.parse::<f32>();
