@@ -39,17 +39,7 @@ pub(crate) fn run(
         let scene = (case.build)()?;
         for &t in threads {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build().context("thread pool")?;
-            let mut renderer = Renderer::default();
-            let mut image = Image::empty();
-            pool.install(|| renderer.render_into(&scene, options, &mut image)); // warm-up
-            let mut runs: Vec<(f64, RenderStats)> = (0..frames.max(1))
-                .map(|_| {
-                    let start = Instant::now();
-                    let stats = pool.install(|| renderer.render_into(&scene, options, &mut image));
-                    (start.elapsed().as_secs_f64(), stats)
-                })
-                .collect();
-            runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let runs = time_frames(&scene, &pool, options, frames);
             let (median, stats) = runs[runs.len() / 2];
             let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
             println!(
@@ -66,6 +56,29 @@ pub(crate) fn run(
         }
     }
     Ok(())
+}
+
+/// `frames` (at least one) warm frames of `scene` drawn in `pool` by one
+/// renderer after one warm-up frame: each frame's seconds and statistics,
+/// fastest first.
+pub(crate) fn time_frames(
+    scene: &Scene,
+    pool: &rayon::ThreadPool,
+    options: &RenderOptions,
+    frames: usize,
+) -> Vec<(f64, RenderStats)> {
+    let mut renderer = Renderer::default();
+    let mut image = Image::empty();
+    pool.install(|| renderer.render_into(scene, options, &mut image)); // warm-up
+    let mut runs: Vec<(f64, RenderStats)> = (0..frames.max(1))
+        .map(|_| {
+            let start = Instant::now();
+            let stats = pool.install(|| renderer.render_into(scene, options, &mut image));
+            (start.elapsed().as_secs_f64(), stats)
+        })
+        .collect();
+    runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    runs
 }
 
 fn settings(shading: ShadingMode) -> RenderSettings {

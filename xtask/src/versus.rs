@@ -12,10 +12,9 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
-use zline::pipeline::{Image, RenderOptions, Renderer};
+use zline::pipeline::{RenderOptions, RenderStats};
 use zline::scene::Scene;
 
 /// The benchmark scenes, in the order of issue 9's table: glref's JSON name
@@ -157,21 +156,12 @@ fn last(threads: &[usize]) -> usize {
 /// Median ms of `frames` warm frames of `scene` drawn in `pool`, and the
 /// medians of its stages (geometry, binning, raster).
 fn time_zline(scene: &Scene, pool: &rayon::ThreadPool, frames: usize) -> (f64, [f64; 3]) {
-    let options = RenderOptions::default();
-    let mut renderer = Renderer::default();
-    let mut image = Image::empty();
-    pool.install(|| renderer.render_into(scene, &options, &mut image)); // warm-up
+    let runs = crate::bench::time_frames(scene, pool, &RenderOptions::default(), frames);
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
-    let runs: Vec<(f64, [f64; 3])> = (0..frames.max(1))
-        .map(|_| {
-            let start = Instant::now();
-            let stats = pool.install(|| renderer.render_into(scene, &options, &mut image));
-            (ms(start.elapsed()), [ms(stats.geometry), ms(stats.binning), ms(stats.raster)])
-        })
-        .collect();
-    let times: Vec<f64> = runs.iter().map(|r| r.0).collect();
-    let stage = |k: usize| median(&runs.iter().map(|r| r.1[k]).collect::<Vec<_>>());
-    (median(&times), [stage(0), stage(1), stage(2)])
+    let stage = |f: fn(&RenderStats) -> std::time::Duration| {
+        median(&runs.iter().map(|(_, s)| ms(f(s))).collect::<Vec<_>>())
+    };
+    (runs[runs.len() / 2].0 * 1e3, [stage(|s| s.geometry), stage(|s| s.binning), stage(|s| s.raster)])
 }
 
 /// glref's own median over `frames` warm frames under llvmpipe.

@@ -213,28 +213,29 @@ pub(crate) fn vertex_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<
 /// Assigns every vertex the id of the first vertex at the same position.
 /// Returns the group of each vertex and the number of groups.
 pub(crate) fn weld_by_position(positions: &[Vec3]) -> (Vec<usize>, usize) {
-    // Adding 0.0 turns −0.0 into +0.0, so both spell the same key.
-    let key = |p: Vec3| (p + Vec3::ZERO).to_array().map(f32::to_bits);
     let mut ids = HashMap::with_capacity(positions.len());
     let group_of = positions
         .iter()
         .map(|&p| {
             let next = ids.len();
-            *ids.entry(key(p)).or_insert(next)
+            *ids.entry(position_key(p)).or_insert(next)
         })
         .collect();
     (group_of, ids.len())
+}
+
+/// A position's bits as a key; adding 0.0 turns −0.0 into +0.0, so both
+/// spell the same key.
+fn position_key(p: Vec3) -> [u32; 3] {
+    (p + Vec3::ZERO).to_array().map(f32::to_bits)
 }
 
 /// For each vertex, one vertex at the same position (the same for all of
 /// them; −0.0 and +0.0 alike): the classes of [`weld_by_position`] named
 /// by a member instead of numbered, found by sorting.
 fn position_classes(positions: &[Vec3]) -> Vec<u32> {
-    let mut order: Vec<([u32; 3], u32)> = positions
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| ((p + Vec3::ZERO).to_array().map(f32::to_bits), i as u32))
-        .collect();
+    let mut order: Vec<([u32; 3], u32)> =
+        positions.iter().enumerate().map(|(i, &p)| (position_key(p), i as u32)).collect();
     order.sort_unstable();
     let mut class = vec![0; positions.len()];
     let mut first = 0;

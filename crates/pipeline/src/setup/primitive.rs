@@ -237,6 +237,27 @@ pub struct KernelTables {
 }
 
 impl KernelTables {
+    /// Asks for the cache lines of primitive `index` of `kernel`'s table
+    /// (a hint, `zline_simd::prefetch`; nothing when there is none).
+    #[inline(always)]
+    pub(crate) fn prefetch(&self, kernel: Kernel, index: u32) {
+        let i = index as usize;
+        match kernel {
+            Kernel::Flat => self.flat.get(i).map(zline_simd::prefetch),
+            Kernel::Gouraud { .. } => self.gouraud.get(i).map(zline_simd::prefetch),
+            Kernel::Phong(_) => self.phong.get(i).map(zline_simd::prefetch),
+            Kernel::ColoredPhong(_) => self.colored_phong.get(i).map(zline_simd::prefetch),
+            Kernel::Textured { lighting, .. } => match lighting {
+                TexturedLighting::Flat => self.textured_flat.get(i).map(zline_simd::prefetch),
+                TexturedLighting::Gouraud => self.textured_gouraud.get(i).map(zline_simd::prefetch),
+                TexturedLighting::Phong => self.textured_phong.get(i).map(zline_simd::prefetch),
+                TexturedLighting::ColoredPhong => {
+                    self.textured_colored_phong.get(i).map(zline_simd::prefetch)
+                }
+            },
+        };
+    }
+
     fn clear(&mut self) {
         self.flat.clear();
         self.gouraud.clear();

@@ -38,27 +38,8 @@ use kernel::{
     Interp, Linear, Lod, MaskAlpha, Opaque, Pass, Perspective, TextureAlpha,
 };
 
-/// How many primitives ahead in a bin [`prefetch_primitive`] asks for.
+/// How many primitives ahead in a bin the opaque pass asks for.
 const PREFETCH_AHEAD: usize = 4;
-
-/// Asks for the cache lines of the primitive `index` of `kernel`'s table
-/// in `chunk` (a hint; see `zline_simd::prefetch`).
-#[inline(always)]
-fn prefetch_primitive(chunk: &PrimitiveChunk, kernel: Kernel, index: u32) {
-    let (t, i) = (&chunk.tables, index as usize);
-    match kernel {
-        Kernel::Flat => t.flat.get(i).map(zline_simd::prefetch),
-        Kernel::Gouraud { .. } => t.gouraud.get(i).map(zline_simd::prefetch),
-        Kernel::Phong(_) => t.phong.get(i).map(zline_simd::prefetch),
-        Kernel::ColoredPhong(_) => t.colored_phong.get(i).map(zline_simd::prefetch),
-        Kernel::Textured { lighting, .. } => match lighting {
-            TexturedLighting::Flat => t.textured_flat.get(i).map(zline_simd::prefetch),
-            TexturedLighting::Gouraud => t.textured_gouraud.get(i).map(zline_simd::prefetch),
-            TexturedLighting::Phong => t.textured_phong.get(i).map(zline_simd::prefetch),
-            TexturedLighting::ColoredPhong => t.textured_colored_phong.get(i).map(zline_simd::prefetch),
-        },
-    };
-}
 
 impl TileTarget {
     /// Draws the primitives `bin` (references into `chunks`) in order;
@@ -72,7 +53,7 @@ impl TileTarget {
         let mut shaded = 0;
         for (k, r) in bin.iter().enumerate() {
             if let Some(ahead) = bin.get(k + PREFETCH_AHEAD) {
-                prefetch_primitive(&chunks[ahead.chunk as usize], ahead.kernel, ahead.index);
+                chunks[ahead.chunk as usize].tables.prefetch(ahead.kernel, ahead.index);
             }
             shaded += self.draw(&chunks[r.chunk as usize], (r.kernel, r.index), ctx, &Opaque);
         }
