@@ -56,9 +56,19 @@ struct Piece<'a> {
     corners: Vec<Corner>,
     /// Corners per face.
     arity: Vec<u32>,
-    /// Each event with the piece's face and corner counts and attribute
-    /// lengths (pos, v_color, texcoord, normal) when it came.
-    events: Vec<((usize, usize), [usize; 4], Event<'a>)>,
+    /// Each event with the piece's [`Counts`] when it came.
+    events: Vec<(Counts, Event<'a>)>,
+}
+
+/// Where a piece, or the file, stands: the lengths of its arrays in the
+/// order pos, v_color, texcoord, normal, corners, arity (faces).
+type Counts = [usize; 6];
+
+impl Piece<'_> {
+    fn counts(&self) -> Counts {
+        let p = self;
+        [p.pos.len(), p.v_color.len(), p.texcoord.len(), p.normal.len(), p.corners.len(), p.arity.len()]
+    }
 }
 
 /// Reads `pieces` (whole lines; `before[i]` counts the definitions ahead of
@@ -76,15 +86,11 @@ pub(crate) fn read_models(
         .map(|(text, before)| read_piece(text, *before))
         .collect::<Result<_, _>>()?;
 
-    // The attribute arrays of the whole file, and where each piece's start.
+    // The arrays of the whole file, and where each piece starts in them.
     let mut all = Piece::default();
-    let mut offsets = Vec::with_capacity(read.len());
+    let mut starts = Vec::with_capacity(read.len());
     for piece in &read {
-        offsets.push((
-            [all.pos.len(), all.v_color.len(), all.texcoord.len(), all.normal.len()],
-            all.corners.len(),
-            all.arity.len(),
-        ));
+        starts.push(all.counts());
         all.pos.extend_from_slice(&piece.pos);
         all.v_color.extend_from_slice(&piece.v_color);
         all.texcoord.extend_from_slice(&piece.texcoord);
@@ -92,42 +98,37 @@ pub(crate) fn read_models(
         all.corners.extend_from_slice(&piece.corners);
         all.arity.extend_from_slice(&piece.arity);
     }
+    // The model made of the faces between two marks, over the attributes
+    // defined by the second (as tobj exports a model when it ends).
+    let model = |from: &Counts, to: &Counts, name: &str, mat_id| {
+        let faces = (&all.arity[from[5]..to[5]], &all.corners[from[4]..to[4]]);
+        Ok(tobj::Model::new(export(&all, to, faces, mat_id)?, name.to_owned()))
+    };
 
-    // Replay the events in file order over the face stream.
+    // Replay the events in file order over the face stream: a name, or a
+    // change of material, ends the current model if it has faces.
     let mut models = Vec::new();
     let mut materials: Vec<tobj::Material> = Vec::new();
     let mut mat_map: HashMap<String, usize> = HashMap::new();
     let mut mtl_error = None;
     let mut name = "unnamed_object".to_owned();
     let mut mat_id = None;
-    // The current model's faces: from `first` (face index, corner index).
-    let mut first = (0, 0);
-    for (piece, (starts, corner0, face0)) in read.iter().zip(&offsets) {
-        for ((faces, corners), lens, event) in &piece.events {
-            let (at, corner_at) = (face0 + faces, corner0 + corners);
-            let has_faces = at > first.0;
-            let lens = [0, 1, 2, 3].map(|k| starts[k] + lens[k]);
-            let pop = |models: &mut Vec<tobj::Model>, name: &str, mat_id| -> Result<(), tobj::LoadError> {
-                let faces = (&all.arity[first.0..at], &all.corners[first.1..corner_at]);
-                models.push(tobj::Model::new(export(&all, lens, faces, mat_id)?, name.to_owned()));
-                Ok(())
+    let mut first: Counts = [0; 6];
+    for (piece, start) in read.iter().zip(&starts) {
+        for (local, event) in &piece.events {
+            let at: Counts = std::array::from_fn(|k| start[k] + local[k]);
+            let ends_model = match event {
+                Event::Name(_) => true,
+                Event::UseMaterial(material) => mat_map.get(*material).copied() != mat_id,
+                Event::Library(_) => false,
             };
+            if ends_model && at[5] > first[5] {
+                models.push(model(&first, &at, &name, mat_id)?);
+                first = at;
+            }
             match event {
-                Event::Name(new) => {
-                    if has_faces {
-                        pop(&mut models, &name, mat_id)?;
-                        first = (at, corner_at);
-                    }
-                    name.clone_from(new);
-                }
-                Event::UseMaterial(material) => {
-                    let new = mat_map.get(*material).copied();
-                    if mat_id != new && has_faces {
-                        pop(&mut models, &name, mat_id)?;
-                        first = (at, corner_at);
-                    }
-                    mat_id = new;
-                }
+                Event::Name(new) => name.clone_from(new),
+                Event::UseMaterial(material) => mat_id = mat_map.get(*material).copied(),
                 Event::Library(path) => match load_mtl(Path::new(path)) {
                     Ok((mut mats, map)) => {
                         let offset = materials.len();
@@ -141,9 +142,7 @@ pub(crate) fn read_models(
             }
         }
     }
-    let lens = [all.pos.len(), all.v_color.len(), all.texcoord.len(), all.normal.len()];
-    let faces = (&all.arity[first.0..], &all.corners[first.1..]);
-    models.push(tobj::Model::new(export(&all, lens, faces, mat_id)?, name));
+    models.push(model(&first, &all.counts(), &name, mat_id)?);
     let materials = match (materials.is_empty(), mtl_error) {
         (true, Some(e)) => Err(e),
         _ => Ok(materials),
@@ -217,27 +216,23 @@ fn read_piece(text: &str, before: Defined) -> Result<Piece<'_>, tobj::LoadError>
                 let size = line.chars().next().map_or(0, char::len_utf8);
                 let name = line[size..].trim();
                 let name = if name.is_empty() { "unnamed_object" } else { name };
-                p.events.push(((p.arity.len(), p.corners.len()), lens(&p), Event::Name(name.to_owned())));
+                p.events.push((p.counts(), Event::Name(name.to_owned())));
             }
             Some("mtllib") => {
                 let path = line.split_once(' ').unwrap_or_default().1.trim();
-                p.events.push(((p.arity.len(), p.corners.len()), lens(&p), Event::Library(path)));
+                p.events.push((p.counts(), Event::Library(path)));
             }
             Some("usemtl") => {
                 let material = line.split_once(' ').unwrap_or_default().1.trim();
                 if material.is_empty() {
                     return Err(E::MaterialParseError);
                 }
-                p.events.push(((p.arity.len(), p.corners.len()), lens(&p), Event::UseMaterial(material)));
+                p.events.push((p.counts(), Event::UseMaterial(material)));
             }
             _ => {}
         }
     }
     Ok(p)
-}
-
-fn lens(p: &Piece) -> [usize; 4] {
-    [p.pos.len(), p.v_color.len(), p.texcoord.len(), p.normal.len()]
 }
 
 /// tobj's `VertexIndices::parse`: `v`, `v/vt`, `v//vn` or `v/vt/vn`,
@@ -258,12 +253,12 @@ fn parse_corner(word: &str, counts: [usize; 3]) -> Option<Corner> {
 
 /// tobj's `export_faces` with triangulation on and points and lines
 /// ignored: the faces (`arity` corners each, from `corners`) as one
-/// single-index mesh over the first `lens` values of the file's attribute
-/// arrays (pos, v_color, texcoord, normal), as they stood when the model
-/// ended.
+/// single-index mesh over the file's attribute arrays as they stood when
+/// the model ended (`lens`, whose first four are pos, v_color, texcoord,
+/// normal).
 fn export(
     all: &Piece,
-    lens: [usize; 4],
+    lens: &Counts,
     (arity, corners): (&[u32], &[Corner]),
     material_id: Option<usize>,
 ) -> Result<tobj::Mesh, tobj::LoadError> {
