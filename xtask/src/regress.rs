@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context, Result};
 use image::{Rgb, RgbImage};
 use rayon::prelude::*;
-use zline::io::load_scene;
+use zline::io::{load_scene_with_options, LoadOptions};
 use zline::pipeline::{render, RenderOptions};
 
 /// Scene files and their reference images, relative to the workspace root.
@@ -143,7 +143,9 @@ fn scene_name(path: &Path) -> String {
 
 fn render_scene(path: &Path) -> Rendered {
     let start = Instant::now();
-    let image = load_scene(path).map_err(anyhow::Error::from).and_then(|scene| {
+    // The scenes' models are in assets/, outside tests/scenes.
+    let options = LoadOptions { allow_outside: true };
+    let image = load_scene_with_options(path, options).map_err(anyhow::Error::from).and_then(|scene| {
         let (image, _) = render(&scene, &RenderOptions::default());
         RgbImage::from_raw(image.width, image.height, image.to_rgb()).context("image size")
     });

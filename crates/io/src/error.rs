@@ -6,10 +6,10 @@
 //! `bunny.obj: line 12: vertex has non-finite coordinate 'nan'`.
 //! Rendering itself cannot fail; only loading can.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use thiserror::Error;
-use zline_scene::MeshError;
+use zline_scene::{MeshError, MAX_TRIANGLES, MAX_VERTICES};
 
 /// An error while loading a model or scene file.
 #[derive(Debug, Error)]
@@ -68,6 +68,17 @@ pub enum SceneError {
         /// What is wrong with it.
         source: MeshError,
     },
+    /// A texture that a material of a model uses failed to load.
+    #[error("{}: material '{material}': texture {source}", model.display())]
+    Texture {
+        /// The model file (OBJ or glTF).
+        model: PathBuf,
+        /// The material that uses the texture.
+        material: String,
+        /// The texture's own error (which names the image file, or the
+        /// embedded image).
+        source: Box<SceneError>,
+    },
     /// A file referenced by a scene file failed to load.
     #[error("{}: line {line}, column {column}: {key}: {source}", scene.display())]
     Referenced {
@@ -85,6 +96,22 @@ pub enum SceneError {
 }
 
 impl SceneError {
+    /// An error when a model or scene has more than [`MAX_TRIANGLES`]
+    /// triangles or [`MAX_VERTICES`] vertices.
+    pub(crate) fn check_size(path: &Path, triangles: usize, vertices: usize) -> Result<(), SceneError> {
+        let over = |what: &str, n: usize, limit: usize| SceneError::File {
+            path: path.to_path_buf(),
+            message: format!("{n} {what}, more than the limit of {limit}"),
+        };
+        if triangles > MAX_TRIANGLES {
+            return Err(over("triangles", triangles, MAX_TRIANGLES));
+        }
+        if vertices > MAX_VERTICES {
+            return Err(over("vertices", vertices, MAX_VERTICES));
+        }
+        Ok(())
+    }
+
     /// A located error in a text file, from a byte offset into its text.
     pub(crate) fn at_offset(path: PathBuf, text: &str, offset: usize, message: String) -> SceneError {
         let (line, column) = line_column(text, offset);

@@ -14,10 +14,14 @@
 //! default back-face culling rule), `framing` (camera and lights for a bare
 //! model or glTF file), `scene_file` (TOML scenes; the format is documented
 //! on [`load_scene`], and `examples/scene.toml` shows every key), `error`
-//! (the error type).
+//! (the error type), `files` (reading within the size limits and resolving
+//! referenced files inside the folder of the file that names them; see
+//! [`LoadOptions`]). The limits are constants of zline-scene
+//! (`zline_scene::MAX_TRIANGLES` and the others).
 
 mod culling;
 mod error;
+mod files;
 mod framing;
 mod gltf;
 mod obj;
@@ -25,11 +29,14 @@ mod scene_file;
 mod texture_file;
 
 pub use error::SceneError;
+pub use files::LoadOptions;
 pub use framing::{
     default_lights, framing_camera, scene_for_gltf, scene_for_model, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
     FRAMING_FOVY_DEGREES, VIEW_DIRECTION,
 };
 // `crate::` because `gltf` also names the glTF parsing crate.
-pub use crate::gltf::{load_gltf, load_gltf_with_warnings, GltfScene, MAX_GLTF_SHININESS};
-pub use obj::{load_obj, load_obj_with_warnings};
-pub use scene_file::load_scene;
+pub use crate::gltf::{
+    load_gltf, load_gltf_with_options, load_gltf_with_warnings, GltfScene, MAX_GLTF_SHININESS,
+};
+pub use obj::{load_obj, load_obj_with_options, load_obj_with_warnings};
+pub use scene_file::{load_scene, load_scene_with_options};

@@ -12,9 +12,14 @@
 //!
 //! The format is recognised from the bytes' signature, or else from the
 //! file extension; the pixels become RGBA8, rows top to bottom, used as
-//! stored (no sRGB decode, SPEC §7). Images wider or taller than
-//! [`MAX_TEXTURE_SIZE`] are refused by the decoder's limits before any
-//! pixel is allocated.
+//! stored (no sRGB decode, SPEC §7).
+//!
+//! Limits: an image file is read only when it is a regular file of at most
+//! [`MAX_IMAGE_FILE_BYTES`](zline_scene::MAX_IMAGE_FILE_BYTES) (a larger
+//! one, a device or a directory is an error, unlike a missing file); the
+//! image's header is read first and an image wider or taller than
+//! [`MAX_TEXTURE_SIZE`] or of more than [`MAX_TEXTURE_PIXELS`] pixels is
+//! refused, with its size and the limit, before any pixel is decoded.
 
 use std::collections::HashMap;
 use std::io::Cursor;
@@ -22,16 +27,19 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use image::{ImageFormat, ImageReader, Limits};
+use zline_scene::MAX_TEXTURE_PIXELS;
 use zline_shading::{Texture, MAX_TEXTURE_SIZE};
 
 use crate::error::SceneError;
+use crate::files::{read_limited, FileKind, ReadError};
 
 /// Why bytes did not become a texture.
 #[derive(Debug)]
 pub(crate) enum DecodeError {
     /// A format zline does not read (BMP, TGA, …): the caller warns.
     Unsupported(String),
-    /// A PNG or JPEG (or unrecognisable bytes) that does not decode.
+    /// A PNG or JPEG (or unrecognisable bytes) that does not decode, or
+    /// an image larger than the limits: the caller fails.
     Corrupt(String),
 }
 
@@ -49,16 +57,34 @@ pub(crate) fn decode_texture(bytes: &[u8], hint: Option<ImageFormat>) -> Result<
         }
         None => return Err(DecodeError::Corrupt("not a PNG or JPEG image".into())),
     }
-    let mut reader = ImageReader::new(Cursor::new(bytes));
-    reader.set_format(format.unwrap_or(ImageFormat::Png));
+    let format = format.unwrap_or(ImageFormat::Png);
+    let (width, height) = ImageReader::with_format(Cursor::new(bytes), format)
+        .into_dimensions()
+        .map_err(|e| DecodeError::Corrupt(format!("cannot decode image: {e}")))?;
+    check_size(width, height)?;
+    let mut reader = ImageReader::with_format(Cursor::new(bytes), format);
     let mut limits = Limits::default();
     limits.max_image_width = Some(MAX_TEXTURE_SIZE);
     limits.max_image_height = Some(MAX_TEXTURE_SIZE);
+    // 16-bit RGBA, the widest PNG, at the largest size allowed.
+    limits.max_alloc = Some(MAX_TEXTURE_PIXELS * 8);
     reader.limits(limits);
     let rgba =
         reader.decode().map_err(|e| DecodeError::Corrupt(format!("cannot decode image: {e}")))?.into_rgba8();
     Texture::from_rgba8(rgba.width(), rgba.height(), rgba.as_raw())
         .map_err(|e| DecodeError::Corrupt(format!("unusable image: {e}")))
+}
+
+/// Refuses an image larger than the limits of the module doc.
+fn check_size(width: u32, height: u32) -> Result<(), DecodeError> {
+    let pixels = u64::from(width) * u64::from(height);
+    if width > MAX_TEXTURE_SIZE || height > MAX_TEXTURE_SIZE || pixels > MAX_TEXTURE_PIXELS {
+        return Err(DecodeError::Corrupt(format!(
+            "image of {width}x{height} pixels is larger than the texture limit of {MAX_TEXTURE_PIXELS} \
+             pixels (4096x4096) and {MAX_TEXTURE_SIZE} pixels per side; not decoded"
+        )));
+    }
+    Ok(())
 }
 
 /// Image files decoded so far in one load, by path, so that a texture
@@ -88,12 +114,13 @@ impl TextureCache {
 
 fn load_file(path: &Path, warnings: &mut Vec<String>) -> Result<Option<Texture>, SceneError> {
     let fallback = "meshes using it are drawn untextured";
-    let bytes = match std::fs::read(path) {
+    let bytes = match read_limited(path, FileKind::Image) {
         Ok(bytes) => bytes,
-        Err(e) => {
+        Err(ReadError::Io(e)) => {
             warnings.push(format!("{}: cannot read texture: {e}; {fallback}", path.display()));
             return Ok(None);
         }
+        Err(refused) => return Err(refused.into_error(path)),
     };
     match decode_texture(&bytes, ImageFormat::from_path(path).ok()) {
         Ok(texture) => Ok(Some(texture)),
@@ -131,5 +158,54 @@ mod tests {
         assert!(matches!(decode_texture(truncated, None), Err(DecodeError::Corrupt(_))));
         // "BM" is the BMP signature.
         assert!(matches!(decode_texture(b"BM\0\0\0\0", None), Err(DecodeError::Unsupported(_))));
+    }
+
+    /// A PNG header claiming `width` × `height` pixels, with no pixel data.
+    fn png_header(width: u32, height: u32) -> Vec<u8> {
+        let mut ihdr = b"IHDR".to_vec();
+        ihdr.extend(width.to_be_bytes());
+        ihdr.extend(height.to_be_bytes());
+        ihdr.extend([8, 6, 0, 0, 0]); // 8-bit RGBA
+        let crc = crc32(&ihdr);
+        let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+        png.extend(13u32.to_be_bytes());
+        png.extend(ihdr);
+        png.extend(crc.to_be_bytes());
+        // An empty IDAT: the decoder reads the header up to the first one.
+        png.extend(0u32.to_be_bytes());
+        png.extend(b"IDAT");
+        png.extend(crc32(b"IDAT").to_be_bytes());
+        png
+    }
+
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut crc = !0u32;
+        for &b in bytes {
+            crc ^= u32::from(b);
+            for _ in 0..8 {
+                crc = if crc & 1 != 0 { (crc >> 1) ^ 0xEDB8_8320 } else { crc >> 1 };
+            }
+        }
+        !crc
+    }
+
+    #[test]
+    fn images_over_the_pixel_limit_are_refused_from_their_header() {
+        for (w, h) in [(12000, 12000), (4097, 4096), (16385, 16), (8192, 8192)] {
+            match decode_texture(&png_header(w, h), None) {
+                Err(DecodeError::Corrupt(m)) => {
+                    assert!(
+                        m.contains(&format!("image of {w}x{h} pixels is larger than the texture limit")),
+                        "{m}"
+                    )
+                }
+                other => panic!("{w}x{h}: {:?}", other.map(|t| t.width())),
+            }
+        }
+        // Within the limits the header passes and the missing data fails.
+        match decode_texture(&png_header(4096, 4096), None) {
+            Err(DecodeError::Corrupt(m)) => assert!(m.starts_with("cannot decode image"), "{m}"),
+            other => panic!("{:?}", other.map(|t| t.width())),
+        }
     }
 }

@@ -8,7 +8,8 @@
 //!
 //! Modules: `model` (scene, objects, meshes, camera, settings), `mesh`
 //! (validation and vertex normals; its errors in `error`), `limits` (the
-//! largest render settings a scene may ask for), `primitives` (procedural
+//! largest render settings a scene may ask for, and what one load may
+//! read and build), `primitives` (procedural
 //! meshes). The built-in scenes are in zline-scenes.
 
 mod error;
@@ -18,7 +19,11 @@ mod model;
 mod primitives;
 
 pub use error::MeshError;
-pub use limits::{MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_PRIMITIVE_DIVISIONS, MAX_SSAA};
+pub use limits::{
+    MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE, MAX_MODEL_FILE_BYTES,
+    MAX_PRIMITIVE_DIVISIONS, MAX_PRIMITIVE_TRIANGLES, MAX_SSAA, MAX_TEXTURE_PIXELS, MAX_TEXT_FILE_BYTES,
+    MAX_TRIANGLES, MAX_VERTICES,
+};
 pub use mesh::{face_normal, FALLBACK_NORMAL};
 pub use model::{
     Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, Object, Projection, RenderSettings,

@@ -1,7 +1,9 @@
-//! The limits of the render settings and procedural meshes: the largest
-//! values a scene file may ask for. The loaders enforce them; the pipeline
-//! and the CLI rely on them (the pipeline clamps supersampling to
-//! [`MAX_SSAA`]).
+//! The limits of the render settings and procedural meshes (the largest
+//! values a scene file may ask for) and of the loaders (the largest files,
+//! textures and meshes one load may read and build), in one place. The
+//! loaders of zline-io enforce them; the pipeline and the CLI rely on them
+//! (the pipeline clamps supersampling to [`MAX_SSAA`]). README.md, "Limits
+//! and safety", lists them.
 
 /// Largest image side a scene file may ask for.
 pub const MAX_IMAGE_SIDE: u32 = 16384;
@@ -15,3 +17,40 @@ pub const MAX_ADAPTIVE_TOLERANCE: f32 = 255.0;
 
 /// Largest ring, segment or subdivision count of a primitive.
 pub const MAX_PRIMITIVE_DIVISIONS: u32 = 4096;
+
+// ---- Loader limits: what one load may read, decode and build ----
+//
+// Enforced by zline-io before the work they bound: a file's size before
+// it is read (and while it is read, for files that grow), an image's
+// header before its pixels are decoded, a primitive's triangle count
+// before it is tessellated.
+
+/// Largest model file (OBJ, glTF, GLB) or glTF buffer file, in bytes
+/// (1 GiB).
+pub const MAX_MODEL_FILE_BYTES: u64 = 1 << 30;
+
+/// Largest image file (a texture), in bytes (256 MiB).
+pub const MAX_IMAGE_FILE_BYTES: u64 = 256 << 20;
+
+/// Largest MTL or TOML scene file, in bytes (16 MiB).
+pub const MAX_TEXT_FILE_BYTES: u64 = 16 << 20;
+
+/// Largest texture, in pixels: 4096 × 4096 (16 Mi pixels, about 360 MiB
+/// once stored as f32 RGBA with its mip chain). Each side is also at most
+/// `zline_shading::MAX_TEXTURE_SIZE` (16384), so 16384 × 1024 passes and
+/// 8192 × 8192 does not.
+pub const MAX_TEXTURE_PIXELS: u64 = 1 << 24;
+
+/// Largest number of triangles of one model file, and of one scene (every
+/// object counted as often as it is placed): 16 Mi.
+pub const MAX_TRIANGLES: usize = 1 << 24;
+
+/// Largest number of vertices of one model file, and of one scene (every
+/// object counted as often as it is placed): 16 Mi.
+pub const MAX_VERTICES: usize = 1 << 24;
+
+/// Largest number of triangles a scene file's primitives (spheres, planes,
+/// cubes, tori) may make together: 4 Mi, a sphere of about 1448 × 1448.
+/// A few bytes of scene file must not ask for minutes of tessellation and
+/// gigabytes of memory, so the budget is lower than [`MAX_TRIANGLES`].
+pub const MAX_PRIMITIVE_TRIANGLES: u64 = 1 << 22;

@@ -7,6 +7,7 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
+use zline::io::LoadOptions;
 use zline::pipeline::{render, RenderOptions};
 use zline::scene::{
     DepthMode, Fog, FogCoordinate, FogMode, GouraudClamp, Interpolation, LightingSides, RenderSettings,
@@ -30,6 +31,10 @@ enum Command {
         /// glTF file brings its own camera; a key and a fill light unless it
         /// brings lights) or a `.toml` scene file.
         input: PathBuf,
+        /// Let the input, and the files it names, name files outside the
+        /// folder of the file that names them (absolute paths, `..`).
+        #[arg(long)]
+        allow_paths_outside: bool,
         #[command(flatten)]
         common: Common,
     },
@@ -230,7 +235,9 @@ fn one_line(e: &anyhow::Error) -> String {
 fn run(cli: Cli) -> Result<()> {
     let loading = Instant::now();
     let (mut scene, common) = match cli.command {
-        Command::Render { input, common } => (load_input(&input)?, common),
+        Command::Render { input, allow_paths_outside, common } => {
+            (load_input(&input, LoadOptions { allow_outside: allow_paths_outside })?, common)
+        }
         Command::Demo { common } => (zline::scenes::demo_scene(), common),
     };
     apply_overrides(&mut scene.settings, &common);
@@ -279,18 +286,21 @@ fn run(cli: Cli) -> Result<()> {
     Ok(())
 }
 
-fn load_input(input: &Path) -> Result<Scene> {
+fn load_input(input: &Path, options: LoadOptions) -> Result<Scene> {
     let ext = input.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let warn = |warnings: Vec<String>| warnings.iter().for_each(|w| eprintln!("warning: {w}"));
     Ok(match ext.as_deref() {
         Some("obj") => {
-            let meshes = zline::io::load_obj(input)?;
+            let (meshes, warnings) = zline::io::load_obj_with_options(input, options)?;
+            warn(warnings);
             zline::io::scene_for_model(meshes, RenderSettings::default())
         }
         Some("gltf" | "glb") => {
-            let gltf = zline::io::load_gltf(input)?;
+            let (gltf, warnings) = zline::io::load_gltf_with_options(input, options)?;
+            warn(warnings);
             zline::io::scene_for_gltf(gltf, RenderSettings::default())
         }
-        Some("toml") => zline::io::load_scene(input)?,
+        Some("toml") => zline::io::load_scene_with_options(input, options)?,
         _ => bail!(
             "{}: unsupported input; expected an .obj, .gltf or .glb model or a .toml scene file",
             input.display()

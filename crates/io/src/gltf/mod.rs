@@ -95,10 +95,23 @@
 //! than the two above, light ranges and spot cones, a node reached twice
 //! (the node graph must be a tree). An `extensionsRequired` entry that the
 //! `gltf` crate does not know is an error: the file says it cannot be drawn
-//! without it.
+//! without it. A node whose world transform is not finite, or collapses
+//! every mesh below it to a point (a zero 3 × 3 part, e.g. an all-zero
+//! matrix or a zero scale), is skipped with its children and a warning;
+//! any other singular transform (flattening) is drawn with a warning.
+//!
+//! **Checks and limits.** The file is read when at most
+//! [`MAX_MODEL_FILE_BYTES`](zline_scene::MAX_MODEL_FILE_BYTES); the GLB
+//! framing, `asset.version` (2.x only) and the accessor indices of every
+//! primitive are checked before the `gltf` crate validates the document
+//! (`document`). Buffer and image URIs must name files in the glTF file's
+//! folder unless [`LoadOptions::allow_outside`]. The objects placed may
+//! have at most [`MAX_TRIANGLES`](zline_scene::MAX_TRIANGLES) triangles
+//! and [`MAX_VERTICES`](zline_scene::MAX_VERTICES) vertices in all. An
+//! image error names the material that uses the image.
 
 use std::collections::{HashMap, HashSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
@@ -108,10 +121,12 @@ use zline_shading::{Attenuation, Light, Sampler, Texture};
 
 use crate::culling::default_culling;
 use crate::error::SceneError;
+use crate::files::{read_limited, FileKind, LoadOptions};
 use crate::texture_file::{decode_texture, DecodeError, TextureCache};
 
 mod attributes;
 mod convert;
+mod document;
 mod resources;
 
 use attributes::Attributes;
@@ -149,16 +164,23 @@ pub fn load_gltf(path: &Path) -> Result<GltfScene, SceneError> {
 /// Loads a glTF or GLB file and returns the scene with the warnings, each
 /// a one-line message starting with the file it is about.
 pub fn load_gltf_with_warnings(path: &Path) -> Result<(GltfScene, Vec<String>), SceneError> {
-    let bytes = std::fs::read(path).map_err(|source| SceneError::Io { path: path.to_path_buf(), source })?;
-    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(&bytes).map_err(|e| SceneError::File {
-        path: path.to_path_buf(),
-        message: format!("cannot read glTF: {e}"),
-    })?;
-    let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
-    let buffers = read_buffers(path, &base, &document, blob)?;
+    load_gltf_with_options(path, LoadOptions::default())
+}
+
+/// [`load_gltf_with_warnings`] with options (files outside the glTF
+/// file's folder).
+pub fn load_gltf_with_options(
+    path: &Path,
+    options: LoadOptions,
+) -> Result<(GltfScene, Vec<String>), SceneError> {
+    let bytes = read_limited(path, FileKind::Model).map_err(|e| e.into_error(path))?;
+    let (document, blob) = document::parse(path, &bytes)
+        .map_err(|message| SceneError::File { path: path.to_path_buf(), message })?;
+    drop(bytes);
+    let buffers = read_buffers(path, &document, blob, options)?;
     let mut loader = Loader {
         path,
-        base,
+        options,
         buffers,
         textures: TextureCache::default(),
         images: HashMap::new(),
@@ -167,6 +189,7 @@ pub fn load_gltf_with_warnings(path: &Path) -> Result<(GltfScene, Vec<String>), 
         warnings: Vec::new(),
         scene: GltfScene { objects: Vec::new(), camera: None, lights: Vec::new() },
         camera_far_to_fit: false,
+        placed: (0, 0),
     };
     loader.warn_about_document(&document);
     loader.walk(&document)?;
@@ -183,7 +206,7 @@ struct LoadedPrimitive {
 /// The state of one load.
 struct Loader<'a> {
     path: &'a Path,
-    base: PathBuf,
+    options: LoadOptions,
     buffers: Vec<Vec<u8>>,
     textures: TextureCache,
     /// Decoded images by index; `None` when the image is unusable (warned).
@@ -195,6 +218,8 @@ struct Loader<'a> {
     scene: GltfScene,
     /// The camera had no zfar: fit it once the geometry is known.
     camera_far_to_fit: bool,
+    /// Triangles and vertices of the objects placed so far.
+    placed: (usize, usize),
 }
 
 impl Loader<'_> {
@@ -253,6 +278,20 @@ impl Loader<'_> {
                 ));
                 continue;
             }
+            if glam::Mat3::from_mat4(world) == glam::Mat3::ZERO {
+                self.warn(format!(
+                    "node {} has a transform that collapses everything to a point (a zero matrix or scale); \
+                     skipped with its children",
+                    node.index()
+                ));
+                continue;
+            }
+            if world.determinant() == 0.0 && node.mesh().is_some() {
+                self.warn(format!(
+                    "node {} has a singular transform: its meshes are drawn flat",
+                    node.index()
+                ));
+            }
             self.visit(&node, world)?;
             stack.extend(node.children().map(|c| (c, world)).collect::<Vec<_>>().into_iter().rev());
         }
@@ -268,6 +307,9 @@ impl Loader<'_> {
             let mirrored = world.determinant() < 0.0;
             for primitive in mesh.primitives() {
                 if let Some(loaded) = self.primitive(&mesh, &primitive, mirrored)? {
+                    self.placed.0 += loaded.mesh.triangles.len();
+                    self.placed.1 += loaded.mesh.positions.len();
+                    SceneError::check_size(self.path, self.placed.0, self.placed.1)?;
                     self.scene.objects.push(Object {
                         mesh: loaded.mesh,
                         world_from_object: world,
@@ -375,7 +417,11 @@ impl Loader<'_> {
                 gltf::material::AlphaMode::Mask => (false, Some(texel_cutoff)),
                 gltf::material::AlphaMode::Opaque => (false, None),
             };
-            built = self.attach_base_color(built, &info, uv_set, alpha)?;
+            built = self.attach_base_color(built, &info, uv_set, alpha).map_err(|e| SceneError::Texture {
+                model: self.path.to_path_buf(),
+                material: material_name(&material),
+                source: Box::new(e),
+            })?;
         }
         if material.alpha_mode() == gltf::material::AlphaMode::Mask && built.diffuse_map.is_none() {
             // MASK on the constant alpha: every sample has the factor's alpha.
@@ -450,7 +496,9 @@ impl Loader<'_> {
                 (bytes, image::ImageFormat::from_mime_type(mime_type))
             }
             gltf::image::Source::Uri { uri, mime_type } => {
-                match uri_target(&self.base, uri).map_err(|e| self.error(format!("image {index}: {e}")))? {
+                match uri_target(self.path, uri, self.options)
+                    .map_err(|e| self.error(format!("image {index}: {e}")))?
+                {
                     UriTarget::File(file) => {
                         let loaded = self.textures.file(&file, &mut self.warnings)?;
                         self.images.insert(index, loaded.clone());

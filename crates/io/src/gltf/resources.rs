@@ -1,19 +1,23 @@
 //! glTF resources: buffers and images from the GLB chunk, `data:` URIs or
 //! files next to the glTF file, read here so that one bad resource gives one
-//! clear error or warning (see the parent module).
+//! clear error or warning (see the parent module). A file URI must name a
+//! file inside the glTF file's folder unless the options allow otherwise;
+//! a buffer file is read when at most
+//! [`MAX_MODEL_FILE_BYTES`](zline_scene::MAX_MODEL_FILE_BYTES).
 
 use std::path::{Path, PathBuf};
 
 use crate::error::SceneError;
+use crate::files::{read_limited, resolve, FileKind, LoadOptions, ReadError};
 
 /// Reads every buffer: the GLB's BIN chunk, a `data:` URI or a file
 /// relative to the glTF file. A buffer that cannot be read, or is shorter
 /// than its byteLength, is an error naming it.
 pub(super) fn read_buffers(
     path: &Path,
-    base: &Path,
     document: &gltf::Document,
     mut blob: Option<Vec<u8>>,
+    options: LoadOptions,
 ) -> Result<Vec<Vec<u8>>, SceneError> {
     let mut buffers = Vec::new();
     for buffer in document.buffers() {
@@ -25,7 +29,7 @@ pub(super) fn read_buffers(
             gltf::buffer::Source::Bin => {
                 blob.take().ok_or_else(|| error("the GLB has no BIN chunk".into()))?
             }
-            gltf::buffer::Source::Uri(uri) => read_uri(base, uri).map_err(error)?,
+            gltf::buffer::Source::Uri(uri) => read_uri(path, uri, options).map_err(error)?,
         };
         if data.len() < buffer.length() {
             return Err(error(format!("holds {} bytes, byteLength says {}", data.len(), buffer.length())));
@@ -35,13 +39,14 @@ pub(super) fn read_buffers(
     Ok(buffers)
 }
 
-/// The bytes a buffer or image URI names, or what is wrong.
-pub(super) fn read_uri(base: &Path, uri: &str) -> Result<Vec<u8>, String> {
-    match uri_target(base, uri)? {
+/// The bytes a buffer URI names, or what is wrong.
+fn read_uri(path: &Path, uri: &str, options: LoadOptions) -> Result<Vec<u8>, String> {
+    match uri_target(path, uri, options)? {
         UriTarget::Data => decode_data_uri(uri),
-        UriTarget::File(file) => {
-            std::fs::read(&file).map_err(|e| format!("cannot read '{}': {e}", file.display()))
-        }
+        UriTarget::File(file) => read_limited(&file, FileKind::Model).map_err(|e| match e {
+            ReadError::Io(e) => format!("cannot read '{}': {e}", file.display()),
+            ReadError::Refused(why) => format!("'{}' {why}", file.display()),
+        }),
     }
 }
 
@@ -53,7 +58,8 @@ pub(super) enum UriTarget {
     File(PathBuf),
 }
 
-pub(super) fn uri_target(base: &Path, uri: &str) -> Result<UriTarget, String> {
+/// Where `uri`, found in the glTF file `path`, points.
+pub(super) fn uri_target(path: &Path, uri: &str, options: LoadOptions) -> Result<UriTarget, String> {
     if uri.starts_with("data:") {
         return Ok(UriTarget::Data);
     }
@@ -61,7 +67,7 @@ pub(super) fn uri_target(base: &Path, uri: &str) -> Result<UriTarget, String> {
         return Err(format!("unsupported URI '{}' (only relative file names and data: URIs)", short(uri)));
     }
     let decoded = percent_decode(uri).ok_or_else(|| format!("malformed URI '{}'", short(uri)))?;
-    Ok(UriTarget::File(base.join(decoded)))
+    Ok(UriTarget::File(resolve(path, Path::new(&decoded), options)?))
 }
 
 /// The bytes of a base64 `data:` URI, decoded by the `gltf` crate.

@@ -5,7 +5,16 @@
 //! in range, or a [`SceneError`] naming the scene file, the line and column,
 //! the key (`objects[2].scale`) and the offending value. Unknown keys are
 //! errors (typos must not pass silently). Paths are relative to the scene
-//! file. Each distinct model file is loaded once and its meshes shared.
+//! file and must lie in its folder (no absolute path, no `..` above it, no
+//! symlink out of it) unless [`LoadOptions::allow_outside`]. Each distinct
+//! model file is loaded once and its meshes shared.
+//!
+//! Limits: the scene file is at most
+//! [`MAX_TEXT_FILE_BYTES`](zline_scene::MAX_TEXT_FILE_BYTES); its
+//! primitives together make at most [`MAX_PRIMITIVE_TRIANGLES`] triangles,
+//! counted before any is built; the whole scene (each object as often as
+//! it is placed) has at most [`MAX_TRIANGLES`](zline_scene::MAX_TRIANGLES)
+//! triangles and [`MAX_VERTICES`](zline_scene::MAX_VERTICES) vertices.
 //!
 //! The format is documented on [`load_scene`].
 
@@ -13,15 +22,17 @@ use std::path::{Path, PathBuf};
 
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
-use zline_scene::{cube, plane, torus, uv_sphere, Camera, Mesh, Object, Projection, Scene};
+use zline_scene::{
+    cube, plane, torus, uv_sphere, Camera, Mesh, Object, Projection, Scene, MAX_PRIMITIVE_TRIANGLES,
+};
 use zline_shading::{Attenuation, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
 
 use crate::culling::default_culling;
 use crate::error::{line_column, SceneError};
+use crate::files::{read_text, resolve, FileKind, LoadOptions};
 use crate::framing::{
     aspect, bounds_of, camera_is_finite, default_lights, framing_camera, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
 };
-use crate::obj::read_text;
 
 mod checks;
 mod models;
@@ -106,9 +117,15 @@ use render::{settings, RenderDef, ShadingDef};
 /// from the eye (near = max(d − 1.1·r, far·10⁻⁴)), as [`framing_camera`]
 /// does.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
-    let text = read_text(path)?;
+    load_scene_with_options(path, LoadOptions::default())
+}
+
+/// [`load_scene`] with options (files outside the scene's folder).
+pub fn load_scene_with_options(path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
+    let text = read_text(path, FileKind::Text).map_err(|e| e.into_error(path))?;
     let file: SceneFile = toml::from_str(&text).map_err(|e| toml_error(path, &text, &e))?;
-    Builder { check: Checker { path, text: &text }, models: ModelCache::default() }.scene(file)
+    let check = Checker { path, text: &text };
+    Builder { check, models: ModelCache::default(), options, primitive_triangles: 0 }.scene(file)
 }
 
 fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> SceneError {
@@ -250,6 +267,9 @@ struct MaterialDef {
 struct Builder<'a> {
     check: Checker<'a>,
     models: ModelCache,
+    options: LoadOptions,
+    /// The triangles of the primitives built so far.
+    primitive_triangles: u64,
 }
 
 impl Builder<'_> {
@@ -278,6 +298,9 @@ impl Builder<'_> {
         for (i, def) in file.objects.iter().enumerate() {
             objects.extend(self.objects(def, &format!("objects[{i}]"))?);
         }
+        let triangles = objects.iter().map(|o| o.mesh.triangles.len()).sum();
+        let vertices = objects.iter().map(|o| o.mesh.positions.len()).sum();
+        SceneError::check_size(self.check.path, triangles, vertices)?;
         let (min, max) = world_bounds(&objects);
         let camera = match &file.camera {
             Some(def) => self.camera(def, (min, max), aspect(&settings))?,
@@ -434,7 +457,7 @@ impl Builder<'_> {
         let o = def.get_ref();
         let parts = match (&o.model, &o.primitive) {
             (Some(model), None) => self.model(o, model, key)?,
-            (None, Some(kind)) => vec![ModelPart::alone(self.primitive(o, *kind.get_ref(), key)?)],
+            (None, Some(kind)) => vec![ModelPart::alone(self.primitive(o, kind, key)?)],
             (Some(_), Some(_)) => {
                 return Err(self.check.error(def.span(), key, "give 'model' or 'primitive', not both"))
             }
@@ -469,9 +492,9 @@ impl Builder<'_> {
         ] {
             self.check.not_allowed(value, key, name, "models")?;
         }
-        let dir = self.check.path.parent().unwrap_or(Path::new(""));
-        let model_path: PathBuf = dir.join(model.get_ref());
-        self.models.get(&model_path).map_err(|source| {
+        let model_path: PathBuf = resolve(self.check.path, Path::new(model.get_ref()), self.options)
+            .map_err(|why| self.check.error(model.span(), &format!("{key}.model"), why))?;
+        self.models.get(&model_path, self.options).map_err(|source| {
             let (line, column) = line_column(self.check.text, model.span().start);
             SceneError::Referenced {
                 scene: self.check.path.to_path_buf(),
@@ -483,8 +506,9 @@ impl Builder<'_> {
         })
     }
 
-    fn primitive(&self, o: &ObjectDef, kind: PrimitiveKind, key: &str) -> Result<Mesh> {
+    fn primitive(&mut self, o: &ObjectDef, kind_def: &S<PrimitiveKind>, key: &str) -> Result<Mesh> {
         use PrimitiveKind::*;
+        let kind = *kind_def.get_ref();
         let what = match kind {
             Sphere => "spheres",
             Plane => "planes",
@@ -512,6 +536,28 @@ impl Builder<'_> {
         let size = length(&o.size, "size", &[Plane, Cube], if kind == Plane { 10.0 } else { 1.0 })?;
         let major = length(&o.major_radius, "major_radius", &[Torus], 1.0)?;
         let minor = length(&o.minor_radius, "minor_radius", &[Torus], 0.25)?;
+        // Counted before building: the budget bounds the tessellation's
+        // time and memory.
+        let (r, s, n) = (u64::from(rings), u64::from(segments), u64::from(subdivisions));
+        let triangles = match kind {
+            Sphere => 2 * s * (r - 1),
+            Plane => 2 * n * n,
+            Cube => 12,
+            Torus => 2 * r * s,
+        };
+        self.primitive_triangles += triangles;
+        if self.primitive_triangles > MAX_PRIMITIVE_TRIANGLES {
+            return Err(self.check.error(
+                kind_def.span(),
+                key,
+                format!(
+                    "this {} makes {triangles} triangles, which brings the scene's primitives to {}, more \
+                     than the limit of {MAX_PRIMITIVE_TRIANGLES} (use fewer rings, segments or subdivisions)",
+                    what.trim_end_matches('s').replace("tori", "torus"),
+                    self.primitive_triangles
+                ),
+            ));
+        }
         Ok(match kind {
             Sphere => uv_sphere(rings, segments, radius),
             Plane => plane(size, subdivisions),

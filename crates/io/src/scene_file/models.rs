@@ -15,8 +15,9 @@ use zline_scene::Mesh;
 
 use crate::culling::default_culling;
 use crate::error::SceneError;
-use crate::gltf::load_gltf;
-use crate::obj::load_obj;
+use crate::files::LoadOptions;
+use crate::gltf::load_gltf_with_options;
+use crate::obj::load_obj_with_options;
 
 /// One mesh of a model file, placed in the model's space.
 #[derive(Clone)]
@@ -45,12 +46,13 @@ pub(super) struct ModelCache {
 }
 
 impl ModelCache {
-    /// The meshes of the model file at `path`, loading it on first use.
-    pub(super) fn get(&mut self, path: &Path) -> Result<Vec<ModelPart>, SceneError> {
+    /// The meshes of the model file at `path`, loading it on first use
+    /// (its warnings are printed to stderr as `warning: ...` lines).
+    pub(super) fn get(&mut self, path: &Path, options: LoadOptions) -> Result<Vec<ModelPart>, SceneError> {
         if let Some(parts) = self.loaded.get(path) {
             return Ok(parts.clone());
         }
-        let parts = if is_gltf(path) { gltf_parts(path)? } else { obj_parts(path)? };
+        let parts = if is_gltf(path) { gltf_parts(path, options)? } else { obj_parts(path, options)? };
         self.loaded.insert(path.to_path_buf(), parts.clone());
         Ok(parts)
     }
@@ -62,12 +64,22 @@ fn is_gltf(path: &Path) -> bool {
     matches!(extension.as_deref(), Some("gltf" | "glb"))
 }
 
-fn obj_parts(path: &Path) -> Result<Vec<ModelPart>, SceneError> {
-    Ok(load_obj(path)?.into_iter().map(ModelPart::alone).collect())
+fn print(warnings: Vec<String>) {
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
 }
 
-fn gltf_parts(path: &Path) -> Result<Vec<ModelPart>, SceneError> {
-    let parts = load_gltf(path)?.objects.into_iter().map(|o| ModelPart {
+fn obj_parts(path: &Path, options: LoadOptions) -> Result<Vec<ModelPart>, SceneError> {
+    let (meshes, warnings) = load_obj_with_options(path, options)?;
+    print(warnings);
+    Ok(meshes.into_iter().map(ModelPart::alone).collect())
+}
+
+fn gltf_parts(path: &Path, options: LoadOptions) -> Result<Vec<ModelPart>, SceneError> {
+    let (gltf, warnings) = load_gltf_with_options(path, options)?;
+    print(warnings);
+    let parts = gltf.objects.into_iter().map(|o| ModelPart {
         // The loader culls the meshes `default_culling` would unless their
         // material is double-sided; a mesh it would not cull anyway stays
         // cullable, so that the scene's material override decides.

@@ -2,14 +2,17 @@
 
 use std::sync::Arc;
 
-use zline_io::load_scene;
+use zline_io::{load_scene_with_options, LoadOptions};
 use zline_scene::{Projection, ShadingMode};
 
 use crate::repo;
 
 #[test]
 fn example_scene_loads() {
-    let scene = load_scene(&repo("examples/scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    // The example's models are in assets/, outside its folder.
+    let options = LoadOptions { allow_outside: true };
+    let scene =
+        load_scene_with_options(&repo("examples/scene.toml"), options).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!((scene.settings.width, scene.settings.height), (960, 540));
     assert_eq!(scene.lights.len(), 2);
     // plane, spot, cube, suzanne, sphere, torus: one mesh each.

@@ -106,7 +106,7 @@ fn bare_gltf_gets_a_framing_camera_and_default_lights() {
 
 /// A unit quad in z = 0: POSITION (accessor 0), TEXCOORD_0 (1), u16
 /// indices (2), in `quad.bin`.
-fn quad_bin() -> Vec<u8> {
+pub(crate) fn quad_bin() -> Vec<u8> {
     let mut bytes = Vec::new();
     for p in [[0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]] {
         p.iter().for_each(|c| bytes.extend(c.to_le_bytes()));
@@ -123,7 +123,7 @@ fn quad_bin() -> Vec<u8> {
 /// Writes `name/quad.gltf` (with `quad.bin`) in a fresh temporary
 /// directory: the quad mesh (material 0 when `members` has materials),
 /// plus the given top-level JSON members (nodes, scenes, …).
-fn quad_gltf(name: &str, members: &str) -> PathBuf {
+pub(crate) fn quad_gltf(name: &str, members: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("zline-io-tests-{}", std::process::id())).join(name);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("quad.bin"), quad_bin()).unwrap();
@@ -152,7 +152,7 @@ fn quad_gltf(name: &str, members: &str) -> PathBuf {
 }
 
 /// Replaces `from` by `to` in a file.
-fn edit(path: &Path, from: &str, to: &str) {
+pub(crate) fn edit(path: &Path, from: &str, to: &str) {
     let text = std::fs::read_to_string(path).unwrap();
     assert!(text.contains(from), "{from:?} not in {}", path.display());
     std::fs::write(path, text.replace(from, to)).unwrap();
@@ -482,7 +482,10 @@ fn broken_json_and_glb_are_errors_naming_the_file() {
     check_message(&load_gltf(&path).unwrap_err().to_string(), &["quad.gltf: cannot read glTF"]);
     let glb = path.with_file_name("broken.glb");
     std::fs::write(&glb, b"glTF\x02\0\0\0\xff\xff\0\0").unwrap();
-    check_message(&load_gltf(&glb).unwrap_err().to_string(), &["broken.glb: cannot read glTF"]);
+    check_message(
+        &load_gltf(&glb).unwrap_err().to_string(),
+        &["broken.glb: truncated GLB: expected 65535 bytes (the header's length), found 12"],
+    );
     check_message(
         &load_gltf(&path.with_file_name("nowhere.glb")).unwrap_err().to_string(),
         &["nowhere.glb", "cannot read file"],

@@ -6,6 +6,7 @@ mod examples;
 mod gltf;
 mod obj;
 mod obj_textures;
+mod safety;
 mod scene_file;
 
 use std::path::{Path, PathBuf};

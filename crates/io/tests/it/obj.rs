@@ -57,7 +57,7 @@ fn missing_files_are_named() {
 #[test]
 fn directories_and_binary_files_are_rejected() {
     let e = load_obj(&data("")).unwrap_err().to_string();
-    check_message(&e, &["data", "cannot read file"]);
+    check_message(&e, &["data", "is a directory, not a file"]);
     let e = load_obj(&repo("assets/obj/spot/spot_texture.png")).unwrap_err().to_string();
     check_message(&e, &["spot_texture.png", "not an OBJ"]);
 }

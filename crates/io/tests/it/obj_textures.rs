@@ -14,7 +14,7 @@ use crate::{check_message, repo};
 
 /// A fresh directory `name` in this process's temporary directory holding
 /// the given files.
-fn fixture(name: &str, files: &[(&str, &[u8])]) -> PathBuf {
+pub(crate) fn fixture(name: &str, files: &[(&str, &[u8])]) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("zline-io-tests-{}", std::process::id())).join(name);
     std::fs::create_dir_all(&dir).unwrap();
     for (file, bytes) in files {
@@ -25,11 +25,11 @@ fn fixture(name: &str, files: &[(&str, &[u8])]) -> PathBuf {
 
 /// A textured quad (two triangles, one `vt` per corner) using material
 /// `m` of `quad.mtl`.
-const QUAD_OBJ: &[u8] = b"mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+pub(crate) const QUAD_OBJ: &[u8] = b"mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
 vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3 4/4\n";
 
 /// A 3 × 2 RGB PNG.
-fn png_3x2() -> Vec<u8> {
+pub(crate) fn png_3x2() -> Vec<u8> {
     let image = image::RgbImage::from_fn(3, 2, |x, y| image::Rgb([x as u8 * 80, y as u8 * 200, 7]));
     let mut bytes = Vec::new();
     image.write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png).unwrap();

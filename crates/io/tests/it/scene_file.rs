@@ -5,13 +5,20 @@
 use std::sync::Arc;
 
 use glam::Vec3;
-use zline_io::{default_lights, load_scene, DEFAULT_AMBIENT};
+use zline_io::{default_lights, load_scene_with_options, LoadOptions, SceneError, DEFAULT_AMBIENT};
 use zline_scene::{
     Attenuation, DepthMode, FogCoordinate, FogMode, GouraudClamp, Interpolation, Light, LightingSides,
-    Projection, RenderSettings, ShadingMode,
+    Projection, RenderSettings, Scene, ShadingMode,
 };
 
 use crate::{check_message, data, repo, temp_file};
+
+/// Loads a scene that may name models anywhere: these scenes are written
+/// to temporary folders and name the fixtures by absolute paths (the
+/// confinement to the scene's folder is tested in `safety`).
+fn load_scene(path: &std::path::Path) -> Result<Scene, SceneError> {
+    load_scene_with_options(path, LoadOptions { allow_outside: true })
+}
 
 /// A minimal valid scene body to which tests add or in which they replace.
 const OBJECT: &str = "[[objects]]\nprimitive = \"cube\"\n";

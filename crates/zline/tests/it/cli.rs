@@ -54,7 +54,11 @@ fn example_scene_renders() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("scene.png");
     let scene = repo().join("examples/scene.toml");
-    let out = zline(&["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "160x90"]);
+    let args = ["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "160x90"];
+    // Its models are in assets/, outside its folder.
+    let out = zline(&args);
+    check_clean_error(&out, &["scene.toml", "leads outside the folder", "--allow-paths-outside"]);
+    let out = zline(&[&args[..], &["--allow-paths-outside"]].concat());
     check_png(&out, &png, (160, 90));
 }
 
