@@ -145,6 +145,19 @@ mod tests {
     }
 
     #[test]
+    fn triangles_and_vertices_over_the_limits_are_errors() {
+        let path = Path::new("m.obj");
+        assert!(SceneError::check_size(path, MAX_TRIANGLES, MAX_VERTICES).is_ok());
+        let e = SceneError::check_size(path, MAX_TRIANGLES + 1, 3).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!("m.obj: {} triangles, more than the limit of {MAX_TRIANGLES}", MAX_TRIANGLES + 1)
+        );
+        let e = SceneError::check_size(path, 1, MAX_VERTICES + 1).unwrap_err().to_string();
+        assert_eq!(e, format!("m.obj: {} vertices, more than the limit of {MAX_VERTICES}", MAX_VERTICES + 1));
+    }
+
+    #[test]
     fn messages_are_one_line_and_name_the_file() {
         let e = SceneError::Mesh {
             path: "a/model.obj".into(),

@@ -230,10 +230,6 @@ impl Loader<'_> {
         }
     }
 
-    fn error(&self, message: String) -> SceneError {
-        SceneError::File { path: self.path.to_path_buf(), message }
-    }
-
     /// Warnings about the file as a whole: extensions and animations.
     fn warn_about_document(&mut self, document: &gltf::Document) {
         for ext in document.extensions_used().filter(|e| !SUPPORTED_EXTENSIONS.contains(e)) {
@@ -417,11 +413,7 @@ impl Loader<'_> {
                 gltf::material::AlphaMode::Mask => (false, Some(texel_cutoff)),
                 gltf::material::AlphaMode::Opaque => (false, None),
             };
-            built = self.attach_base_color(built, &info, uv_set, alpha).map_err(|e| SceneError::Texture {
-                model: self.path.to_path_buf(),
-                material: material_name(&material),
-                source: Box::new(e),
-            })?;
+            built = self.attach_base_color(built, &info, uv_set, alpha, &material_name(&material))?;
         }
         if material.alpha_mode() == gltf::material::AlphaMode::Mask && built.diffuse_map.is_none() {
             // MASK on the constant alpha: every sample has the factor's alpha.
@@ -467,6 +459,7 @@ impl Loader<'_> {
         info: &gltf::texture::Info,
         set: u32,
         (alpha_blend, alpha_cutoff): (bool, Option<f32>),
+        material: &str,
     ) -> Result<Mesh, SceneError> {
         if mesh.uvs.is_empty() {
             let name = &mesh.name;
@@ -474,39 +467,51 @@ impl Loader<'_> {
             return Ok(mesh);
         }
         let texture = info.texture();
-        let Some(image) = self.image(&texture.source())? else { return Ok(mesh) };
+        let Some(image) = self.image(&texture.source(), material)? else { return Ok(mesh) };
         let sampler = self.sampler(&texture.sampler());
         Ok(mesh.with_diffuse_map(TextureMap { texture: image, sampler, alpha_blend, alpha_cutoff }))
     }
 
-    /// The decoded image, on first use (see the module doc).
-    fn image(&mut self, image: &gltf::image::Image) -> Result<Option<Arc<Texture>>, SceneError> {
+    /// The decoded image, on first use (see the module doc); errors name
+    /// the `material` that uses it.
+    fn image(
+        &mut self,
+        image: &gltf::image::Image,
+        material: &str,
+    ) -> Result<Option<Arc<Texture>>, SceneError> {
         if let Some(loaded) = self.images.get(&image.index()) {
             return Ok(loaded.clone());
         }
         let index = image.index();
+        let image_error = |why: String| SceneError::File {
+            path: self.path.to_path_buf(),
+            message: format!("material '{material}': image {index}{why}"),
+        };
+        let colon = |why: String| format!(": {why}");
         let (bytes, hint) = match image.source() {
             gltf::image::Source::View { view, mime_type } => {
                 let bytes = view.offset().checked_add(view.length()).and_then(|end| {
                     self.buffers.get(view.buffer().index())?.get(view.offset()..end).map(<[u8]>::to_vec)
                 });
-                let bytes = bytes.ok_or_else(|| {
-                    self.error(format!("image {index}: buffer view reaches beyond its buffer"))
-                })?;
+                let bytes = bytes
+                    .ok_or_else(|| image_error(colon("buffer view reaches beyond its buffer".into())))?;
                 (bytes, image::ImageFormat::from_mime_type(mime_type))
             }
             gltf::image::Source::Uri { uri, mime_type } => {
-                match uri_target(self.path, uri, self.options)
-                    .map_err(|e| self.error(format!("image {index}: {e}")))?
-                {
+                match uri_target(self.path, uri, self.options).map_err(|e| image_error(colon(e)))? {
                     UriTarget::File(file) => {
-                        let loaded = self.textures.file(&file, &mut self.warnings)?;
+                        let loaded = self.textures.file(&file, &mut self.warnings).map_err(|e| {
+                            SceneError::Texture {
+                                model: self.path.to_path_buf(),
+                                material: material.to_owned(),
+                                source: Box::new(e),
+                            }
+                        })?;
                         self.images.insert(index, loaded.clone());
                         return Ok(loaded);
                     }
                     UriTarget::Data => {
-                        let bytes =
-                            decode_data_uri(uri).map_err(|e| self.error(format!("image {index}: {e}")))?;
+                        let bytes = decode_data_uri(uri).map_err(|e| image_error(colon(e)))?;
                         (bytes, mime_type.and_then(image::ImageFormat::from_mime_type))
                     }
                 }
@@ -518,9 +523,7 @@ impl Loader<'_> {
                 self.warn(format!("image {index} (embedded): {why}; meshes using it are drawn untextured"));
                 None
             }
-            Err(DecodeError::Corrupt(why)) => {
-                return Err(self.error(format!("image {index} (embedded): {why}")))
-            }
+            Err(DecodeError::Corrupt(why)) => return Err(image_error(format!(" (embedded): {why}"))),
         };
         self.images.insert(index, loaded.clone());
         Ok(loaded)

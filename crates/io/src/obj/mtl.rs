@@ -6,8 +6,8 @@
 //! stop the load: a file refused by its size or type, and a non-finite
 //! value (`nan`, `inf`) of `Ka`, `Kd`, `Ks`, `Ke`, `Ns`, `d` or `Tr`,
 //! named by file, line and key. Finite values outside their range (SPEC
-//! §5: colours in [0, 1]; `Ns` ≥ 0; `d` and `Tr` in [0, 1]) are clamped
-//! with a warning each.
+//! §5: colours in [0, 1]; `Ns` in [0, f32::MAX]; `d` and `Tr` in [0, 1])
+//! are clamped, in the text handed to tobj, with a warning each.
 
 use std::io::Cursor;
 use std::path::Path;
@@ -36,7 +36,7 @@ pub(super) fn load_mtl(path: &Path, warnings: &mut Vec<String>) -> Result<tobj::
         Ok(text) => text,
         Err((line, why)) => return Ok(fail(warnings, format!("{}: line {line}: {why}", path.display()))),
     };
-    let clamped = check_mtl_values(&text).map_err(|(line, message)| SceneError::Line {
+    let (text, clamped) = check_mtl_values(&text).map_err(|(line, message)| SceneError::Line {
         path: path.to_path_buf(),
         line,
         message,
@@ -91,46 +91,62 @@ pub(super) fn check_mtl_text(text: &str) -> Result<String, (usize, String)> {
     Ok(out)
 }
 
+/// A 1-based line number and what is said about it.
+pub(super) type LineNote = (usize, String);
+
 /// The values zline uses, checked on text that passed [`check_mtl_text`]:
-/// the lines of values clamped to their range, each with a note, or the
-/// first non-finite value's line and message. Numbers are read as f64, so
-/// `1e300` is a (large) finite value clamped, not an infinity.
-pub(super) fn check_mtl_values(text: &str) -> Result<Vec<(usize, String)>, (usize, String)> {
+/// the text with the values outside their range clamped, and a note for
+/// each, or the first non-finite value's line and message. Numbers are
+/// read as f64, so `1e300` is a (large) finite value clamped, not an
+/// infinity.
+pub(super) fn check_mtl_values(text: &str) -> Result<(String, Vec<LineNote>), LineNote> {
+    let mut out = String::with_capacity(text.len());
     let mut clamped = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         let key = words.next().unwrap_or("");
         let (count, lo, hi) = match key {
             "Ka" | "Kd" | "Ks" | "Ke" => (3, 0.0, 1.0),
-            "Ns" => (1, 0.0, f64::INFINITY),
+            "Ns" => (1, 0.0, f64::from(f32::MAX)),
             "d" | "Tr" => (1, 0.0, 1.0),
-            _ => continue,
+            _ => {
+                out.push_str(line);
+                out.push('\n');
+                continue;
+            }
         };
-        for word in words.take(count) {
+        let mut rewritten = vec![key.to_owned()];
+        for (k, word) in words.enumerate() {
             // `Tr` is not checked by check_mtl_text: tobj ignores what
             // does not parse, and so does zline.
-            let Ok(value) = word.parse::<f64>() else { continue };
+            let Some(value) = word.parse::<f64>().ok().filter(|_| k < count) else {
+                rewritten.push(word.to_owned());
+                continue;
+            };
             if !value.is_finite() {
                 return Err((i + 1, format!("{key}: non-finite value '{word}' in {}", quote(line))));
             }
-            if value < lo || value > hi {
-                let to = value.clamp(lo, hi);
+            let to = value.clamp(lo, hi);
+            if to != value {
                 clamped.push((
                     i + 1,
-                    format!("{key} value {word} is outside {}; clamped to {to}", range(lo, hi)),
+                    format!("{key} value {word} is outside [{lo}, {}]; clamped to {}", short(hi), short(to)),
                 ));
             }
+            rewritten.push(if to == value { word.to_owned() } else { to.to_string() });
         }
+        out.push_str(&rewritten.join(" "));
+        out.push('\n');
     }
-    Ok(clamped)
+    Ok((out, clamped))
 }
 
-/// `[lo, hi]`, or `[lo, ∞)`.
-fn range(lo: f64, hi: f64) -> String {
-    if hi.is_infinite() {
-        format!("[{lo}, ∞)")
+/// A number for messages: `3.4028234663852886e38` rather than 39 digits.
+fn short(x: f64) -> String {
+    if x.abs() >= 1e9 {
+        format!("{x:e}")
     } else {
-        format!("[{lo}, {hi}]")
+        x.to_string()
     }
 }
 
@@ -159,12 +175,17 @@ mod tests {
 
     #[test]
     fn out_of_range_values_are_clamped_with_a_note_each() {
-        let notes = check_mtl_values("newmtl a\nKd 0.5 1e300 -5\nNs -1\nd 7\nTr 0.5\nKs 1 1 1\n").unwrap();
+        let (text, notes) =
+            check_mtl_values("newmtl a\nKd 0.5 1e300 -5\nNs -1\nd 7\nTr 0.5\nKs  1 1 1\nNs 1e300\n").unwrap();
+        let expected =
+            "newmtl a\nKd 0.5 1 0\nNs 0\nd 1\nTr 0.5\nKs 1 1 1\nNs 340282346638528860000000000000000000000\n";
+        assert_eq!(text, expected);
+        assert_eq!(text.lines().last().unwrap()[3..].parse::<f32>(), Ok(f32::MAX), "tobj reads a finite Ns");
         let lines: Vec<usize> = notes.iter().map(|n| n.0).collect();
-        assert_eq!(lines, [2, 2, 3, 4], "{notes:?}");
+        assert_eq!(lines, [2, 2, 3, 4, 7], "{notes:?}");
         assert_eq!(notes[0].1, "Kd value 1e300 is outside [0, 1]; clamped to 1");
         assert_eq!(notes[1].1, "Kd value -5 is outside [0, 1]; clamped to 0");
-        assert_eq!(notes[2].1, "Ns value -1 is outside [0, ∞); clamped to 0");
+        assert_eq!(notes[2].1, "Ns value -1 is outside [0, 3.4028234663852886e38]; clamped to 0");
         assert_eq!(notes[3].1, "d value 7 is outside [0, 1]; clamped to 1");
     }
 }

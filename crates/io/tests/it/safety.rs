@@ -72,6 +72,11 @@ fn gltf_image_uris_outside_the_folder_are_refused() {
     check_message(&e, &["quad.gltf", "material 'tex'", "image 0: '../outside.png' leads outside the folder"]);
     let (scene, _) = load_gltf_with_options(&path, OPEN).unwrap();
     assert!(scene.objects[0].mesh.diffuse_map.is_some(), "allowed, the image is used");
+    // A texture error names the model, the material and the image.
+    std::fs::write(path.with_file_name("bad.png"), b"not a png").unwrap();
+    edit(&path, "../outside.png", "bad.png");
+    let e = load_gltf(&path).unwrap_err().to_string();
+    check_message(&e, &["quad.gltf: material 'tex': texture ", "bad.png: cannot decode image"]);
 }
 
 #[cfg(unix)]
