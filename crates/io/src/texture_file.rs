@@ -19,7 +19,9 @@
 //! one, a device or a directory is an error, unlike a missing file); the
 //! image's header is read first and an image wider or taller than
 //! [`MAX_TEXTURE_SIZE`] or of more than [`MAX_TEXTURE_PIXELS`] pixels is
-//! refused, with its size and the limit, before any pixel is decoded.
+//! refused, with its size and the limit, before any pixel is decoded; so
+//! is an image that would bring the pixels decoded in one load (one model
+//! file) over [`MAX_TEXTURE_PIXELS_PER_MODEL`].
 
 use std::collections::HashMap;
 use std::io::Cursor;
@@ -27,7 +29,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use image::{ImageFormat, ImageReader, Limits};
-use zline_scene::MAX_TEXTURE_PIXELS;
+use zline_scene::{MAX_TEXTURE_PIXELS, MAX_TEXTURE_PIXELS_PER_MODEL};
 use zline_shading::{Texture, MAX_TEXTURE_SIZE};
 
 use crate::error::SceneError;
@@ -44,8 +46,14 @@ pub(crate) enum DecodeError {
 }
 
 /// Decodes PNG or JPEG bytes; `hint` is the format a file name or MIME
-/// type suggests, used when the bytes carry no known signature.
-pub(crate) fn decode_texture(bytes: &[u8], hint: Option<ImageFormat>) -> Result<Texture, DecodeError> {
+/// type suggests, used when the bytes carry no known signature. `decoded`
+/// counts the pixels decoded so far in the load, for
+/// [`MAX_TEXTURE_PIXELS_PER_MODEL`].
+fn decode_texture(
+    bytes: &[u8],
+    hint: Option<ImageFormat>,
+    decoded: &mut u64,
+) -> Result<Texture, DecodeError> {
     let format = image::guess_format(bytes).ok().or(hint);
     match format {
         Some(ImageFormat::Png | ImageFormat::Jpeg) => {}
@@ -62,6 +70,14 @@ pub(crate) fn decode_texture(bytes: &[u8], hint: Option<ImageFormat>) -> Result<
         .into_dimensions()
         .map_err(|e| DecodeError::Corrupt(format!("cannot decode image: {e}")))?;
     check_size(width, height)?;
+    let pixels = u64::from(width) * u64::from(height);
+    if *decoded + pixels > MAX_TEXTURE_PIXELS_PER_MODEL {
+        return Err(DecodeError::Corrupt(format!(
+            "image of {width}x{height} pixels would bring the model's textures to {} pixels, more than the \
+             limit of {MAX_TEXTURE_PIXELS_PER_MODEL}; not decoded",
+            *decoded + pixels
+        )));
+    }
     let mut reader = ImageReader::with_format(Cursor::new(bytes), format);
     let mut limits = Limits::default();
     limits.max_image_width = Some(MAX_TEXTURE_SIZE);
@@ -71,8 +87,10 @@ pub(crate) fn decode_texture(bytes: &[u8], hint: Option<ImageFormat>) -> Result<
     reader.limits(limits);
     let rgba =
         reader.decode().map_err(|e| DecodeError::Corrupt(format!("cannot decode image: {e}")))?.into_rgba8();
-    Texture::from_rgba8(rgba.width(), rgba.height(), rgba.as_raw())
-        .map_err(|e| DecodeError::Corrupt(format!("unusable image: {e}")))
+    let texture = Texture::from_rgba8(rgba.width(), rgba.height(), rgba.as_raw())
+        .map_err(|e| DecodeError::Corrupt(format!("unusable image: {e}")))?;
+    *decoded += pixels;
+    Ok(texture)
 }
 
 /// Refuses an image larger than the limits of the module doc.
@@ -88,13 +106,21 @@ fn check_size(width: u32, height: u32) -> Result<(), DecodeError> {
 }
 
 /// Image files decoded so far in one load, by path, so that a texture
-/// shared by many materials is decoded and stored once.
+/// shared by many materials is decoded and stored once, and the pixels
+/// decoded in all.
 #[derive(Default)]
 pub(crate) struct TextureCache {
     files: HashMap<PathBuf, Option<Arc<Texture>>>,
+    decoded: u64,
 }
 
 impl TextureCache {
+    /// Decodes bytes that are not a file of their own (an image embedded
+    /// in a glTF file), counting their pixels with the load's.
+    pub(crate) fn decode(&mut self, bytes: &[u8], hint: Option<ImageFormat>) -> Result<Texture, DecodeError> {
+        decode_texture(bytes, hint, &mut self.decoded)
+    }
+
     /// The texture in the image file at `path` (see the module doc):
     /// `Ok(None)` and a warning, given once per file, when it cannot be
     /// used but drawing can go on without it.
@@ -106,13 +132,17 @@ impl TextureCache {
         if let Some(loaded) = self.files.get(path) {
             return Ok(loaded.clone());
         }
-        let loaded = load_file(path, warnings)?.map(Arc::new);
+        let loaded = load_file(path, warnings, &mut self.decoded)?.map(Arc::new);
         self.files.insert(path.to_path_buf(), loaded.clone());
         Ok(loaded)
     }
 }
 
-fn load_file(path: &Path, warnings: &mut Vec<String>) -> Result<Option<Texture>, SceneError> {
+fn load_file(
+    path: &Path,
+    warnings: &mut Vec<String>,
+    decoded: &mut u64,
+) -> Result<Option<Texture>, SceneError> {
     let fallback = "meshes using it are drawn untextured";
     let bytes = match read_limited(path, FileKind::Image) {
         Ok(bytes) => bytes,
@@ -122,7 +152,7 @@ fn load_file(path: &Path, warnings: &mut Vec<String>) -> Result<Option<Texture>,
         }
         Err(refused) => return Err(refused.into_error(path)),
     };
-    match decode_texture(&bytes, ImageFormat::from_path(path).ok()) {
+    match decode_texture(&bytes, ImageFormat::from_path(path).ok(), decoded) {
         Ok(texture) => Ok(Some(texture)),
         Err(DecodeError::Unsupported(why)) => {
             warnings.push(format!("{}: {why}; {fallback}", path.display()));
@@ -136,6 +166,10 @@ fn load_file(path: &Path, warnings: &mut Vec<String>) -> Result<Option<Texture>,
 mod tests {
     use super::*;
 
+    fn decode(bytes: &[u8], hint: Option<ImageFormat>) -> Result<Texture, DecodeError> {
+        TextureCache::default().decode(bytes, hint)
+    }
+
     /// A 2 × 1 PNG: red then green.
     fn tiny_png() -> Vec<u8> {
         let image = image::RgbaImage::from_raw(2, 1, vec![255, 0, 0, 255, 0, 255, 0, 255]).unwrap();
@@ -146,18 +180,18 @@ mod tests {
 
     #[test]
     fn png_bytes_decode_to_rgba() {
-        let texture = decode_texture(&tiny_png(), None).unwrap();
+        let texture = decode(&tiny_png(), None).unwrap();
         assert_eq!((texture.width(), texture.height()), (2, 1));
     }
 
     #[test]
     fn garbage_is_corrupt_and_other_formats_unsupported() {
-        assert!(matches!(decode_texture(b"hello", Some(ImageFormat::Png)), Err(DecodeError::Corrupt(_))));
-        assert!(matches!(decode_texture(b"hello", None), Err(DecodeError::Corrupt(_))));
+        assert!(matches!(decode(b"hello", Some(ImageFormat::Png)), Err(DecodeError::Corrupt(_))));
+        assert!(matches!(decode(b"hello", None), Err(DecodeError::Corrupt(_))));
         let truncated = &tiny_png()[..40];
-        assert!(matches!(decode_texture(truncated, None), Err(DecodeError::Corrupt(_))));
+        assert!(matches!(decode(truncated, None), Err(DecodeError::Corrupt(_))));
         // "BM" is the BMP signature.
-        assert!(matches!(decode_texture(b"BM\0\0\0\0", None), Err(DecodeError::Unsupported(_))));
+        assert!(matches!(decode(b"BM\0\0\0\0", None), Err(DecodeError::Unsupported(_))));
     }
 
     /// A PNG header claiming `width` × `height` pixels, with no pixel data.
@@ -192,7 +226,7 @@ mod tests {
     #[test]
     fn images_over_the_pixel_limit_are_refused_from_their_header() {
         for (w, h) in [(12000, 12000), (4097, 4096), (16385, 16), (8192, 8192)] {
-            match decode_texture(&png_header(w, h), None) {
+            match decode(&png_header(w, h), None) {
                 Err(DecodeError::Corrupt(m)) => {
                     assert!(
                         m.contains(&format!("image of {w}x{h} pixels is larger than the texture limit")),
@@ -202,8 +236,17 @@ mod tests {
                 other => panic!("{w}x{h}: {:?}", other.map(|t| t.width())),
             }
         }
+        // Over the budget of a load, a texture within its own limit is refused.
+        let mut decoded = MAX_TEXTURE_PIXELS_PER_MODEL - 1;
+        match decode_texture(&tiny_png(), None, &mut decoded) {
+            Err(DecodeError::Corrupt(m)) => assert!(m.contains("would bring the model's textures to"), "{m}"),
+            other => panic!("{:?}", other.map(|t| t.width())),
+        }
+        let mut decoded = MAX_TEXTURE_PIXELS_PER_MODEL - 2;
+        decode_texture(&tiny_png(), None, &mut decoded).unwrap();
+        assert_eq!(decoded, MAX_TEXTURE_PIXELS_PER_MODEL, "counted");
         // Within the limits the header passes and the missing data fails.
-        match decode_texture(&png_header(4096, 4096), None) {
+        match decode(&png_header(4096, 4096), None) {
             Err(DecodeError::Corrupt(m)) => assert!(m.starts_with("cannot decode image"), "{m}"),
             other => panic!("{:?}", other.map(|t| t.width())),
         }

@@ -41,6 +41,11 @@ pub const MAX_TEXT_FILE_BYTES: u64 = 16 << 20;
 /// 8192 × 8192 does not.
 pub const MAX_TEXTURE_PIXELS: u64 = 1 << 24;
 
+/// Largest number of texture pixels one model file may decode in all:
+/// 64 Mi, four textures of 4096 × 4096 (about 1.4 GiB as f32 RGBA with
+/// their mip chains).
+pub const MAX_TEXTURE_PIXELS_PER_MODEL: u64 = 1 << 26;
+
 /// Largest number of triangles of one model file, and of one scene (every
 /// object counted as often as it is placed): 16 Mi.
 pub const MAX_TRIANGLES: usize = 1 << 24;

@@ -122,7 +122,7 @@ use zline_shading::{Attenuation, Light, Sampler, Texture};
 use crate::culling::default_culling;
 use crate::error::SceneError;
 use crate::files::{read_limited, FileKind, LoadOptions};
-use crate::texture_file::{decode_texture, DecodeError, TextureCache};
+use crate::texture_file::{DecodeError, TextureCache};
 
 mod attributes;
 mod convert;
@@ -517,7 +517,7 @@ impl Loader<'_> {
                 }
             }
         };
-        let loaded = match decode_texture(&bytes, hint) {
+        let loaded = match self.textures.decode(&bytes, hint) {
             Ok(texture) => Some(Arc::new(texture)),
             Err(DecodeError::Unsupported(why)) => {
                 self.warn(format!("image {index} (embedded): {why}; meshes using it are drawn untextured"));

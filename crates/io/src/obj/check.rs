@@ -81,10 +81,11 @@ pub(super) fn check_obj_text_in<'a>(
     // the counts before it, as a scan from the top would; the first error
     // in file order is reported.
     let pieces = line_pieces(text, piece);
-    let totals: Vec<(usize, Defined)> = pieces.par_iter().map(|piece| count_definitions(piece)).collect();
+    let totals: Vec<(usize, Defined, usize)> =
+        pieces.par_iter().map(|piece| count_definitions(piece)).collect();
     let mut starts = Vec::with_capacity(pieces.len());
     let (mut line, mut defined) = (0, Defined::default());
-    for (lines, d) in &totals {
+    for (lines, d, _) in &totals {
         starts.push((line, defined));
         line += lines;
         defined = Defined {
@@ -93,6 +94,10 @@ pub(super) fn check_obj_text_in<'a>(
             normals: defined.normals + d.normals,
         };
     }
+    // The limits, before anything is built (splitting vertices by their
+    // index triples can only add vertices; the reader's result is checked
+    // again).
+    SceneError::check_size(path, totals.iter().map(|t| t.2).sum(), defined.positions)?;
     let errors: Vec<Option<(usize, String)>> = pieces
         .par_iter()
         .zip(&starts)
@@ -134,20 +139,23 @@ pub(super) fn line_pieces(text: &str, size: usize) -> Vec<&str> {
     pieces
 }
 
-/// The lines of `piece` and its `v`, `vt` and `vn` statements.
-fn count_definitions(piece: &str) -> (usize, Defined) {
+/// The lines of `piece`, its `v`, `vt` and `vn` statements and the
+/// triangles its faces make (corners − 2 each).
+fn count_definitions(piece: &str) -> (usize, Defined, usize) {
     let mut d = Defined::default();
-    let mut lines = 0;
+    let (mut lines, mut triangles) = (0, 0);
     for line in piece.lines() {
         lines += 1;
-        match line.split_whitespace().next() {
+        let mut words = line.split_whitespace();
+        match words.next() {
             Some("v") => d.positions += 1,
             Some("vt") => d.texcoords += 1,
             Some("vn") => d.normals += 1,
+            Some("f") => triangles += words.count().saturating_sub(2),
             _ => {}
         }
     }
-    (lines, d)
+    (lines, d, triangles)
 }
 
 /// Checks one line, counting what it defines. `args` is scratch space for
@@ -258,6 +266,27 @@ mod tests {
         let mut defined = Defined { positions: 4, texcoords: 2, normals: 0 };
         let message = check_obj_line(line, &mut defined, &mut Vec::new()).unwrap_err();
         assert!(message.contains(expected), "{message:?} does not contain {expected:?}");
+    }
+
+    #[test]
+    fn faces_are_counted_as_triangles_before_reading() {
+        let (lines, defined, triangles) = count_definitions("v 0 0 0\nf 1 2 3 4\nf 1 2 3\nf 1 2\nvn 0 0 1\n");
+        assert_eq!((lines, defined.positions, defined.normals, triangles), (5, 1, 1, 3));
+        // One face of MAX_TRIANGLES + 3 corners: refused by the count,
+        // before any line is checked or read.
+        let corners = zline_scene::MAX_TRIANGLES + 3;
+        let text = format!("v 0 0 0\nf{}\n", " 1".repeat(corners));
+        match check_obj_text(Path::new("huge.obj"), &text) {
+            Err(e) => assert_eq!(
+                e.to_string(),
+                format!(
+                    "huge.obj: {} triangles, more than the limit of {}",
+                    corners - 2,
+                    zline_scene::MAX_TRIANGLES
+                )
+            ),
+            Ok(_) => panic!("accepted"),
+        }
     }
 
     #[test]

@@ -294,13 +294,17 @@ impl Builder<'_> {
         if file.objects.is_empty() {
             return Err(self.check.file_error("no [[objects]]: a scene needs at least one object"));
         }
-        let mut objects = Vec::new();
+        let mut objects: Vec<Object> = Vec::new();
+        let (mut triangles, mut vertices) = (0, 0);
         for (i, def) in file.objects.iter().enumerate() {
-            objects.extend(self.objects(def, &format!("objects[{i}]"))?);
+            let placed = self.objects(def, &format!("objects[{i}]"))?;
+            // Checked as the objects come, so that a scene naming many
+            // large models stops at the first one too many.
+            triangles += placed.iter().map(|o| o.mesh.triangles.len()).sum::<usize>();
+            vertices += placed.iter().map(|o| o.mesh.positions.len()).sum::<usize>();
+            SceneError::check_size(self.check.path, triangles, vertices)?;
+            objects.extend(placed);
         }
-        let triangles = objects.iter().map(|o| o.mesh.triangles.len()).sum();
-        let vertices = objects.iter().map(|o| o.mesh.positions.len()).sum();
-        SceneError::check_size(self.check.path, triangles, vertices)?;
         let (min, max) = world_bounds(&objects);
         let camera = match &file.camera {
             Some(def) => self.camera(def, (min, max), aspect(&settings))?,
