@@ -31,8 +31,9 @@ enum Command {
         /// glTF file brings its own camera; a key and a fill light unless it
         /// brings lights) or a `.toml` scene file.
         input: PathBuf,
-        /// Let the input, and the files it names, name files outside the
-        /// folder of the file that names them (absolute paths, `..`).
+        /// Read the files the input names (mtllib, map_Kd, glTF URIs, a
+        /// scene's models) even outside the folder of the file naming them;
+        /// by default absolute paths and `..` leading out are refused.
         #[arg(long)]
         allow_paths_outside: bool,
         #[command(flatten)]
