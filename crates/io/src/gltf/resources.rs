@@ -2,23 +2,37 @@
 //! files next to the glTF file, read here so that one bad resource gives one
 //! clear error or warning (see the parent module). A file URI must name a
 //! file inside the glTF file's folder unless the options allow otherwise;
-//! a buffer file is read when at most
-//! [`MAX_MODEL_FILE_BYTES`](zline_scene::MAX_MODEL_FILE_BYTES).
+//! a buffer file is read when at most [`MAX_MODEL_FILE_BYTES`], and so
+//! are all the buffers together.
 
 use std::path::{Path, PathBuf};
+
+use zline_scene::MAX_MODEL_FILE_BYTES;
 
 use crate::error::SceneError;
 use crate::files::{read_limited, resolve, FileKind, LoadOptions, ReadError};
 
 /// Reads every buffer: the GLB's BIN chunk, a `data:` URI or a file
 /// relative to the glTF file. A buffer that cannot be read, or is shorter
-/// than its byteLength, is an error naming it.
+/// than its byteLength, is an error naming it; so are buffers whose
+/// byteLengths add up to more than [`MAX_MODEL_FILE_BYTES`], before any is
+/// read.
 pub(super) fn read_buffers(
     path: &Path,
     document: &gltf::Document,
     mut blob: Option<Vec<u8>>,
     options: LoadOptions,
 ) -> Result<Vec<Vec<u8>>, SceneError> {
+    let declared: u64 = document.buffers().map(|b| b.length() as u64).sum();
+    if declared > MAX_MODEL_FILE_BYTES {
+        return Err(SceneError::File {
+            path: path.to_path_buf(),
+            message: format!(
+                "buffers of {declared} bytes in all (their byteLengths), more than the limit of \
+                 {MAX_MODEL_FILE_BYTES}"
+            ),
+        });
+    }
     let mut buffers = Vec::new();
     for buffer in document.buffers() {
         let error = |what: String| SceneError::File {

@@ -294,6 +294,19 @@ fn malformed_gltf_gives_errors_naming_the_file_never_a_panic() {
 }
 
 #[test]
+fn gltf_buffers_over_the_size_limit_in_all_are_refused_before_reading() {
+    let path = quad_gltf("safety-buffers", r#""nodes": [{"mesh": 0}]"#);
+    let many = r#"{"uri": "quad.bin", "byteLength": 92}"#.to_owned()
+        + &r#", {"uri": "quad.bin", "byteLength": 600000000}"#.repeat(2);
+    edit(&path, r#"{"uri": "quad.bin", "byteLength": 92}"#, &many);
+    let e = load_gltf(&path).unwrap_err().to_string();
+    check_message(
+        &e,
+        &["quad.gltf: buffers of 1200000092 bytes in all", "more than the limit of 1073741824"],
+    );
+}
+
+#[test]
 fn gltf_nodes_with_zero_matrices_are_skipped_with_a_warning() {
     let path = quad_gltf(
         "safety-zero-matrix",
