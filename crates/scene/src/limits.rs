@@ -35,6 +35,11 @@ pub const MAX_IMAGE_FILE_BYTES: u64 = 256 << 20;
 /// Largest MTL or TOML scene file, in bytes (16 MiB).
 pub const MAX_TEXT_FILE_BYTES: u64 = 16 << 20;
 
+/// Largest number of material libraries (`mtllib`) one OBJ file may read: each reads an
+/// MTL file and appends its materials, so a few bytes of OBJ repeating one
+/// must not read it a million times.
+pub const MAX_MATERIAL_LIBRARIES: usize = 256;
+
 /// Largest texture, in pixels: 4096 × 4096 (16 Mi pixels, about 360 MiB
 /// once stored as f32 RGBA with its mip chain). Each side is also at most
 /// `zline_shading::MAX_TEXTURE_SIZE` (16384), so 16384 × 1024 passes and

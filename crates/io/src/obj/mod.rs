@@ -54,7 +54,9 @@
 //! at most [`MAX_TEXT_FILE_BYTES`](zline_scene::MAX_TEXT_FILE_BYTES); an
 //! `mtllib` must lie in the OBJ file's folder and a `map_Kd` in the MTL
 //! file's folder, unless [`LoadOptions::allow_outside`]; a refused path is
-//! an error naming the file that names it. The model may have at most
+//! an error naming the file that names it. At most
+//! [`MAX_MATERIAL_LIBRARIES`] `mtllib` statements are read. The model may
+//! have at most
 //! [`MAX_TRIANGLES`](zline_scene::MAX_TRIANGLES) triangles and
 //! [`MAX_VERTICES`](zline_scene::MAX_VERTICES) vertices.
 
@@ -62,7 +64,7 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
-use zline_scene::{Mesh, TextureMap};
+use zline_scene::{Mesh, TextureMap, MAX_MATERIAL_LIBRARIES};
 use zline_shading::{Material, Sampler, Wrap};
 
 use crate::error::SceneError;
@@ -112,16 +114,26 @@ fn parse_obj(path: &Path, text: &str, options: LoadOptions) -> Result<(Vec<Mesh>
     // The first MTL failure that must stop the load (tobj's callback can
     // only say "no materials").
     let failure = RefCell::new(None);
+    let mut libraries = 0;
     let loaded = read::read_models(&pieces, &before, |mtl| {
-        let loaded = resolve(path, mtl, options)
-            .map_err(|why| SceneError::File { path: path.to_path_buf(), message: format!("mtllib: {why}") })
-            .and_then(|mtl_path| {
-                let result = load_mtl(&mtl_path, &mut warnings.borrow_mut())?;
-                if let Ok((materials, _)) = &result {
-                    material_files.borrow_mut().extend(std::iter::repeat_n(mtl_path, materials.len()));
-                }
-                Ok(result)
-            });
+        libraries += 1;
+        let loaded = if libraries > MAX_MATERIAL_LIBRARIES {
+            let message = format!("more than {MAX_MATERIAL_LIBRARIES} material libraries (mtllib)");
+            Err(SceneError::File { path: path.to_path_buf(), message })
+        } else {
+            resolve(path, mtl, options)
+                .map_err(|why| SceneError::File {
+                    path: path.to_path_buf(),
+                    message: format!("mtllib: {why}"),
+                })
+                .and_then(|mtl_path| {
+                    let result = load_mtl(&mtl_path, &mut warnings.borrow_mut())?;
+                    if let Ok((materials, _)) = &result {
+                        material_files.borrow_mut().extend(std::iter::repeat_n(mtl_path, materials.len()));
+                    }
+                    Ok(result)
+                })
+        };
         loaded.unwrap_or_else(|e| {
             failure.borrow_mut().get_or_insert(e);
             Err(tobj::LoadError::OpenFileFailed)

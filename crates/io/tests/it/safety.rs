@@ -164,6 +164,17 @@ fn mtllib_and_map_kd_outside_the_folder_are_refused() {
 }
 
 #[test]
+fn mtllib_statements_are_limited_in_number() {
+    let mtl = b"newmtl m\nKd 1 0 0\n";
+    let obj = "mtllib a.mtl\n".repeat(256) + "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
+    let dir = nested("mtllibs", &[("a.obj", obj.as_bytes()), ("a.mtl", mtl)]);
+    load_obj(&dir.join("a.obj")).unwrap();
+    std::fs::write(dir.join("a.obj"), "mtllib a.mtl\n".to_owned() + &obj).unwrap();
+    let e = load_obj(&dir.join("a.obj")).unwrap_err().to_string();
+    check_message(&e, &["a.obj: more than 256 material libraries (mtllib)"]);
+}
+
+#[test]
 fn scene_models_outside_the_folder_are_refused() {
     let cube = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     let dir = nested("scene", &[("in.obj", cube)]);
