@@ -4,13 +4,14 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
+use zline::pipeline::RenderStats;
 use zline::pipeline::{render, RenderOptions};
 use zline::scene::{
     DepthMode, Fog, FogCoordinate, FogMode, GouraudClamp, Interpolation, LightingSides, RenderSettings,
-    Scene, ShadingMode,
+    Scene, ShadingMode, MAX_SAMPLES, MAX_THREADS, MAX_TILE_SIZE, MIN_TILE_SIZE,
 };
 use zline::shading::Filter;
 
@@ -42,7 +43,9 @@ enum Command {
 
 #[derive(Args)]
 struct Common {
-    /// Output PNG file.
+    /// Output PNG file (the extension must be .png). Written to a
+    /// temporary file in the same folder, then renamed over OUT.png: a failed
+    /// write leaves an existing file as it was.
     #[arg(short, long, value_name = "OUT.png")]
     output: PathBuf,
     /// Also print the time of each step: load, render, PNG encode and write.
@@ -57,7 +60,8 @@ struct Common {
     /// Attribute interpolation.
     #[arg(long, value_enum)]
     interpolation: Option<Interp>,
-    /// Worker threads (default: one per core).
+    /// Worker threads (default: one per core; more than 256 are taken as
+    /// 256, with a warning).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
     /// Texture filtering for every texture (default: each texture's own).
@@ -89,8 +93,13 @@ struct Common {
     /// How back faces drawn without culling are lit (SPEC §11).
     #[arg(long, value_enum)]
     lighting: Option<Sides>,
-    /// Tile edge in pixels; the image does not depend on it.
-    #[arg(long, value_name = "PIXELS", default_value_t = RenderOptions::default().tile_size)]
+    /// Tile edge in pixels, 8..=1024; the image does not depend on it.
+    #[arg(
+        long,
+        value_name = "PIXELS",
+        default_value_t = RenderOptions::default().tile_size,
+        value_parser = clap::value_parser!(u32).range(MIN_TILE_SIZE as i64..=MAX_TILE_SIZE as i64)
+    )]
     tile_size: u32,
 }
 
@@ -228,23 +237,29 @@ fn one_line(e: &anyhow::Error) -> String {
 }
 
 fn run(cli: Cli) -> Result<()> {
+    let (input, common) = match cli.command {
+        Command::Render { input, common } => (Some(input), common),
+        Command::Demo { common } => (None, common),
+    };
+    // Everything that can be checked without the scene is checked before
+    // loading it: a bad output path or thread count fails at once.
+    zline::check_output(&common.output).map_err(|e| anyhow!("{}: {e}", common.output.display()))?;
+    let threads = thread_count(common.threads)?;
     let loading = Instant::now();
-    let (mut scene, common) = match cli.command {
-        Command::Render { input, common } => (load_input(&input)?, common),
-        Command::Demo { common } => (zline::scenes::demo_scene(), common),
+    let mut scene = match &input {
+        Some(input) => load_input(input)?,
+        None => zline::scenes::demo_scene(),
     };
     apply_overrides(&mut scene.settings, &common);
     apply_fog(&mut scene, &common);
+    check_samples(&scene.settings)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = common.threads {
-        if n == 0 {
-            bail!("--threads must be at least 1");
-        }
+    if let Some(n) = threads {
         pool = pool.num_threads(n);
     }
     let pool = pool.build().context("cannot start the worker threads")?;
     let loaded = loading.elapsed();
-    let options = RenderOptions { tile_size: common.tile_size.max(1) };
+    let options = RenderOptions { tile_size: common.tile_size };
     let start = Instant::now();
     let (image, stats) = pool.install(|| render(&scene, &options));
     let elapsed = start.elapsed();
@@ -263,6 +278,10 @@ fn run(cli: Cli) -> Result<()> {
         count(stats.fragments, "sample", "samples"),
         elapsed.as_secs_f64() * 1e3
     );
+    if let Some(why) = blank_image(&scene, &stats) {
+        let name = input.as_deref().map_or_else(|| "demo".into(), |p| p.display().to_string());
+        eprintln!("warning: {name}: the image is blank: {why}");
+    }
     if common.timings {
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
         eprintln!(
@@ -277,6 +296,80 @@ fn run(cli: Cli) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// `--threads`: at least 1; more than [`MAX_THREADS`] are clamped to it
+/// with a warning. `None` is rayon's default, one per core.
+fn thread_count(threads: Option<usize>) -> Result<Option<usize>> {
+    match threads {
+        Some(0) => bail!("--threads must be at least 1"),
+        Some(n) if n > MAX_THREADS => {
+            eprintln!(
+                "warning: --threads {n} is more than the {MAX_THREADS} zline starts; using {MAX_THREADS}"
+            );
+            Ok(Some(MAX_THREADS))
+        }
+        n => Ok(n),
+    }
+}
+
+/// Refuses a frame of more than [`MAX_SAMPLES`] samples (width × height ×
+/// ssaa², after the flags), before anything is allocated for it.
+fn check_samples(settings: &RenderSettings) -> Result<()> {
+    let (w, h, n) = (settings.width, settings.height, settings.ssaa.max(1));
+    let samples = u128::from(w) * u128::from(h) * u128::from(n) * u128::from(n);
+    if samples > u128::from(MAX_SAMPLES) {
+        bail!(
+            "{w}x{h} pixels at ssaa {n} are {samples} samples, more than the limit of {MAX_SAMPLES} \
+             (2^28, 4 GiB of sample buffers at 16 bytes each): lower --size or --ssaa"
+        );
+    }
+    Ok(())
+}
+
+/// Why a frame drew nothing, when it drew nothing: no triangles, every
+/// triangle culled, clipped or degenerate (with the scene's bounds, which
+/// show a model too large or too small for `f32`), or no sample covered.
+fn blank_image(scene: &Scene, stats: &RenderStats) -> Option<String> {
+    if stats.fragments > 0 {
+        return None;
+    }
+    if stats.triangles == 0 {
+        return Some("the scene has no triangles".into());
+    }
+    let tris = |n: u64| format!("{n} triangle{}", if n == 1 { "" } else { "s" });
+    if stats.primitives > 0 {
+        return Some(format!(
+            "{} drawn, but none covers a sample (all smaller than a pixel, or outside the image)",
+            tris(stats.primitives)
+        ));
+    }
+    let points = scene
+        .objects
+        .iter()
+        .flat_map(|o| o.mesh.positions.iter().map(move |p| o.world_from_object.transform_point3(*p)));
+    let (min, max) = points.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
+    let (size, (lo, hi)) = (max - min, (short(min), short(max)));
+    let bounds = if size.is_finite() {
+        format!("the scene spans {lo} to {hi}, a size of {}", short(size))
+    } else {
+        format!("the scene spans {lo} to {hi}, more than f32 can measure")
+    };
+    let all = match stats.triangles {
+        1 => "its one triangle was".to_string(),
+        n => format!("all {} were", tris(n)),
+    };
+    Some(format!(
+        "{all} culled, clipped or degenerate (too small or too large to draw, or facing away); {bounds}"
+    ))
+}
+
+/// A point for a message: plain numbers when they read well, else
+/// scientific (1e38, not 39 digits).
+fn short(v: Vec3) -> String {
+    let num =
+        |x: f32| if x == 0.0 || (1e-3..1e6).contains(&x.abs()) { format!("{x}") } else { format!("{x:e}") };
+    format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
 }
 
 fn load_input(input: &Path) -> Result<Scene> {

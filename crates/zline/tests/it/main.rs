@@ -3,6 +3,7 @@
 mod bad_input;
 mod cli;
 mod hard_cases;
+mod hostile;
 
 use std::path::Path;
 use std::process::{Command, Output};
