@@ -11,7 +11,7 @@ use zline::pipeline::RenderStats;
 use zline::pipeline::{render, RenderOptions};
 use zline::scene::{
     DepthMode, Fog, FogCoordinate, FogMode, GouraudClamp, Interpolation, LightingSides, RenderSettings,
-    Scene, ShadingMode, MAX_SAMPLES, MAX_THREADS, MAX_TILE_SIZE, MIN_TILE_SIZE,
+    Scene, ShadingMode, MAX_IMAGE_SIDE, MAX_SAMPLES, MAX_THREADS, MAX_TILE_SIZE, MIN_TILE_SIZE,
 };
 use zline::shading::Filter;
 
@@ -77,7 +77,8 @@ struct Common {
     /// Fog coordinate: distance to the eye plane or to the eye.
     #[arg(long, value_enum)]
     fog_coordinate: Option<FogCoord>,
-    /// Supersampling: N×N samples per pixel, box-filtered (1 = off).
+    /// Supersampling: N×N samples per pixel, box-filtered (1 = off). A
+    /// frame has at most 2^28 samples (width × height × N²).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=zline::scene::MAX_SSAA as i64))]
     ssaa: Option<u32>,
     /// Adaptive mode: per triangle, the cheapest evaluation whose colour
@@ -162,10 +163,10 @@ enum Interp {
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("expected WxH, e.g. 800x600, got '{s}'"))?;
-    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|n| (1..=16384).contains(n));
+    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|n| (1..=MAX_IMAGE_SIDE).contains(n));
     match (parse(w), parse(h)) {
         (Some(w), Some(h)) => Ok((w, h)),
-        _ => Err(format!("width and height must be whole numbers in 1..=16384, got '{s}'")),
+        _ => Err(format!("width and height must be whole numbers in 1..={MAX_IMAGE_SIDE}, got '{s}'")),
     }
 }
 
@@ -209,12 +210,44 @@ fn parse_color(s: &str) -> Result<Vec3, String> {
 }
 
 fn main() -> ExitCode {
-    match run(Cli::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {}", one_line(&e));
-            ExitCode::FAILURE
+    ExitCode::from(exit_code(|| run(Cli::parse())))
+}
+
+/// Runs `f` and gives the process's exit code: 0 on success, 1 with one
+/// `error:` line on an error — and 1 with one `error: internal error` line
+/// on a panic, in this thread or a worker, rather than Rust's exit code 101
+/// and its multi-line report (a backtrace follows only when
+/// `RUST_BACKTRACE` asks for one). A panic is a bug in zline: the tests
+/// look for that line.
+fn exit_code(f: impl FnOnce() -> Result<()> + std::panic::UnwindSafe) -> u8 {
+    static REPORTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    std::panic::set_hook(Box::new(|info| {
+        // Workers may panic together: the first one is reported.
+        if REPORTED.swap(true, std::sync::atomic::Ordering::SeqCst) {
+            return;
         }
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<&str>()
+            .copied()
+            .or_else(|| payload.downcast_ref::<String>().map(String::as_str))
+            .unwrap_or("a panic");
+        let at = info.location().map(|l| format!(" at {}:{}", l.file(), l.line())).unwrap_or_default();
+        eprintln!("error: internal error (a bug in zline, please report it): {message}{at}");
+        let trace = std::backtrace::Backtrace::capture();
+        if trace.status() == std::backtrace::BacktraceStatus::Captured {
+            eprintln!("{trace}");
+        }
+    }));
+    let result = std::panic::catch_unwind(f);
+    let _ = std::panic::take_hook();
+    match result {
+        Ok(Ok(())) => 0,
+        Ok(Err(e)) => {
+            eprintln!("error: {}", one_line(&e));
+            1
+        }
+        Err(_) => 1,
     }
 }
 
@@ -245,6 +278,10 @@ fn run(cli: Cli) -> Result<()> {
     // loading it: a bad output path or thread count fails at once.
     zline::check_output(&common.output).map_err(|e| anyhow!("{}: {e}", common.output.display()))?;
     let threads = thread_count(common.threads)?;
+    if let (Some((w, h)), Some(n)) = (common.size, common.ssaa) {
+        // Both from the flags: no need to load the scene to refuse them.
+        check_samples(w, h, n)?;
+    }
     let loading = Instant::now();
     let mut scene = match &input {
         Some(input) => load_input(input)?,
@@ -252,7 +289,7 @@ fn run(cli: Cli) -> Result<()> {
     };
     apply_overrides(&mut scene.settings, &common);
     apply_fog(&mut scene, &common);
-    check_samples(&scene.settings)?;
+    check_samples(scene.settings.width, scene.settings.height, scene.settings.ssaa)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         pool = pool.num_threads(n);
@@ -315,8 +352,8 @@ fn thread_count(threads: Option<usize>) -> Result<Option<usize>> {
 
 /// Refuses a frame of more than [`MAX_SAMPLES`] samples (width × height ×
 /// ssaa², after the flags), before anything is allocated for it.
-fn check_samples(settings: &RenderSettings) -> Result<()> {
-    let (w, h, n) = (settings.width, settings.height, settings.ssaa.max(1));
+fn check_samples(w: u32, h: u32, ssaa: u32) -> Result<()> {
+    let n = ssaa.max(1);
     let samples = u128::from(w) * u128::from(h) * u128::from(n) * u128::from(n);
     if samples > u128::from(MAX_SAMPLES) {
         bail!(
@@ -461,5 +498,39 @@ fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
             Interp::Perspective => Interpolation::PerspectiveCorrect,
             Interp::Linear => Interpolation::ScreenLinear,
         };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_anywhere_is_exit_code_1() {
+        assert_eq!(exit_code(|| Ok(())), 0);
+        assert_eq!(exit_code(|| bail!("a plain error")), 1);
+        assert_eq!(exit_code(|| panic!("in the main thread")), 1);
+        let in_workers = || {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+            pool.install(|| {
+                rayon::prelude::ParallelIterator::for_each(
+                    rayon::prelude::IntoParallelIterator::into_par_iter(0..64),
+                    |i| assert!(i < 60, "in a worker"),
+                )
+            });
+            Ok(())
+        };
+        assert_eq!(exit_code(in_workers), 1);
+    }
+
+    #[test]
+    fn the_sample_budget_is_width_height_and_ssaa_squared() {
+        assert!(check_samples(16384, 16384, 1).is_ok());
+        assert!(check_samples(8192, 8192, 2).is_ok());
+        assert!(check_samples(2048, 2048, 8).is_ok());
+        assert!(check_samples(2049, 2048, 8).is_err());
+        assert!(check_samples(16384, 16384, 2).is_err());
+        let e = check_samples(u32::MAX, u32::MAX, u32::MAX).unwrap_err().to_string();
+        assert!(e.contains("268435456") && e.contains("--ssaa"), "{e}");
     }
 }

@@ -13,7 +13,7 @@ use crate::{check_clean_error, check_png, zline};
 fn check_usage_error(out: &Output, needles: &[&str]) {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "expected exit code 2; stderr:\n{stderr}");
-    assert!(!stderr.contains("panicked"), "panic:\n{stderr}");
+    assert!(!stderr.contains("panicked") && !stderr.contains("internal error"), "panic:\n{stderr}");
     let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
     assert_eq!(errors.len(), 1, "expected one error line, got:\n{stderr}");
     for n in needles {
