@@ -336,17 +336,23 @@ fn run(cli: Cli) -> Result<()> {
 }
 
 /// `--threads`: at least 1; more than [`MAX_THREADS`] are clamped to it
-/// with a warning. `None` is rayon's default, one per core.
+/// with a warning. Without the flag, rayon's default: `RAYON_NUM_THREADS`
+/// (clamped the same way) or one per core.
 fn thread_count(threads: Option<usize>) -> Result<Option<usize>> {
+    let clamp = |n: usize, what: &str| {
+        eprintln!(
+            "warning: {what}{n} is more than the {MAX_THREADS} threads zline starts; using {MAX_THREADS}"
+        );
+        Ok(Some(MAX_THREADS))
+    };
     match threads {
         Some(0) => bail!("--threads must be at least 1"),
-        Some(n) if n > MAX_THREADS => {
-            eprintln!(
-                "warning: --threads {n} is more than the {MAX_THREADS} zline starts; using {MAX_THREADS}"
-            );
-            Ok(Some(MAX_THREADS))
-        }
-        n => Ok(n),
+        Some(n) if n > MAX_THREADS => clamp(n, "--threads "),
+        Some(n) => Ok(Some(n)),
+        None => match std::env::var("RAYON_NUM_THREADS").ok().and_then(|v| v.trim().parse::<usize>().ok()) {
+            Some(n) if n > MAX_THREADS => clamp(n, "RAYON_NUM_THREADS="),
+            _ => Ok(None),
+        },
     }
 }
 
@@ -521,6 +527,26 @@ mod tests {
             Ok(())
         };
         assert_eq!(exit_code(in_workers), 1);
+    }
+
+    #[test]
+    fn a_blank_image_says_why() {
+        let scene = zline::scenes::demo_scene();
+        let stats = |triangles, primitives, fragments| RenderStats {
+            triangles,
+            primitives,
+            fragments,
+            ..Default::default()
+        };
+        assert_eq!(blank_image(&scene, &stats(10, 5, 1)), None);
+        assert_eq!(blank_image(&scene, &stats(0, 0, 0)).unwrap(), "the scene has no triangles");
+        let why = blank_image(&scene, &stats(10, 5, 0)).unwrap();
+        assert!(why.starts_with("5 triangles drawn, but none covers a sample"), "{why}");
+        let why = blank_image(&scene, &stats(10, 0, 0)).unwrap();
+        assert!(
+            why.starts_with("all 10 triangles were culled") && why.contains("the scene spans ("),
+            "{why}"
+        );
     }
 
     #[test]

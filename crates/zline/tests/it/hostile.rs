@@ -60,6 +60,15 @@ fn too_many_threads_are_clamped_with_a_warning() {
     }
     let out = demo(&many, &["--threads", "256"]);
     assert!(!String::from_utf8_lossy(&out.stderr).contains("warning:"), "256 threads are allowed");
+    // Rayon's own variable, without the flag, is clamped the same way.
+    let out = Command::new(env!("CARGO_BIN_EXE_zline"))
+        .args(["demo", "-o", many.to_str().unwrap(), "--size", "48x32"])
+        .env("RAYON_NUM_THREADS", "100000")
+        .output()
+        .unwrap();
+    check_png(&out, &many, (48, 32));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("warning: RAYON_NUM_THREADS=100000"), "{out:?}");
+    assert_eq!(std::fs::read(&one).unwrap(), std::fs::read(&many).unwrap(), "RAYON_NUM_THREADS: other bytes");
 }
 
 #[test]
