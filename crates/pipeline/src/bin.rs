@@ -11,7 +11,7 @@ pub struct TileGrid {
     pub width: u32,
     /// Window height in pixels.
     pub height: u32,
-    /// Tile edge in pixels (≥ 1).
+    /// Tile edge in pixels, in 1..=max(width, height, 1).
     pub tile_size: u32,
     /// Tiles per row.
     pub cols: u32,
@@ -20,9 +20,11 @@ pub struct TileGrid {
 }
 
 impl TileGrid {
-    /// The grid for a window; a tile size of 0 is taken as 1.
+    /// The grid for a window; a tile size of 0 is taken as 1, and one
+    /// larger than the window's longer side as that side (the same single
+    /// tile, and no overflow in the tiles' bounds).
     pub fn new(width: u32, height: u32, tile_size: u32) -> TileGrid {
-        let tile_size = tile_size.max(1);
+        let tile_size = tile_size.clamp(1, width.max(height).max(1));
         TileGrid {
             width,
             height,
@@ -124,4 +126,28 @@ fn reset<T>(lists: &mut Vec<Vec<T>>, n: usize) {
     lists.resize_with(n, Vec::new);
     lists.truncate(n);
     lists.iter_mut().for_each(Vec::clear);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn any_tile_size_gives_tiles_inside_the_window() {
+        for tile_size in [0, 1, 7, 64, 1 << 31, u32::MAX] {
+            let grid = TileGrid::new(100, 30, tile_size);
+            assert!((1..=100).contains(&grid.tile_size), "tile {tile_size}: edge {}", grid.tile_size);
+            let mut pixels = 0;
+            for row in 0..grid.rows {
+                for col in 0..grid.cols {
+                    let r = grid.rect(col, row);
+                    assert!(r.x0 >= 0 && r.y0 >= 0 && r.x1 <= 100 && r.y1 <= 30 && !r.is_empty());
+                    pixels += r.width() * r.height();
+                }
+            }
+            assert_eq!(pixels, 100 * 30, "tile {tile_size}: the tiles do not cover the window once");
+        }
+        assert_eq!(TileGrid::new(100, 30, u32::MAX).len(), 1);
+        assert_eq!(TileGrid::new(0, 0, u32::MAX).len(), 0);
+    }
 }

@@ -36,7 +36,9 @@ const MIN_TRIANGLE_CHUNK: usize = 256;
 /// Settings of the pipeline itself (the scene's settings say what to draw).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RenderOptions {
-    /// Tile edge in pixels. Any value ≥ 1 gives the same image.
+    /// Tile edge in pixels. Any value gives the same image: 0 is taken as
+    /// 1, and a value above [`MAX_TILE_SIZE`](zline_scene::MAX_TILE_SIZE)
+    /// (up to `u32::MAX`) as that.
     pub tile_size: u32,
 }
 
@@ -133,7 +135,10 @@ struct Frame {
 impl Frame {
     fn new(scene: &Scene) -> Frame {
         let s = &scene.settings;
-        let (width, height) = (s.width.max(1), s.height.max(1));
+        // Sides and supersampling factors larger than scene files accept are
+        // taken as the largest (the sample window then fits an i32).
+        let side = |v: u32| v.clamp(1, zline_scene::MAX_IMAGE_SIDE);
+        let (width, height) = (side(s.width), side(s.height));
         // Supersampling renders an n× larger window of samples (every stage
         // works in samples) and box-filters it in the resolve. Larger
         // factors than scene files accept are taken as the largest.
@@ -186,7 +191,7 @@ impl Renderer {
         stats.geometry = start.elapsed();
 
         let start = Instant::now();
-        let tile_size = options.tile_size.max(1);
+        let tile_size = options.tile_size.clamp(1, zline_scene::MAX_TILE_SIZE);
         let grid = TileGrid::new(frame.viewport.width, frame.viewport.height, tile_size * frame.n);
         bin_primitives(&self.chunks[..self.used], &grid, &mut self.bins);
         stats.binning = start.elapsed();
@@ -402,4 +407,32 @@ fn fill_rect(band: &mut [u32], width: usize, rect: Rect, color: u32) {
 #[inline]
 fn gather<'a>(vertices: &'a [ClipVertex], t: &[u32; 3]) -> Option<[&'a ClipVertex; 3]> {
     Some([vertices.get(t[0] as usize)?, vertices.get(t[1] as usize)?, vertices.get(t[2] as usize)?])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn any_tile_size_renders_the_same_image() {
+        let mut scene = zline_scenes::demo_scene();
+        (scene.settings.width, scene.settings.height) = (96, 40);
+        let reference = render(&scene, &RenderOptions::default()).0;
+        for tile_size in [0, 1, zline_scene::MAX_TILE_SIZE + 1, 1 << 31, u32::MAX] {
+            let image = render(&scene, &RenderOptions { tile_size }).0;
+            assert!(image == reference, "tile {tile_size}: a different image");
+        }
+        scene.settings.ssaa = 3;
+        let reference = render(&scene, &RenderOptions::default()).0;
+        assert!(render(&scene, &RenderOptions { tile_size: u32::MAX }).0 == reference, "ssaa 3");
+    }
+
+    #[test]
+    fn oversized_settings_are_taken_as_the_largest() {
+        let mut scene = zline_scenes::demo_scene();
+        (scene.settings.width, scene.settings.height) = (u32::MAX, 0);
+        scene.settings.ssaa = u32::MAX;
+        let image = render(&scene, &RenderOptions { tile_size: u32::MAX }).0;
+        assert_eq!((image.width, image.height), (zline_scene::MAX_IMAGE_SIDE, 1));
+    }
 }

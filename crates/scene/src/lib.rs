@@ -33,3 +33,6 @@ pub use primitives::{cube, plane, torus, uv_sphere};
 pub use zline_shading::{
     Attenuation, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
 };
+
+// The command line's and the pipeline's limits (threads, tiles, samples).
+pub use limits::{MAX_SAMPLES, MAX_THREADS, MAX_TILE_SIZE, MIN_TILE_SIZE};

@@ -64,3 +64,32 @@ pub const MAX_VERTICES: usize = 1 << 24;
 /// A few bytes of scene file must not ask for minutes of tessellation and
 /// gigabytes of memory, so the budget is lower than [`MAX_TRIANGLES`].
 pub const MAX_PRIMITIVE_TRIANGLES: u64 = 1 << 22;
+
+// ---- Command-line and pipeline limits: threads, tiles, samples ----
+//
+// Checked by the `zline` command line before it loads or renders anything;
+// the pipeline clamps the tile size itself, so no value can make it panic.
+
+/// Largest number of samples in one frame, width × height × ssaa²: 2^28
+/// (268 435 456). A sample takes 16 bytes in the tile buffers (depth and
+/// three colour planes, `f32` each), so even a frame whose every sample is
+/// held at once stays within 4 GiB. It admits every image side up to
+/// [`MAX_IMAGE_SIDE`] without supersampling, 8192² at ssaa 2, 4096² at ssaa
+/// 4 and 2048² at ssaa 8.
+pub const MAX_SAMPLES: u64 = 1 << 28;
+
+/// Smallest tile edge, in pixels, the command line accepts. Smaller tiles
+/// give the same image but one bin list (48 bytes) per tile: a 16384² image
+/// in 1-pixel tiles would need 12 GiB of bins; in 8-pixel tiles, 200 MB.
+pub const MIN_TILE_SIZE: u32 = 8;
+
+/// Largest tile edge, in pixels. The command line refuses larger values;
+/// the pipeline takes a larger one (up to `u32::MAX`) as this one, and a
+/// tile larger than the image as the whole image: the image never depends
+/// on the tile size.
+pub const MAX_TILE_SIZE: u32 = 1024;
+
+/// Most worker threads the command line starts; `--threads` above it is
+/// clamped to it with a warning (10 000 threads brought a two-core machine
+/// to a load average of 469).
+pub const MAX_THREADS: usize = 256;

@@ -4,14 +4,15 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
 use zline::io::LoadOptions;
+use zline::pipeline::RenderStats;
 use zline::pipeline::{render, RenderOptions};
 use zline::scene::{
     DepthMode, Fog, FogCoordinate, FogMode, GouraudClamp, Interpolation, LightingSides, RenderSettings,
-    Scene, ShadingMode,
+    Scene, ShadingMode, MAX_IMAGE_SIDE, MAX_SAMPLES, MAX_THREADS, MAX_TILE_SIZE, MIN_TILE_SIZE,
 };
 use zline::shading::Filter;
 
@@ -48,7 +49,9 @@ enum Command {
 
 #[derive(Args)]
 struct Common {
-    /// Output PNG file.
+    /// Output PNG file (the extension must be .png). Written to a
+    /// temporary file in the same folder, then renamed over OUT.png: a failed
+    /// write leaves an existing file as it was.
     #[arg(short, long, value_name = "OUT.png")]
     output: PathBuf,
     /// Also print the time of each step: load, render, PNG encode and write.
@@ -63,7 +66,8 @@ struct Common {
     /// Attribute interpolation.
     #[arg(long, value_enum)]
     interpolation: Option<Interp>,
-    /// Worker threads (default: one per core).
+    /// Worker threads (default: one per core; more than 256 are taken as
+    /// 256, with a warning).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
     /// Texture filtering for every texture (default: each texture's own).
@@ -79,7 +83,8 @@ struct Common {
     /// Fog coordinate: distance to the eye plane or to the eye.
     #[arg(long, value_enum)]
     fog_coordinate: Option<FogCoord>,
-    /// Supersampling: N×N samples per pixel, box-filtered (1 = off).
+    /// Supersampling: N×N samples per pixel, box-filtered (1 = off). A
+    /// frame has at most 2^28 samples (width × height × N²).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=zline::scene::MAX_SSAA as i64))]
     ssaa: Option<u32>,
     /// Adaptive mode: per triangle, the cheapest evaluation whose colour
@@ -95,8 +100,13 @@ struct Common {
     /// How back faces drawn without culling are lit (SPEC §11).
     #[arg(long, value_enum)]
     lighting: Option<Sides>,
-    /// Tile edge in pixels; the image does not depend on it.
-    #[arg(long, value_name = "PIXELS", default_value_t = RenderOptions::default().tile_size)]
+    /// Tile edge in pixels, 8..=1024; the image does not depend on it.
+    #[arg(
+        long,
+        value_name = "PIXELS",
+        default_value_t = RenderOptions::default().tile_size,
+        value_parser = clap::value_parser!(u32).range(MIN_TILE_SIZE as i64..=MAX_TILE_SIZE as i64)
+    )]
     tile_size: u32,
 }
 
@@ -159,10 +169,10 @@ enum Interp {
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("expected WxH, e.g. 800x600, got '{s}'"))?;
-    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|n| (1..=16384).contains(n));
+    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|n| (1..=MAX_IMAGE_SIDE).contains(n));
     match (parse(w), parse(h)) {
         (Some(w), Some(h)) => Ok((w, h)),
-        _ => Err(format!("width and height must be whole numbers in 1..=16384, got '{s}'")),
+        _ => Err(format!("width and height must be whole numbers in 1..={MAX_IMAGE_SIDE}, got '{s}'")),
     }
 }
 
@@ -206,12 +216,44 @@ fn parse_color(s: &str) -> Result<Vec3, String> {
 }
 
 fn main() -> ExitCode {
-    match run(Cli::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {}", one_line(&e));
-            ExitCode::FAILURE
+    ExitCode::from(exit_code(|| run(Cli::parse())))
+}
+
+/// Runs `f` and gives the process's exit code: 0 on success, 1 with one
+/// `error:` line on an error — and 1 with one `error: internal error` line
+/// on a panic, in this thread or a worker, rather than Rust's exit code 101
+/// and its multi-line report (a backtrace follows only when
+/// `RUST_BACKTRACE` asks for one). A panic is a bug in zline: the tests
+/// look for that line.
+fn exit_code(f: impl FnOnce() -> Result<()> + std::panic::UnwindSafe) -> u8 {
+    static REPORTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    std::panic::set_hook(Box::new(|info| {
+        // Workers may panic together: the first one is reported.
+        if REPORTED.swap(true, std::sync::atomic::Ordering::SeqCst) {
+            return;
         }
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<&str>()
+            .copied()
+            .or_else(|| payload.downcast_ref::<String>().map(String::as_str))
+            .unwrap_or("a panic");
+        let at = info.location().map(|l| format!(" at {}:{}", l.file(), l.line())).unwrap_or_default();
+        eprintln!("error: internal error (a bug in zline, please report it): {message}{at}");
+        let trace = std::backtrace::Backtrace::capture();
+        if trace.status() == std::backtrace::BacktraceStatus::Captured {
+            eprintln!("{trace}");
+        }
+    }));
+    let result = std::panic::catch_unwind(f);
+    let _ = std::panic::take_hook();
+    match result {
+        Ok(Ok(())) => 0,
+        Ok(Err(e)) => {
+            eprintln!("error: {}", one_line(&e));
+            1
+        }
+        Err(_) => 1,
     }
 }
 
@@ -234,25 +276,33 @@ fn one_line(e: &anyhow::Error) -> String {
 }
 
 fn run(cli: Cli) -> Result<()> {
+    let (input, allow_paths_outside, common) = match cli.command {
+        Command::Render { input, allow_paths_outside, common } => (Some(input), allow_paths_outside, common),
+        Command::Demo { common } => (None, false, common),
+    };
+    // Everything that can be checked without the scene is checked before
+    // loading it: a bad output path or thread count fails at once.
+    zline::check_output(&common.output).map_err(|e| anyhow!("{}: {e}", common.output.display()))?;
+    let threads = thread_count(common.threads)?;
+    if let (Some((w, h)), Some(n)) = (common.size, common.ssaa) {
+        // Both from the flags: no need to load the scene to refuse them.
+        check_samples(w, h, n)?;
+    }
     let loading = Instant::now();
-    let (mut scene, common) = match cli.command {
-        Command::Render { input, allow_paths_outside, common } => {
-            (load_input(&input, LoadOptions { allow_outside: allow_paths_outside })?, common)
-        }
-        Command::Demo { common } => (zline::scenes::demo_scene(), common),
+    let mut scene = match &input {
+        Some(input) => load_input(input, LoadOptions { allow_outside: allow_paths_outside })?,
+        None => zline::scenes::demo_scene(),
     };
     apply_overrides(&mut scene.settings, &common);
     apply_fog(&mut scene, &common);
+    check_samples(scene.settings.width, scene.settings.height, scene.settings.ssaa)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = common.threads {
-        if n == 0 {
-            bail!("--threads must be at least 1");
-        }
+    if let Some(n) = threads {
         pool = pool.num_threads(n);
     }
     let pool = pool.build().context("cannot start the worker threads")?;
     let loaded = loading.elapsed();
-    let options = RenderOptions { tile_size: common.tile_size.max(1) };
+    let options = RenderOptions { tile_size: common.tile_size };
     let start = Instant::now();
     let (image, stats) = pool.install(|| render(&scene, &options));
     let elapsed = start.elapsed();
@@ -271,6 +321,10 @@ fn run(cli: Cli) -> Result<()> {
         count(stats.fragments, "sample", "samples"),
         elapsed.as_secs_f64() * 1e3
     );
+    if let Some(why) = blank_image(&scene, &stats) {
+        let name = input.as_deref().map_or_else(|| "demo".into(), |p| p.display().to_string());
+        eprintln!("warning: {name}: the image is blank: {why}");
+    }
     if common.timings {
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
         eprintln!(
@@ -285,6 +339,86 @@ fn run(cli: Cli) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// `--threads`: at least 1; more than [`MAX_THREADS`] are clamped to it
+/// with a warning. Without the flag, rayon's default: `RAYON_NUM_THREADS`
+/// (clamped the same way) or one per core.
+fn thread_count(threads: Option<usize>) -> Result<Option<usize>> {
+    let clamp = |n: usize, what: &str| {
+        eprintln!(
+            "warning: {what}{n} is more than the {MAX_THREADS} threads zline starts; using {MAX_THREADS}"
+        );
+        Ok(Some(MAX_THREADS))
+    };
+    match threads {
+        Some(0) => bail!("--threads must be at least 1"),
+        Some(n) if n > MAX_THREADS => clamp(n, "--threads "),
+        Some(n) => Ok(Some(n)),
+        None => match std::env::var("RAYON_NUM_THREADS").ok().and_then(|v| v.trim().parse::<usize>().ok()) {
+            Some(n) if n > MAX_THREADS => clamp(n, "RAYON_NUM_THREADS="),
+            _ => Ok(None),
+        },
+    }
+}
+
+/// Refuses a frame of more than [`MAX_SAMPLES`] samples (width × height ×
+/// ssaa², after the flags), before anything is allocated for it.
+fn check_samples(w: u32, h: u32, ssaa: u32) -> Result<()> {
+    let n = ssaa.max(1);
+    let samples = u128::from(w) * u128::from(h) * u128::from(n) * u128::from(n);
+    if samples > u128::from(MAX_SAMPLES) {
+        bail!(
+            "{w}x{h} pixels at ssaa {n} are {samples} samples, more than the limit of {MAX_SAMPLES} \
+             (2^28, 4 GiB of sample buffers at 16 bytes each): lower --size or --ssaa"
+        );
+    }
+    Ok(())
+}
+
+/// Why a frame drew nothing, when it drew nothing: no triangles, every
+/// triangle culled, clipped or degenerate (with the scene's bounds, which
+/// show a model too large or too small for `f32`), or no sample covered.
+fn blank_image(scene: &Scene, stats: &RenderStats) -> Option<String> {
+    if stats.fragments > 0 {
+        return None;
+    }
+    if stats.triangles == 0 {
+        return Some("the scene has no triangles".into());
+    }
+    let tris = |n: u64| format!("{n} triangle{}", if n == 1 { "" } else { "s" });
+    if stats.primitives > 0 {
+        return Some(format!(
+            "{} drawn, but none covers a sample (all smaller than a pixel, or outside the image)",
+            tris(stats.primitives)
+        ));
+    }
+    let points = scene
+        .objects
+        .iter()
+        .flat_map(|o| o.mesh.positions.iter().map(move |p| o.world_from_object.transform_point3(*p)));
+    let (min, max) = points.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
+    let (size, (lo, hi)) = (max - min, (short(min), short(max)));
+    let bounds = if size.is_finite() {
+        format!("the scene spans {lo} to {hi}, a size of {}", short(size))
+    } else {
+        format!("the scene spans {lo} to {hi}, more than f32 can measure")
+    };
+    let all = match stats.triangles {
+        1 => "its one triangle was".to_string(),
+        n => format!("all {} were", tris(n)),
+    };
+    Some(format!(
+        "{all} culled, clipped or degenerate (too small or too large to draw, or facing away); {bounds}"
+    ))
+}
+
+/// A point for a message: plain numbers when they read well, else
+/// scientific (1e38, not 39 digits).
+fn short(v: Vec3) -> String {
+    let num =
+        |x: f32| if x == 0.0 || (1e-3..1e6).contains(&x.abs()) { format!("{x}") } else { format!("{x:e}") };
+    format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
 }
 
 fn load_input(input: &Path, options: LoadOptions) -> Result<Scene> {
@@ -379,5 +513,59 @@ fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
             Interp::Perspective => Interpolation::PerspectiveCorrect,
             Interp::Linear => Interpolation::ScreenLinear,
         };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_anywhere_is_exit_code_1() {
+        assert_eq!(exit_code(|| Ok(())), 0);
+        assert_eq!(exit_code(|| bail!("a plain error")), 1);
+        assert_eq!(exit_code(|| panic!("in the main thread")), 1);
+        let in_workers = || {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+            pool.install(|| {
+                rayon::prelude::ParallelIterator::for_each(
+                    rayon::prelude::IntoParallelIterator::into_par_iter(0..64),
+                    |i| assert!(i < 60, "in a worker"),
+                )
+            });
+            Ok(())
+        };
+        assert_eq!(exit_code(in_workers), 1);
+    }
+
+    #[test]
+    fn a_blank_image_says_why() {
+        let scene = zline::scenes::demo_scene();
+        let stats = |triangles, primitives, fragments| RenderStats {
+            triangles,
+            primitives,
+            fragments,
+            ..Default::default()
+        };
+        assert_eq!(blank_image(&scene, &stats(10, 5, 1)), None);
+        assert_eq!(blank_image(&scene, &stats(0, 0, 0)).unwrap(), "the scene has no triangles");
+        let why = blank_image(&scene, &stats(10, 5, 0)).unwrap();
+        assert!(why.starts_with("5 triangles drawn, but none covers a sample"), "{why}");
+        let why = blank_image(&scene, &stats(10, 0, 0)).unwrap();
+        assert!(
+            why.starts_with("all 10 triangles were culled") && why.contains("the scene spans ("),
+            "{why}"
+        );
+    }
+
+    #[test]
+    fn the_sample_budget_is_width_height_and_ssaa_squared() {
+        assert!(check_samples(16384, 16384, 1).is_ok());
+        assert!(check_samples(8192, 8192, 2).is_ok());
+        assert!(check_samples(2048, 2048, 8).is_ok());
+        assert!(check_samples(2049, 2048, 8).is_err());
+        assert!(check_samples(16384, 16384, 2).is_err());
+        let e = check_samples(u32::MAX, u32::MAX, u32::MAX).unwrap_err().to_string();
+        assert!(e.contains("268435456") && e.contains("--ssaa"), "{e}");
     }
 }

@@ -3,6 +3,7 @@
 mod bad_input;
 mod cli;
 mod hard_cases;
+mod hostile;
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -13,12 +14,13 @@ fn zline(args: &[&str]) -> Output {
 }
 
 /// Asserts a run failed cleanly: exit code 1, one `error:` line on stderr
-/// containing every `needle`, and no panic.
+/// containing every `needle`, and no panic (zline reports one as an
+/// `error: internal error` line with exit code 1).
 #[track_caller]
 fn check_clean_error(out: &Output, needles: &[&str]) {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "expected exit code 1; stderr:\n{stderr}");
-    assert!(!stderr.contains("panicked"), "panic:\n{stderr}");
+    assert!(!stderr.contains("panicked") && !stderr.contains("internal error"), "panic:\n{stderr}");
     let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
     assert_eq!(errors.len(), 1, "expected one error line, got:\n{stderr}");
     for n in needles {
