@@ -597,7 +597,17 @@ impl Loader<'_> {
     /// Fits the camera's far plane if needed and returns the result.
     fn finish(mut self) -> Result<(GltfScene, Vec<String>), SceneError> {
         if self.scene.objects.is_empty() {
-            return Err(SceneError::NoTriangles { path: self.path.to_path_buf() });
+            // An error drops the warnings, and they may say why nothing is
+            // left (a node skipped, a primitive left out): the error says it.
+            let prefix = format!("{}: ", self.path.display());
+            let why: Vec<&str> = self.warnings.iter().map(|w| w.strip_prefix(&prefix).unwrap_or(w)).collect();
+            if why.is_empty() {
+                return Err(SceneError::NoTriangles { path: self.path.to_path_buf() });
+            }
+            return Err(SceneError::File {
+                path: self.path.to_path_buf(),
+                message: format!("no triangles ({})", why.join("; ")),
+            });
         }
         if let (true, Some(camera)) = (self.camera_far_to_fit, self.scene.camera.as_mut()) {
             fit_far_plane(camera, &self.scene.objects);

@@ -115,6 +115,8 @@ fn parse_obj(path: &Path, text: &str, options: LoadOptions) -> Result<(Vec<Mesh>
     // only say "no materials").
     let failure = RefCell::new(None);
     let mut libraries = 0;
+    // Libraries read without error, even those that define no material.
+    let libraries_read = std::cell::Cell::new(0);
     let loaded = read::read_models(&pieces, &before, |mtl| {
         libraries += 1;
         let loaded = if libraries > MAX_MATERIAL_LIBRARIES {
@@ -129,6 +131,7 @@ fn parse_obj(path: &Path, text: &str, options: LoadOptions) -> Result<(Vec<Mesh>
                 .and_then(|mtl_path| {
                     let result = load_mtl(&mtl_path, &mut warnings.borrow_mut())?;
                     if let Ok((materials, _)) = &result {
+                        libraries_read.set(libraries_read.get() + 1);
                         material_files.borrow_mut().extend(std::iter::repeat_n(mtl_path, materials.len()));
                     }
                     Ok(result)
@@ -161,7 +164,7 @@ fn parse_obj(path: &Path, text: &str, options: LoadOptions) -> Result<(Vec<Mesh>
             ObjMaterial::from_mtl(m, mtl, options, &mut warnings)
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let meshes = meshes_from_models(path, models, &materials, &mut warnings)?;
+    let meshes = meshes_from_models(path, models, &materials, libraries_read.get() > 0, &mut warnings)?;
     Ok((meshes, warnings))
 }
 
@@ -311,6 +314,7 @@ fn meshes_from_models(
     path: &Path,
     models: Vec<tobj::Model>,
     materials: &[ObjMaterial],
+    any_library: bool,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<Mesh>, SceneError> {
     let stem = path.file_stem().map_or_else(|| "model".to_owned(), |s| s.to_string_lossy().into_owned());
@@ -321,7 +325,9 @@ fn meshes_from_models(
         let material = match model.mesh.material_id {
             Some(id) => materials.get(id),
             None => {
-                if !materials.is_empty() {
+                // A library was read (perhaps without materials): the
+                // mesh's `usemtl` names none of them, or it has none.
+                if any_library || !materials.is_empty() {
                     warnings.push(format!("{}: mesh '{name}' has no known material", path.display()));
                 }
                 None

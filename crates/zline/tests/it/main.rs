@@ -1,5 +1,7 @@
 //! End-to-end tests of the `zline` binary: what a user types, what they get.
 
+#[cfg(unix)]
+mod bad_corpus;
 mod bad_input;
 mod cli;
 mod hard_cases;
