@@ -212,7 +212,6 @@ mod tests {
         png
     }
 
-
     #[test]
     fn images_over_the_pixel_limit_are_refused_from_their_header() {
         for (w, h) in [(12000, 12000), (4097, 4096), (16385, 16), (8192, 8192)] {

@@ -237,7 +237,6 @@ fn textures_over_the_pixel_limit_are_refused_naming_model_material_and_size() {
     );
 }
 
-
 #[test]
 fn mtl_values_non_finite_are_errors_out_of_range_are_clamped_with_warnings() {
     let dir = nested("mtl-nan", &[("quad.obj", QUAD_OBJ), ("quad.mtl", b"newmtl m\nKd nan 1e300 -5\n")]);
