@@ -7,7 +7,10 @@
 //! `glTF` ("not a GLB file"), a GLB cut short ("truncated GLB", with the
 //! bytes expected and found), a primitive naming an accessor the file does
 //! not have (the `gltf` crate's validation indexes POSITION unchecked and
-//! panics), an `asset.version` other than 2.x, then the `gltf` crate's own
+//! panics), an image with neither a `uri` nor a `bufferView` or with a
+//! `bufferView` but no `mimeType`, a camera whose `type` names a
+//! projection it does not have (the `gltf` crate unwraps these), an
+//! `asset.version` other than 2.x, then the `gltf` crate's own
 //! validation errors. A panic inside the `gltf` crate is caught as a last
 //! line and reported as an error.
 
@@ -33,6 +36,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<(gltf::Document, Option
         let root = document.into_json();
         check_version(&root)?;
         check_accessor_indices(&root)?;
+        check_images_and_cameras(&root)?;
         let document = gltf::Document::from_json(root).map_err(|e| format!("invalid glTF: {e}"))?;
         Ok((document, blob))
     });
@@ -121,6 +125,32 @@ fn check_accessor_indices(root: &json::Root) -> Result<(), String> {
                 }
             }
         }
+    }
+    Ok(())
+}
+
+/// Refuses what the `gltf` crate's validation lets through but its
+/// accessors unwrap: an image with no source (neither `uri` nor
+/// `bufferView`), a `bufferView` image without `mimeType` (both required by
+/// the glTF spec), a camera whose `type` names a projection object it does
+/// not have.
+fn check_images_and_cameras(root: &json::Root) -> Result<(), String> {
+    for (i, image) in root.images.iter().enumerate() {
+        match (&image.uri, &image.buffer_view, &image.mime_type) {
+            (None, None, _) => return Err(format!("image {i} has neither a uri nor a bufferView")),
+            (None, Some(_), None) => return Err(format!("image {i} has a bufferView but no mimeType")),
+            _ => {}
+        }
+    }
+    for (c, camera) in root.cameras.iter().enumerate() {
+        use json::camera::Type;
+        use json::validation::Checked::Valid;
+        let missing = match camera.type_ {
+            Valid(Type::Perspective) if camera.perspective.is_none() => "perspective",
+            Valid(Type::Orthographic) if camera.orthographic.is_none() => "orthographic",
+            _ => continue,
+        };
+        return Err(format!("camera {c} is of type '{missing}' but has no '{missing}' object"));
     }
     Ok(())
 }
