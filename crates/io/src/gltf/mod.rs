@@ -500,13 +500,21 @@ impl Loader<'_> {
             gltf::image::Source::Uri { uri, mime_type } => {
                 match uri_target(self.path, uri, self.options).map_err(|e| image_error(colon(e)))? {
                     UriTarget::File(file) => {
-                        let loaded = self.textures.file(&file, &mut self.warnings).map_err(|e| {
+                        let mut texture_warnings = Vec::new();
+                        let loaded = self.textures.file(&file, &mut texture_warnings).map_err(|e| {
                             SceneError::Texture {
                                 model: self.path.to_path_buf(),
                                 material: material.to_owned(),
                                 source: Box::new(e),
                             }
                         })?;
+                        // Named with the model and material, like a texture error.
+                        let model = self.path.display();
+                        self.warnings.extend(
+                            texture_warnings
+                                .into_iter()
+                                .map(|w| format!("{model}: material '{material}': {w}")),
+                        );
                         self.images.insert(index, loaded.clone());
                         return Ok(loaded);
                     }

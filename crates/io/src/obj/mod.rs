@@ -364,11 +364,16 @@ fn attach_diffuse_map(
         ));
         return Ok(mesh);
     }
-    let texture = textures.file(&map.file, warnings).map_err(|e| SceneError::Texture {
+    let mut texture_warnings = Vec::new();
+    let texture = textures.file(&map.file, &mut texture_warnings).map_err(|e| SceneError::Texture {
         model: path.to_path_buf(),
         material: name.clone(),
         source: Box::new(e),
     })?;
+    // A texture that cannot be used is named with the model and the
+    // material that use it, like a texture error.
+    warnings
+        .extend(texture_warnings.into_iter().map(|w| format!("{}: material '{name}': {w}", path.display())));
     Ok(match texture {
         Some(texture) => mesh.with_diffuse_map(TextureMap {
             texture,
