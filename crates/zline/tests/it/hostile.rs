@@ -5,20 +5,13 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
-use crate::{check_clean_error, check_png, zline};
+use crate::{check_clean_error, check_error_line, check_png, zline};
 
 /// Asserts the argument parser refused a value: exit code 2, one `error:`
 /// line containing every `needle`, no panic.
 #[track_caller]
 fn check_usage_error(out: &Output, needles: &[&str]) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "expected exit code 2; stderr:\n{stderr}");
-    assert!(!stderr.contains("panicked") && !stderr.contains("internal error"), "panic:\n{stderr}");
-    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
-    assert_eq!(errors.len(), 1, "expected one error line, got:\n{stderr}");
-    for n in needles {
-        assert!(errors[0].contains(n), "error line lacks '{n}': {}", errors[0]);
-    }
+    check_error_line(out, 2, needles);
 }
 
 /// The demo with extra arguments, written to `png`, at 48×32 unless they

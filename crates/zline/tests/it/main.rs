@@ -20,8 +20,15 @@ fn zline(args: &[&str]) -> Output {
 /// `error: internal error` line with exit code 1).
 #[track_caller]
 fn check_clean_error(out: &Output, needles: &[&str]) {
+    check_error_line(out, 1, needles);
+}
+
+/// Asserts a run stopped with exit code `code`, one `error:` line on
+/// stderr containing every `needle`, and no panic.
+#[track_caller]
+fn check_error_line(out: &Output, code: i32, needles: &[&str]) {
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "expected exit code 1; stderr:\n{stderr}");
+    assert_eq!(out.status.code(), Some(code), "expected exit code {code}; stderr:\n{stderr}");
     assert!(!stderr.contains("panicked") && !stderr.contains("internal error"), "panic:\n{stderr}");
     let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
     assert_eq!(errors.len(), 1, "expected one error line, got:\n{stderr}");
