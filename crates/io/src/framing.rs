@@ -59,6 +59,7 @@ pub fn scene_for_model(meshes: Vec<Mesh>, settings: RenderSettings) -> Scene {
         })
         .collect();
     Scene {
+        shadows: Default::default(),
         camera: framing_camera(min, max, aspect(&settings)),
         background: DEFAULT_BACKGROUND,
         ambient: DEFAULT_AMBIENT,
@@ -82,6 +83,7 @@ pub fn scene_for_gltf(gltf: GltfScene, settings: RenderSettings) -> Scene {
     });
     let lights = if gltf.lights.is_empty() { default_lights() } else { gltf.lights };
     Scene {
+        shadows: Default::default(),
         camera,
         background: DEFAULT_BACKGROUND,
         ambient: DEFAULT_AMBIENT,

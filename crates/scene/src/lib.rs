@@ -17,6 +17,7 @@ mod limits;
 mod mesh;
 mod model;
 mod primitives;
+mod shadow;
 
 pub use error::MeshError;
 pub use limits::{
@@ -30,6 +31,7 @@ pub use model::{
     Scene, TextureMap,
 };
 pub use primitives::{cube, plane, torus, uv_sphere};
+pub use shadow::{light_position, shadow_matrix, ShadowMode, ShadowPlane, Shadows};
 pub use zline_shading::{
     Attenuation, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
 };

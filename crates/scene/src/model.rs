@@ -351,6 +351,8 @@ pub struct Scene {
     pub settings: RenderSettings,
     /// Fog (SPEC §8), if any.
     pub fog: Option<Fog>,
+    /// Shadows: the method and the receiving planes.
+    pub shadows: crate::Shadows,
 }
 
 #[cfg(test)]

@@ -127,6 +127,7 @@ fn flat_objects(triangles: Vec<([Vec3; 3], Vec3)>) -> Vec<Object> {
 /// A flat, ambient-lit scene of `objects` seen by `camera`.
 fn flat_scene(width: u32, height: u32, camera: Camera, objects: Vec<Object>) -> Scene {
     Scene {
+        shadows: Default::default(),
         camera,
         background: Vec3::ZERO,
         ambient: Vec3::ONE,
@@ -293,6 +294,7 @@ pub fn long_spans() -> Scene {
         cull_back_faces: false,
     };
     Scene {
+        shadows: Default::default(),
         camera: Camera {
             eye: Vec3::ZERO,
             target: Vec3::new(0.0, -0.2, -1.0),

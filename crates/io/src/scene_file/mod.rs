@@ -311,7 +311,7 @@ impl Builder<'_> {
             None => framing_camera(min, max, aspect(&settings)),
         };
         let fog = file.fog.as_ref().map(|f| self.fog(f)).transpose()?;
-        Ok(Scene { camera, background, ambient, lights, objects, settings, fog })
+        Ok(Scene { shadows: Default::default(), camera, background, ambient, lights, objects, settings, fog })
     }
 
     fn camera(&self, def: &S<CameraDef>, bounds: (Vec3, Vec3), aspect: f32) -> Result<Camera> {

@@ -293,6 +293,7 @@ prop_compose! {
         objects.extend(glass);
         let interpolation = if linear { Interpolation::ScreenLinear } else { Interpolation::PerspectiveCorrect };
         Scene {
+            shadows: Default::default(),
             camera,
             background,
             ambient: ambient * 0.4,
