@@ -177,6 +177,7 @@ fn scene(u: &mut Unstructured, texture: &Arc<Texture>) -> arbitrary::Result<(Sce
         objects,
         settings,
         fog: None,
+        shadows: Default::default(),
     };
     Ok((scene, tile))
 }
