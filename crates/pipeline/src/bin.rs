@@ -81,7 +81,7 @@ pub struct OpaqueRef {
 
 /// Per tile (row-major), the primitives whose bounds touch it, in draw order
 /// (chunks in order, then primitives in order): opaque ones in `opaque`,
-/// those of transparent chunks ([`PassKind::Transparent`]) in `transparent`. The inner vectors keep their
+/// those of transparent chunks ([`PassKind::Transparent`]) in `transparent`, planar shadows in `shadow`. The inner vectors keep their
 /// capacity from frame to frame.
 #[derive(Debug, Default)]
 pub struct Bins {
@@ -89,12 +89,15 @@ pub struct Bins {
     pub opaque: Vec<Vec<OpaqueRef>>,
     /// Transparent primitives per tile.
     pub transparent: Vec<Vec<PrimitiveRef>>,
+    /// Planar shadow primitives per tile ([`PassKind::Shadow`]).
+    pub shadow: Vec<Vec<PrimitiveRef>>,
 }
 
 /// Fills `bins` for this frame's primitives (see [`Bins`]).
 pub fn bin_primitives(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins) {
     reset(&mut bins.opaque, grid.len());
     reset(&mut bins.transparent, grid.len());
+    reset(&mut bins.shadow, grid.len());
     let window = grid.window();
     let ts = grid.tile_size as i32;
     for (c, chunk) in chunks.iter().enumerate() {
@@ -115,6 +118,10 @@ pub fn bin_primitives(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bin
                 PassKind::Transparent { .. } => {
                     let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
                     tiles.for_each(|t| bins.transparent[t].push(r));
+                }
+                PassKind::Shadow { .. } => {
+                    let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
+                    tiles.for_each(|t| bins.shadow[t].push(r));
                 }
             }
         }

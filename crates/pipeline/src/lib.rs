@@ -27,6 +27,7 @@ pub mod image;
 mod render;
 pub mod resolve;
 pub mod setup;
+mod shadow;
 pub mod tile;
 pub mod vertex;
 pub mod volume;

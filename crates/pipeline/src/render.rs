@@ -10,8 +10,8 @@ use std::time::{Duration, Instant};
 
 use glam::{Mat4, Vec3};
 use zline_raster::Rect;
-use zline_scene::{DepthMode, Object, Projection, Scene};
-use zline_shading::{Filter, LightingModel, Material, PreparedLights, PreparedMaterial};
+use zline_scene::{DepthMode, Object, Projection, Scene, ShadowMode};
+use zline_shading::{Filter, LightingModel, Material, PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::adaptive::Adaptive;
 use crate::bin::{bin_primitives, Bins, PrimitiveRef, TileGrid};
@@ -21,6 +21,7 @@ use crate::setup::{
     setup_triangle, AlphaUse, DepthEncoding, Faces, LevelOfDetail, PassKind, PrimitiveChunk, SetupContext,
     TextureUse, VertexColors, Viewer,
 };
+use crate::shadow;
 use crate::tile::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 use crate::vertex::{
     transform_mesh, ClipVertex, ObjectTransforms, Screen, VertexLighting, VertexLights, Viewport,
@@ -91,6 +92,8 @@ pub struct Renderer {
     /// buffers, so the tile buffers a frame touches stay as few as the
     /// threads (hot in cache) rather than one set per band.
     buffers: Vec<Mutex<BandBuffers>>,
+    /// Scratch for one (plane, light) pair's planar shadow mesh.
+    shadow_mesh: Option<zline_scene::Mesh>,
 }
 
 /// The frame's lights, materials and textures, indexed by the primitives.
@@ -187,6 +190,9 @@ impl Renderer {
             stats.triangles += object.mesh.triangles.len() as u64;
             self.setup_object(scene, index, object, &frame);
         }
+        if scene.shadows.mode == ShadowMode::Planar {
+            self.setup_shadows(scene, &frame);
+        }
         stats.primitives = self.chunks[..self.used].iter().map(|c| c.draws.len() as u64).sum();
         stats.geometry = start.elapsed();
 
@@ -210,10 +216,19 @@ impl Renderer {
         t.lighting.prepare(scene.ambient, &scene.lights, &frame.eye_from_world);
         t.materials.clear();
         t.materials.extend(scene.objects.iter().map(|o| PreparedMaterial::new(o.material().sanitized())));
+        for (p, plane) in scene.shadows.planes.iter().enumerate() {
+            let first = shadow::first_bit(p, scene.lights.len());
+            if let (true, Some(m)) =
+                (scene.shadows.receives(plane.receiver), t.materials.get_mut(plane.receiver))
+            {
+                m.shadow_bits = m.shadow_bits.or(first);
+            }
+        }
         if frame.adaptive.is_some() {
             for i in 0..scene.objects.len() {
                 let plain = Material { ks: Vec3::ZERO, ..t.materials[i].material };
-                t.materials.push(PreparedMaterial::new(plain));
+                let shadow_bits = t.materials[i].shadow_bits;
+                t.materials.push(PreparedMaterial { shadow_bits, ..PreparedMaterial::new(plain) });
             }
         }
         t.textures.clear();
@@ -248,7 +263,11 @@ impl Renderer {
     /// in mesh order. Every per-object decision is made here, once.
     fn setup_object(&mut self, scene: &Scene, index: usize, object: &Object, frame: &Frame) {
         let mesh = &object.mesh;
-        let shading = object.shading.unwrap_or(scene.settings.shading);
+        // A surface that receives planar shadows is lit per sample, where
+        // the tile's shadow mask says which lights each sample sees.
+        let receives = scene.shadows.receives(index) && !scene.lights.is_empty();
+        let shading =
+            if receives { ShadingMode::Phong } else { object.shading.unwrap_or(scene.settings.shading) };
         let (texture, blends) = match self.tables.object_textures[index] {
             Some((texture, blends)) => (Some(texture), blends),
             None => (None, false),
@@ -272,7 +291,7 @@ impl Renderer {
             viewer: frame.viewer,
             material: (material, index as u32),
             lighting: &t.lighting,
-            adaptive: frame.adaptive.as_ref(),
+            adaptive: frame.adaptive.as_ref().filter(|_| !receives),
             diffuse_only: (&t.materials[diffuse_only], diffuse_only as u32),
             texture,
             vertex_colors,
@@ -290,26 +309,53 @@ impl Renderer {
             }
             VertexLighting::Unlit | VertexLighting::Setup => None,
         };
-        let screen = Screen { viewport: ctx.viewport, volume: ctx.volume };
         let transforms =
             ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, object.world_from_object);
-        transform_mesh(mesh, &transforms, lights, &screen, &mut self.vertices);
-        let vertices = &self.vertices;
-        let chunk = triangle_chunk(mesh.triangles.len(), rayon::current_num_threads());
-        let (first, n) = (self.used, mesh.triangles.len().div_ceil(chunk));
-        self.used += n;
-        if self.chunks.len() < self.used {
-            self.chunks.resize_with(self.used, PrimitiveChunk::default);
+        let out = (&mut self.vertices, &mut self.chunks, &mut self.used);
+        setup_mesh(mesh, (&transforms, lights), &ctx, pass, out);
+    }
+
+    /// Planar shadows: for each receiving plane and light that has a bit in
+    /// the shadow mask (`shadow::pairs`), every other object projected onto
+    /// the plane (`shadow::project_casters`), set up flat in a
+    /// [`PassKind::Shadow`] chunk of that bit.
+    fn setup_shadows(&mut self, scene: &Scene, frame: &Frame) {
+        let planes = &scene.shadows.planes;
+        if scene.objects.is_empty() {
+            return;
         }
-        let tris = mesh.triangles.par_chunks(chunk);
-        self.chunks[first..self.used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
-            out.reset(pass);
-            for t in tris {
-                if let Some(tri) = gather(vertices, t) {
-                    setup_triangle(tri, &ctx, out);
-                }
+        let mut mesh = self.shadow_mesh.take().unwrap_or_else(shadow::empty_mesh);
+        let t = &self.tables;
+        for (p, k, bit) in shadow::pairs(planes.len(), scene.lights.len()) {
+            let casters = scene.objects.iter().enumerate().filter(|(i, _)| !scene.shadows.receives(*i));
+            shadow::project_casters(&planes[p], &scene.lights[k], casters.map(|(_, o)| o), &mut mesh);
+            if mesh.triangles.is_empty() {
+                continue;
             }
-        });
+            let material = (&t.materials[0], 0);
+            let ctx = SetupContext {
+                viewport: frame.viewport,
+                volume: ClipVolume::new(frame.viewport.width, frame.viewport.height),
+                depth: frame.depth,
+                shading: ShadingMode::Flat,
+                vertex_lighting: VertexLighting::Unlit,
+                interpolation: scene.settings.interpolation,
+                faces: Faces::Both,
+                sides: scene.settings.lighting_sides,
+                gouraud_clamp: scene.settings.gouraud_clamp,
+                viewer: frame.viewer,
+                material,
+                lighting: &t.lighting,
+                adaptive: None,
+                diffuse_only: material,
+                texture: None,
+                vertex_colors: VertexColors::Absent,
+            };
+            let transforms = ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, Mat4::IDENTITY);
+            let out = (&mut self.vertices, &mut self.chunks, &mut self.used);
+            setup_mesh(&mesh, (&transforms, None), &ctx, PassKind::Shadow { bit }, out);
+        }
+        self.shadow_mesh = Some(mesh);
     }
 
     /// Every tile, bands of tiles in parallel: each tile clears its depth,
@@ -358,6 +404,7 @@ impl Renderer {
                         continue;
                     }
                     target.clear(rect, scene.background, clear);
+                    target.shadow_pass(chunks, &bins.shadow[tile]);
                     shaded += target.opaque_pass(chunks, opaque, &shade);
                     if let Some(fog) = &fog {
                         target.fog_pass(fog);
@@ -375,6 +422,35 @@ impl Renderer {
             })
             .sum()
     }
+}
+
+/// Transforms `mesh` (`vertices`) and sets up its triangles in parallel
+/// chunks appended after `chunks[..used]`, all in `pass`.
+fn setup_mesh(
+    mesh: &zline_scene::Mesh,
+    (transforms, lights): (&ObjectTransforms, Option<VertexLights<'_>>),
+    ctx: &SetupContext<'_>,
+    pass: PassKind,
+    (vertices, chunks, used): (&mut Vec<ClipVertex>, &mut Vec<PrimitiveChunk>, &mut usize),
+) {
+    let screen = Screen { viewport: ctx.viewport, volume: ctx.volume };
+    transform_mesh(mesh, transforms, lights, &screen, vertices);
+    let vertices = &*vertices;
+    let chunk = triangle_chunk(mesh.triangles.len(), rayon::current_num_threads());
+    let (first, n) = (*used, mesh.triangles.len().div_ceil(chunk));
+    *used += n;
+    if chunks.len() < *used {
+        chunks.resize_with(*used, PrimitiveChunk::default);
+    }
+    let tris = mesh.triangles.par_chunks(chunk);
+    chunks[first..*used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
+        out.reset(pass);
+        for t in tris {
+            if let Some(tri) = gather(vertices, t) {
+                setup_triangle(tri, ctx, out);
+            }
+        }
+    });
 }
 
 /// The pixels whose samples a tile holds: with n×n samples per pixel, tiles

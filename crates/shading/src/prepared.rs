@@ -20,6 +20,8 @@ use crate::model::{LightingModel, LitParts};
 struct Directional {
     to_light: Vec3,
     color: Vec3,
+    /// The light's index in the scene's list (its shadow bit).
+    index: u32,
 }
 
 /// A point light; `attenuation` is `None` when f(d) = 1 everywhere.
@@ -28,6 +30,8 @@ struct Point {
     position: Vec3,
     color: Vec3,
     attenuation: Option<Attenuation>,
+    /// The light's index in the scene's list (its shadow bit).
+    index: u32,
 }
 
 /// Lights in the frame where shading happens, ready for per-sample use.
@@ -98,6 +102,11 @@ pub struct PreparedMaterial {
     /// skipped there. Besides saving the power, this keeps the arithmetic
     /// out of subnormal floats, which cost ~100 cycles per operation on x86.
     pub specular_threshold: f32,
+    /// For a surface that receives shadows: the first bit of its lights in
+    /// a sample's shadow mask. Light k (its index in the scene's list) is
+    /// hidden at a sample whose mask has bit `first + k` set
+    /// ([`PreparedLights::shade_parts_x8_shadowed`]).
+    pub shadow_bits: Option<u32>,
 }
 
 /// The smallest (N·H)^ns the lighting model evaluates; below it the term is
@@ -115,6 +124,7 @@ impl PreparedMaterial {
             shininess: Shininess::new(ns),
             specular: material.has_specular(),
             specular_threshold,
+            shadow_bits: None,
         }
     }
 }
@@ -159,17 +169,18 @@ impl PreparedLights {
         self.ambient = ambient;
         self.directional.clear();
         self.point.clear();
-        for light in lights {
+        for (index, light) in lights.iter().enumerate() {
+            let index = index as u32;
             match light.transformed(to) {
                 Light::Directional { direction, color } => {
                     let to_light = -direction.normalize_or_zero();
                     if to_light != Vec3::ZERO {
-                        self.directional.push(Directional { to_light, color });
+                        self.directional.push(Directional { to_light, color, index });
                     }
                 }
                 Light::Point { position, color, attenuation } => {
                     let attenuation = (!attenuation.is_none()).then_some(attenuation);
-                    self.point.push(Point { position, color, attenuation });
+                    self.point.push(Point { position, color, attenuation, index });
                 }
             }
         }
@@ -206,14 +217,16 @@ impl PreparedLights {
         self.ambient
     }
 
-    /// (unit vector towards the light, colour) of each directional light.
-    pub(crate) fn directional_lights(&self) -> impl Iterator<Item = (Vec3, Vec3)> + '_ {
-        self.directional.iter().map(|d| (d.to_light, d.color))
+    /// (unit vector towards the light, colour, index in the scene's list)
+    /// of each directional light.
+    pub(crate) fn directional_lights(&self) -> impl Iterator<Item = (Vec3, Vec3, u32)> + '_ {
+        self.directional.iter().map(|d| (d.to_light, d.color, d.index))
     }
 
-    /// (position, colour, attenuation unless 1) of each point light.
-    pub(crate) fn point_lights(&self) -> impl Iterator<Item = (Vec3, Vec3, Option<Attenuation>)> + '_ {
-        self.point.iter().map(|p| (p.position, p.color, p.attenuation))
+    /// (position, colour, attenuation unless 1, index in the scene's list)
+    /// of each point light.
+    pub(crate) fn point_lights(&self) -> impl Iterator<Item = (Vec3, Vec3, Option<Attenuation>, u32)> + '_ {
+        self.point.iter().map(|p| (p.position, p.color, p.attenuation, p.index))
     }
 
     /// [`Self::shade_parts`], summed and clamped to [0, 1].

@@ -11,7 +11,7 @@
 
 use std::ops::{Add, Mul};
 
-use wide::{f32x8, CmpGt, CmpLe};
+use wide::{f32x8, i32x8, CmpEq, CmpGt, CmpLe};
 
 use crate::prepared::{pow_by_squaring, PreparedLights, PreparedMaterial, Shininess};
 
@@ -132,15 +132,64 @@ impl PreparedLights {
     /// ambient+diffuse and specular parts, for texturing (SPEC §7).
     #[inline]
     pub fn shade_parts_x8(&self, m: &PreparedMaterial, point: Vec3x8, normal: Vec3x8) -> (Vec3x8, Vec3x8) {
+        self.parts_x8(m, point, normal, |_| all_lanes())
+    }
+
+    /// [`Self::shade_x8`] where some lights may be hidden: light k (its
+    /// index in the scene's list) contributes nothing to a lane whose
+    /// `mask` has bit `m.shadow_bits + k` set. Bits past 31, and every bit
+    /// for a material without `shadow_bits`, leave the light lit.
+    #[inline]
+    pub fn shade_x8_shadowed(
+        &self,
+        m: &PreparedMaterial,
+        point: Vec3x8,
+        normal: Vec3x8,
+        mask: i32x8,
+    ) -> Vec3x8 {
+        let (ambient_diffuse, specular) = self.shade_parts_x8_shadowed(m, point, normal, mask);
+        ambient_diffuse.add(specular).clamp01()
+    }
+
+    /// [`Self::shade_parts_x8`] with hidden lights (see
+    /// [`Self::shade_x8_shadowed`]).
+    #[inline]
+    pub fn shade_parts_x8_shadowed(
+        &self,
+        m: &PreparedMaterial,
+        point: Vec3x8,
+        normal: Vec3x8,
+        mask: i32x8,
+    ) -> (Vec3x8, Vec3x8) {
+        let first = m.shadow_bits.unwrap_or(u32::MAX);
+        self.parts_x8(m, point, normal, |k| match first.checked_add(k).filter(|&b| b < 32) {
+            Some(b) => {
+                let bit = i32x8::splat(1 << b);
+                bytemuck::cast::<i32x8, f32x8>((mask & bit).cmp_eq(i32x8::ZERO))
+            }
+            None => all_lanes(),
+        })
+    }
+
+    /// The sums over the lights, light k counting in the lanes
+    /// `visible(k)` sets.
+    #[inline(always)]
+    fn parts_x8(
+        &self,
+        m: &PreparedMaterial,
+        point: Vec3x8,
+        normal: Vec3x8,
+        visible: impl Fn(u32) -> f32x8,
+    ) -> (Vec3x8, Vec3x8) {
         let view = Vec3x8::default().sub(point).normalize_or_zero();
         let mut sum = SumsX8::default();
-        for d in self.directional_lights() {
-            sum.add(m, normal, view, Vec3x8::splat(d.0), Vec3x8::splat(d.1), all_lanes());
+        for (to_light, color, k) in self.directional_lights() {
+            sum.add(m, normal, view, Vec3x8::splat(to_light), Vec3x8::splat(color), visible(k));
         }
-        for (position, color, attenuation) in self.point_lights() {
+        for (position, color, attenuation, k) in self.point_lights() {
             let v = Vec3x8::splat(position).sub(point);
             let dist = v.dot(v).sqrt();
-            let present = dist.cmp_gt(f32x8::ZERO);
+            let present = dist.cmp_gt(f32x8::ZERO) & visible(k);
             let mut intensity = Vec3x8::splat(color);
             if let Some(a) = attenuation {
                 let denom = f32x8::splat(a.a0) + dist * (f32x8::splat(a.a1) + dist * f32x8::splat(a.a2));

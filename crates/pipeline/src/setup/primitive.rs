@@ -297,6 +297,12 @@ pub enum PassKind {
         /// The material's transparency kt = 1 − opacity.
         kt: f32,
     },
+    /// A planar shadow (`crate::shadow`): not drawn, but rasterized into
+    /// the tile's shadow mask before the opaque pass, setting `bit`.
+    Shadow {
+        /// The mask bit of its (receiving plane, light) pair, below 32.
+        bit: u32,
+    },
 }
 
 /// The primitives set up by one task, in draw order, with their bounds kept

@@ -18,7 +18,7 @@
 //! [`Kernel`]: crate::setup::Kernel
 
 use wide::{f32x8, i32x8, CmpEq, CmpGe, CmpLt};
-use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, Span};
+use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, Span, LANES};
 use zline_shading::Vec3x8;
 
 use super::target::{load, load_for_blend, store, FrameTexture, ShadeContext, TileTarget};
@@ -313,7 +313,7 @@ impl TileTarget {
         planes: &AttributePlanes<N>,
         pass: &P,
         alpha: &A,
-        shade: impl Fn(&[f32x8; N]) -> (Vec3x8, f32x8) + Copy,
+        shade: impl Fn(&[f32x8; N], i32x8) -> (Vec3x8, f32x8) + Copy,
     ) -> u64 {
         let (depth, planes) = (*depth, *planes);
         let mut n = 0;
@@ -323,7 +323,9 @@ impl TileTarget {
 
     /// The loop every kernel shares: depth-tests each block of `span`, and
     /// where any lane passes, shades the block with `shade` (colour and
-    /// alpha), applies the alpha test, then writes depth and colour
+    /// alpha, from the attributes and the block's shadow mask: see
+    /// [`TileTarget::shadow_pass`]; kernels that ignore the mask never load
+    /// it), applies the alpha test, then writes depth and colour
     /// (opaque) or fogs and blends the colour without writing depth
     /// (transparent). Returns the samples that passed.
     #[inline(always)]
@@ -334,12 +336,12 @@ impl TileTarget {
         span: Span,
         pass: &P,
         alpha_use: &A,
-        shade: impl Fn(&[f32x8; N]) -> (Vec3x8, f32x8),
+        shade: impl Fn(&[f32x8; N], i32x8) -> (Vec3x8, f32x8),
     ) -> u64 {
         let row = self.index(self.origin, span.y);
         let origin = self.origin;
         let opacity = pass.opacity();
-        let (zbuf, [red, green, blue]) = (&mut self.depth, &mut self.rgb);
+        let (zbuf, [red, green, blue], shadow) = (&mut self.depth, &mut self.rgb, &self.shadow);
         let mut n = 0;
         for_each_block(depth, attrs, span, |b| {
             let i = row + (b.x - origin) as usize;
@@ -348,7 +350,8 @@ impl TileTarget {
             if live.none() {
                 return;
             }
-            let (c, alpha) = shade(&b.attrs.map(f32x8::from));
+            let mask = shadow.get(i / LANES).copied().unwrap_or(i32x8::ZERO);
+            let (c, alpha) = shade(&b.attrs.map(f32x8::from), mask);
             let live = alpha_use.test(live, alpha);
             let bits = live.move_mask();
             if bits == 0 {
@@ -381,13 +384,13 @@ impl TileTarget {
     pub(super) fn flat<P: Pass>(&mut self, p: &Primitive<Flat>, pass: &P) -> u64 {
         let c = Vec3x8::splat(p.shader.color);
         let planes = AttributePlanes::NONE;
-        self.scan((&p.edges, &p.depth), &planes, pass, &IgnoreAlpha, |_| (c, f32x8::ONE))
+        self.scan((&p.edges, &p.depth), &planes, pass, &IgnoreAlpha, |_, _| (c, f32x8::ONE))
     }
 
     /// SPEC §6 Gouraud: the lit vertex colours interpolated (and clamped
     /// per sample when `C` says so).
     pub(super) fn gouraud<I: Interp, C: Clamp, P: Pass>(&mut self, p: &Primitive<Gouraud>, pass: &P) -> u64 {
-        self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a| {
+        self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, _| {
             let (q, c) = (a[gouraud::Q], gouraud::COLOR);
             let c = Vec3x8 { x: I::divide(a[c], q), y: I::divide(a[c + 1], q), z: I::divide(a[c + 2], q) };
             (C::clamp(c), f32x8::ONE)
@@ -403,7 +406,14 @@ impl TileTarget {
         pass: &P,
     ) -> u64 {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
-        self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a| {
+        let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
+        if m.shadow_bits.is_some() {
+            return self.scan(edges, planes, pass, &IgnoreAlpha, |a, mask| {
+                let (_, eye, normal) = phong_point::<_, I>(a);
+                (l.shade_x8_shadowed(m, eye, normal, mask), f32x8::ONE)
+            });
+        }
+        self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
             let (_, eye, normal) = phong_point::<_, I>(a);
             (l.shade_x8(m, eye, normal), f32x8::ONE)
         })
@@ -418,7 +428,15 @@ impl TileTarget {
         pass: &P,
     ) -> u64 {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
-        self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a| {
+        let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
+        if m.shadow_bits.is_some() {
+            return self.scan(edges, planes, pass, &IgnoreAlpha, |a, mask| {
+                let (w, eye, normal) = phong_point::<_, I>(a);
+                let (ambient_diffuse, specular) = l.shade_parts_x8_shadowed(m, eye, normal, mask);
+                ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
+            });
+        }
+        self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
             let (w, eye, normal) = phong_point::<_, I>(a);
             let (ambient_diffuse, specular) = l.shade_parts_x8(m, eye, normal);
             ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
@@ -435,17 +453,17 @@ impl TileTarget {
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
         map: &FrameTexture,
         pass: &P,
-        parts: impl Fn(&[f32x8; N], f32x8) -> (Vec3x8, Vec3x8) + Copy,
+        parts: impl Fn(&[f32x8; N], f32x8, i32x8) -> (Vec3x8, Vec3x8) + Copy,
     ) -> u64 {
         let derivatives = Derivatives::new(planes, map);
         let (texture, sampler) = (&*map.texture, &map.sampler);
-        self.scan((edges, depth), planes, pass, &A::new(map), |a| {
+        self.scan((edges, depth), planes, pass, &A::new(map), |a, mask| {
             let inv = I::w(a[textured::Q]);
             let (s, t) = (a[textured::S] * inv, a[textured::T] * inv);
             let lods = L::lods::<I>(&derivatives, s, t, inv);
             let [r, g, b, texel_alpha] = texture.sample_x8(sampler, s, t, lods);
             let texel = Vec3x8 { x: r, y: g, z: b };
-            let (ambient_diffuse, specular) = parts(a, inv);
+            let (ambient_diffuse, specular) = parts(a, inv, mask);
             ((texel * ambient_diffuse + specular).clamp01(), texel_alpha)
         })
     }
@@ -459,7 +477,9 @@ impl TileTarget {
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
         let (ad, spec) = (Vec3x8::splat(p.shader.ambient_diffuse), Vec3x8::splat(p.shader.specular));
-        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |_, _| (ad, spec))
+        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |_, _, _| {
+            (ad, spec)
+        })
     }
 
     /// Textured Gouraud: the parts lit at the vertices, interpolated apart.
@@ -470,7 +490,7 @@ impl TileTarget {
         pass: &P,
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
-        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w| {
+        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w, _| {
             (triple(a, textured::AMBIENT_DIFFUSE, w), triple(a, textured::SPECULAR, w))
         })
     }
@@ -484,7 +504,14 @@ impl TileTarget {
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
-        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w| {
+        let prim = (&p.edges, &p.depth, &p.shader.planes);
+        if m.shadow_bits.is_some() {
+            return self.textured::<_, I, L, P, A>(prim, map, pass, |a, w, mask| {
+                let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
+                l.shade_parts_x8_shadowed(m, triple(a, textured::EYE, w), normal, mask)
+            });
+        }
+        self.textured::<_, I, L, P, A>(prim, map, pass, |a, w, _| {
             l.shade_parts_x8(
                 m,
                 triple(a, textured::EYE, w),
@@ -504,9 +531,11 @@ impl TileTarget {
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
-        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w| {
+        // Shadowed or not in one body: this kernel is out of line already.
+        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w, mask| {
             let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-            let (ambient_diffuse, specular) = l.shade_parts_x8(m, triple(a, textured::EYE, w), normal);
+            let (ambient_diffuse, specular) =
+                l.shade_parts_x8_shadowed(m, triple(a, textured::EYE, w), normal, mask);
             (triple(a, textured::COLOR, w) * ambient_diffuse, specular)
         })
     }

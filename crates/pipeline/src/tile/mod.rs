@@ -108,6 +108,40 @@ impl TileTarget {
         shaded
     }
 
+    /// Planar shadows, before the opaque pass: rasterizes each shadow
+    /// primitive of `bin` (a caster projected onto a receiving plane from
+    /// one light, [`PassKind::Shadow`]) into the tile's shadow mask, setting
+    /// its bit in every sample it covers — once however many shadow
+    /// triangles overlap. No depth test: the receiver's own samples decide
+    /// where the mask is read (its Phong kernel leaves out the lights whose
+    /// bits are set), so the shadow cannot fight the plane for depth.
+    pub fn shadow_pass(&mut self, chunks: &[PrimitiveChunk], bin: &[PrimitiveRef]) {
+        self.shadow.clear();
+        if bin.is_empty() {
+            return;
+        }
+        self.shadow.resize(self.depth.len(), wide::i32x8::ZERO);
+        let (origin, stride, rect) = (self.origin, self.stride, self.rect);
+        let mask: &mut [i32] = bytemuck::cast_slice_mut(&mut self.shadow);
+        for r in bin {
+            let chunk = &chunks[r.chunk as usize];
+            let PassKind::Shadow { bit } = chunk.pass else {
+                continue; // binning puts only shadow chunks here
+            };
+            let d = chunk.draws[r.index as usize];
+            let Kernel::Flat = d.kernel else {
+                continue; // shadows are set up flat
+            };
+            let p = &chunk.tables.flat[d.index as usize];
+            let bit = 1i32 << bit;
+            p.edges.scan(rect, |s| {
+                let row = (s.y - rect.y0) as usize * stride;
+                let (a, b) = (row + (s.x0 - origin) as usize, row + (s.x1 - origin) as usize);
+                mask[a..b].iter_mut().for_each(|m| *m |= bit);
+            });
+        }
+    }
+
     /// Writes the background into undrawn samples, so blending reads it as
     /// C_behind.
     fn materialize_background(&mut self) {

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use glam::Vec3;
-use wide::f32x8;
+use wide::{f32x8, i32x8};
 use zline_raster::{Rect, LANES};
 use zline_shading::{PreparedLights, PreparedMaterial, Sampler, Texture};
 
@@ -55,6 +55,10 @@ pub struct TileTarget {
     /// False while undrawn samples (depth `far`) hold stale colours that
     /// the resolve replaces by the background.
     pub(crate) colors_valid: bool,
+    /// The tile's shadow mask, one bit per (receiving plane, light) pair
+    /// per sample, eight samples a vector (see [`TileTarget::shadow_pass`]);
+    /// empty when no shadow falls on the tile, which reads as all lit.
+    pub(crate) shadow: Vec<i32x8>,
 }
 
 impl TileTarget {
@@ -78,6 +82,7 @@ impl TileTarget {
         self.far = far;
         self.background = background;
         self.colors_valid = false;
+        self.shadow.clear();
         for plane in &mut self.rgb {
             plane.resize(n / LANES, f32x8::ZERO);
         }

@@ -9,6 +9,7 @@ mod determinism;
 mod fog;
 mod interpolation;
 mod lit_square;
+mod shadows;
 mod ssaa;
 mod support;
 mod texture;
