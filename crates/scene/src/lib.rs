@@ -28,10 +28,10 @@ pub use limits::{
 pub use mesh::{face_normal, FALLBACK_NORMAL};
 pub use model::{
     Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, Object, Projection, RenderSettings,
-    Scene, TextureMap,
+    Scene, ShadowMode, ShadowPlane, Shadows, TextureMap,
 };
 pub use primitives::{cube, plane, torus, uv_sphere};
-pub use shadow::{light_position, shadow_matrix, ShadowMode, ShadowPlane, Shadows};
+pub use shadow::{light_position, shadow_matrix};
 pub use zline_shading::{
     Attenuation, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
 };

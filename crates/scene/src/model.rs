@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat4, Vec2, Vec3, Vec4};
 use zline_shading::{Fog, Light, Material, Sampler, ShadingMode, Texture};
 
 /// A texture and how to sample it. A diffuse map modulates ka and kd
@@ -352,7 +352,57 @@ pub struct Scene {
     /// Fog (SPEC §8), if any.
     pub fog: Option<Fog>,
     /// Shadows: the method and the receiving planes.
-    pub shadows: crate::Shadows,
+    pub shadows: Shadows,
+}
+
+/// How shadows are computed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ShadowMode {
+    /// No shadows: every surface is lit by every light (SPEC §5 alone).
+    #[default]
+    None,
+    /// Planar projection shadows on the scene's [`ShadowPlane`]s.
+    Planar,
+}
+
+impl ShadowMode {
+    /// Every mode, in the order the CLI lists them.
+    pub const ALL: [ShadowMode; 2] = [ShadowMode::None, ShadowMode::Planar];
+
+    /// The name the scene file and the CLI use: "none", "planar".
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadowMode::None => "none",
+            ShadowMode::Planar => "planar",
+        }
+    }
+}
+
+/// A flat object that receives planar shadows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadowPlane {
+    /// The receiving object's index in `Scene::objects`. It casts no
+    /// shadow itself.
+    pub receiver: usize,
+    /// The plane in world space, (a, b, c, d) with a·x + b·y + c·z + d = 0
+    /// and (a, b, c) a unit normal.
+    pub plane: Vec4,
+}
+
+/// Shadows of a scene: the method and the surfaces that receive them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Shadows {
+    /// The method; [`ShadowMode::None`] ignores the planes.
+    pub mode: ShadowMode,
+    /// The receiving planes of [`ShadowMode::Planar`].
+    pub planes: Vec<ShadowPlane>,
+}
+
+impl Shadows {
+    /// True when object `index` receives shadows in this mode.
+    pub fn receives(&self, index: usize) -> bool {
+        self.mode == ShadowMode::Planar && self.planes.iter().any(|p| p.receiver == index)
+    }
 }
 
 #[cfg(test)]

@@ -1,5 +1,6 @@
-//! Shadows: which method, which surfaces receive them, and the seed's planar
-//! shadow matrix.
+//! Shadows: a receiving plane found from its object, and the seed's planar
+//! shadow matrix (the types, [`crate::Shadows`] and its parts, are in the
+//! scene model).
 //!
 //! The planar method (the seed's `generateShadow`) projects every other
 //! object onto a receiving plane from each light; where the projection
@@ -9,45 +10,13 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
-/// How shadows are computed.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum ShadowMode {
-    /// No shadows: every surface is lit by every light (SPEC §5 alone).
-    #[default]
-    None,
-    /// Planar projection shadows on the scene's [`ShadowPlane`]s.
-    Planar,
-}
-
-impl ShadowMode {
-    /// Every mode, in the order the CLI lists them.
-    pub const ALL: [ShadowMode; 2] = [ShadowMode::None, ShadowMode::Planar];
-
-    /// The name the scene file and the CLI use: "none", "planar".
-    pub fn name(self) -> &'static str {
-        match self {
-            ShadowMode::None => "none",
-            ShadowMode::Planar => "planar",
-        }
-    }
-}
-
-/// A flat object that receives planar shadows.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ShadowPlane {
-    /// The receiving object's index in `Scene::objects`. It casts no
-    /// shadow itself.
-    pub receiver: usize,
-    /// The plane in world space, (a, b, c, d) with a·x + b·y + c·z + d = 0
-    /// and (a, b, c) a unit normal.
-    pub plane: Vec4,
-}
+use crate::model::ShadowPlane;
 
 impl ShadowPlane {
     /// The plane of `object`'s triangles in world space when every vertex
     /// lies on it (within `1e-4` of the object's size); `None` for a mesh
     /// without a triangle of positive area or one that is not flat.
-    pub fn of_object(receiver: usize, object: &crate::Object) -> Option<ShadowPlane> {
+    pub fn of_object(receiver: usize, object: &crate::model::Object) -> Option<ShadowPlane> {
         let m = object.world_from_object;
         let world: Vec<Vec3> = object.mesh.positions.iter().map(|&p| m.transform_point3(p)).collect();
         let normal = object.mesh.triangles.iter().find_map(|t| {
@@ -62,22 +31,6 @@ impl ShadowPlane {
         let size = world.iter().fold(0f32, |s, p| s.max((*p - origin).length()));
         let flat = world.iter().all(|p| (normal.dot(*p) + d).abs() <= 1e-4 * size.max(f32::MIN_POSITIVE));
         (flat && d.is_finite()).then_some(ShadowPlane { receiver, plane: normal.extend(d) })
-    }
-}
-
-/// Shadows of a scene: the method and the surfaces that receive them.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Shadows {
-    /// The method; [`ShadowMode::None`] ignores the planes.
-    pub mode: ShadowMode,
-    /// The receiving planes of [`ShadowMode::Planar`].
-    pub planes: Vec<ShadowPlane>,
-}
-
-impl Shadows {
-    /// True when object `index` receives shadows in this mode.
-    pub fn receives(&self, index: usize) -> bool {
-        self.mode == ShadowMode::Planar && self.planes.iter().any(|p| p.receiver == index)
     }
 }
 
@@ -146,8 +99,8 @@ mod tests {
 
     #[test]
     fn flat_objects_give_their_plane_and_others_none() {
-        let floor = crate::Object {
-            mesh: std::sync::Arc::new(crate::plane(2.0, 3)),
+        let floor = crate::model::Object {
+            mesh: std::sync::Arc::new(crate::primitives::plane(2.0, 3)),
             world_from_object: Mat4::from_translation(Vec3::new(0.0, -1.0, 0.0)),
             material: None,
             shading: None,
@@ -158,7 +111,10 @@ mod tests {
         let on = |q: Vec3| p.plane.truncate().dot(q) + p.plane.w;
         assert!(on(Vec3::new(0.3, -1.0, 0.7)).abs() < 1e-6, "{:?}", p.plane);
         assert!((p.plane.truncate().length() - 1.0).abs() < 1e-6);
-        let ball = crate::Object { mesh: std::sync::Arc::new(crate::uv_sphere(8, 8, 1.0)), ..floor };
+        let ball = crate::model::Object {
+            mesh: std::sync::Arc::new(crate::primitives::uv_sphere(8, 8, 1.0)),
+            ..floor
+        };
         assert_eq!(ShadowPlane::of_object(0, &ball), None);
     }
 }
