@@ -12,7 +12,7 @@ use zline::pipeline::RenderStats;
 use zline::pipeline::{render, RenderOptions};
 use zline::scene::{
     DepthMode, Fog, FogCoordinate, FogMode, GouraudClamp, Interpolation, LightingSides, RenderSettings,
-    Scene, ShadingMode, MAX_IMAGE_SIDE, MAX_SAMPLES, MAX_THREADS, MAX_TILE_SIZE, MIN_TILE_SIZE,
+    Scene, ShadingMode, ShadowMode, MAX_IMAGE_SIDE, MAX_SAMPLES, MAX_THREADS, MAX_TILE_SIZE, MIN_TILE_SIZE,
 };
 use zline::shading::Filter;
 
@@ -100,6 +100,10 @@ struct Common {
     /// How back faces drawn without culling are lit (SPEC §11).
     #[arg(long, value_enum)]
     lighting: Option<Sides>,
+    /// Shadows (replaces the scene file's `[render] shadows`): planar ones
+    /// fall on the scene file's `shadow_plane` objects.
+    #[arg(long, value_enum)]
+    shadows: Option<Shadows>,
     /// Tile edge in pixels, 8..=1024; the image does not depend on it.
     #[arg(
         long,
@@ -157,6 +161,24 @@ enum Sides {
     TwoSided,
     /// Normals as given.
     OneSided,
+}
+
+/// The names are [`ShadowMode::name`]'s.
+#[derive(Clone, Copy, ValueEnum)]
+enum Shadows {
+    /// No shadows (the default).
+    None,
+    /// Projected onto the scene's shadow planes from each light.
+    Planar,
+}
+
+impl From<Shadows> for ShadowMode {
+    fn from(s: Shadows) -> ShadowMode {
+        match s {
+            Shadows::None => ShadowMode::None,
+            Shadows::Planar => ShadowMode::Planar,
+        }
+    }
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -295,6 +317,7 @@ fn run(cli: Cli) -> Result<()> {
     };
     apply_overrides(&mut scene.settings, &common);
     apply_fog(&mut scene, &common);
+    apply_shadows(&mut scene, &common);
     check_samples(scene.settings.width, scene.settings.height, scene.settings.ssaa)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
@@ -462,6 +485,16 @@ fn apply_fog(scene: &mut Scene, common: &Common) {
                 FogCoord::Radial => FogCoordinate::Radial,
             };
         }
+    }
+}
+
+/// `--shadows` over the scene's mode; planar shadows with no receiving
+/// plane draw none, which is worth a warning.
+fn apply_shadows(scene: &mut Scene, common: &Common) {
+    let Some(mode) = common.shadows else { return };
+    scene.shadows.mode = mode.into();
+    if scene.shadows.mode == ShadowMode::Planar && scene.shadows.planes.is_empty() {
+        eprintln!("warning: --shadows planar: the scene has no shadow_plane objects");
     }
 }
 

@@ -23,7 +23,8 @@ use std::path::{Path, PathBuf};
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
 use zline_scene::{
-    cube, plane, torus, uv_sphere, Camera, Mesh, Object, Projection, Scene, MAX_PRIMITIVE_TRIANGLES,
+    cube, plane, torus, uv_sphere, Camera, Mesh, Object, Projection, Scene, ShadowPlane, Shadows,
+    MAX_PRIMITIVE_TRIANGLES,
 };
 use zline_shading::{Attenuation, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
 
@@ -40,7 +41,7 @@ mod render;
 
 use checks::{Checker, Result, S};
 use models::{ModelCache, ModelPart};
-use render::{settings, RenderDef, ShadingDef};
+use render::{settings, shadow_mode, RenderDef, ShadingDef};
 
 /// Loads a TOML scene file. Warnings about model files (a missing MTL
 /// file, say) are printed to stderr as `warning: ...` lines.
@@ -63,6 +64,7 @@ use render::{settings, RenderDef, ShadingDef};
 /// adaptive = 0.5                    # adaptive mode's tolerance in 8-bit units, in [0, 255]; default off
 /// gouraud_clamp = "vertex"          # vertex (default) | sample: where untextured Gouraud clamps (SPEC §11)
 /// lighting = "two-sided"            # two-sided (default) | one-sided: back faces drawn without culling
+/// shadows = "planar"                # none (default) | planar: shadows cast on the shadow_plane objects
 ///
 /// [camera]                          # omitted: the scene is framed
 /// eye = [0, 1, 5]                   # required
@@ -103,6 +105,7 @@ use render::{settings, RenderDef, ShadingDef};
 /// scale = 1.0                       # or [sx, sy, sz]; no zero factors
 /// shading = "gouraud"               # overrides [render] shading
 /// cull_back_faces = true            # default: true for closed, opaque meshes
+/// shadow_plane = true               # receives planar shadows (casts none); must be flat; default false
 /// [objects.material]                # overrides, applied to every mesh of the model
 /// color = [0.8, 0.2, 0.2]           # sets ka and kd together
 /// ka = [0.8, 0.2, 0.2]              # in [0, 1]
@@ -112,6 +115,13 @@ use render::{settings, RenderDef, ShadingDef};
 /// ns = 32                           # ≥ 0
 /// opacity = 1.0                     # in [0, 1]
 /// ```
+///
+/// `shadow_plane = true` makes each mesh of the object a receiver of
+/// [`ShadowMode::Planar`](zline_scene::ShadowMode) shadows, on the plane its
+/// placed vertices lie on ([`ShadowPlane::of_object`]); a mesh that is not
+/// flat, or has no triangle of positive area, is an error. The planes are
+/// kept whatever `[render] shadows` says: the mode decides whether they are
+/// used (the CLI's `--shadows` can turn them on).
 ///
 /// Near and far, when not given, hug the bounding sphere of the scene seen
 /// from the eye (near = max(d − 1.1·r, far·10⁻⁴)), as [`framing_camera`]
@@ -241,6 +251,7 @@ struct ObjectDef {
     scale: Option<S<ScaleDef>>,
     shading: Option<ShadingDef>,
     cull_back_faces: Option<bool>,
+    shadow_plane: Option<S<bool>>,
     material: Option<MaterialDef>,
 }
 
@@ -274,6 +285,7 @@ struct Builder<'a> {
 
 impl Builder<'_> {
     fn scene(mut self, file: SceneFile) -> Result<Scene> {
+        let mode = shadow_mode(file.render.as_ref());
         let settings = settings(&self.check, file.render)?;
         let background = match &file.background {
             Some(c) => self.check.vec3_in(c, "background", 0.0, 1.0)?,
@@ -295,6 +307,7 @@ impl Builder<'_> {
             return Err(self.check.file_error("no [[objects]]: a scene needs at least one object"));
         }
         let mut objects: Vec<Object> = Vec::new();
+        let mut planes = Vec::new();
         let (mut triangles, mut vertices) = (0, 0);
         for (i, def) in file.objects.iter().enumerate() {
             let placed = self.objects(def, &format!("objects[{i}]"))?;
@@ -303,6 +316,10 @@ impl Builder<'_> {
             triangles += placed.iter().map(|o| o.mesh.triangles.len()).sum::<usize>();
             vertices += placed.iter().map(|o| o.mesh.positions.len()).sum::<usize>();
             SceneError::check_size(self.check.path, triangles, vertices)?;
+            if let Some(flag) = def.get_ref().shadow_plane.as_ref().filter(|f| *f.get_ref()) {
+                let key = format!("objects[{i}].shadow_plane");
+                planes.extend(self.shadow_planes(flag, &key, &placed, objects.len())?);
+            }
             objects.extend(placed);
         }
         let (min, max) = world_bounds(&objects);
@@ -311,7 +328,42 @@ impl Builder<'_> {
             None => framing_camera(min, max, aspect(&settings)),
         };
         let fog = file.fog.as_ref().map(|f| self.fog(f)).transpose()?;
-        Ok(Scene { shadows: Default::default(), camera, background, ambient, lights, objects, settings, fog })
+        let shadows = Shadows { mode, planes };
+        Ok(Scene { shadows, camera, background, ambient, lights, objects, settings, fog })
+    }
+
+    /// The receiving planes of an entry with `shadow_plane = true`: one per
+    /// placed mesh, `first` being the index the first will have in the
+    /// scene; an error when one is not flat.
+    fn shadow_planes(
+        &self,
+        flag: &S<bool>,
+        key: &str,
+        placed: &[Object],
+        first: usize,
+    ) -> Result<Vec<ShadowPlane>> {
+        placed
+            .iter()
+            .enumerate()
+            .map(|(j, object)| {
+                ShadowPlane::of_object(first + j, object).ok_or_else(|| {
+                    let why = if has_area(object) {
+                        "its vertices are not on one plane"
+                    } else {
+                        "it has no triangle of positive area"
+                    };
+                    let message = match placed.len() {
+                        1 => format!("needs a flat object: {why}"),
+                        n => format!(
+                            "needs a flat object: mesh {} of {n} ('{}') is not: {why}",
+                            j + 1,
+                            object.mesh.name
+                        ),
+                    };
+                    self.check.error(flag.span(), key, message)
+                })
+            })
+            .collect()
     }
 
     fn camera(&self, def: &S<CameraDef>, bounds: (Vec3, Vec3), aspect: f32) -> Result<Camera> {
@@ -621,6 +673,20 @@ impl Builder<'_> {
         m.opacity = self.check.optional(&def.opacity, &format!("{key}.opacity"), m.opacity, 0.0, 1.0)?;
         Ok(m)
     }
+}
+
+/// True when the object has a triangle of positive, finite area in world
+/// space (what [`ShadowPlane::of_object`] needs besides flatness).
+fn has_area(object: &Object) -> bool {
+    let world =
+        |i: u32| object.mesh.positions.get(i as usize).map(|&p| object.world_from_object.transform_point3(p));
+    object.mesh.triangles.iter().any(|t| match (world(t[0]), world(t[1]), world(t[2])) {
+        (Some(a), Some(b), Some(c)) => {
+            let n = (b - a).cross(c - a);
+            n.length_squared() > 0.0 && n.is_finite()
+        }
+        _ => false,
+    })
 }
 
 /// The world-space bounding box of the objects (the transformed corners of

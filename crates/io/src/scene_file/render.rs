@@ -1,14 +1,15 @@
 //! The `[render]` table of a scene file → [`RenderSettings`]: image size,
 //! shading, interpolation, texture filter, supersampling, depth mode, the
 //! adaptive mode's tolerance and the two conventions of SPEC §11 (Gouraud
-//! clamp, lighting sides), each checked and located on error.
+//! clamp, lighting sides), each checked and located on error; and the
+//! shadow method, which the scene (not its settings) keeps.
 
 use serde::Deserialize;
 use zline_shading::Filter;
 
 use zline_scene::{
-    DepthMode, GouraudClamp, Interpolation, LightingSides, RenderSettings, MAX_ADAPTIVE_TOLERANCE,
-    MAX_IMAGE_SIDE, MAX_SSAA,
+    DepthMode, GouraudClamp, Interpolation, LightingSides, RenderSettings, ShadowMode,
+    MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_SSAA,
 };
 use zline_shading::ShadingMode;
 
@@ -27,6 +28,7 @@ pub(super) struct RenderDef {
     adaptive: Option<S<f32>>,
     gouraud_clamp: Option<GouraudClampDef>,
     lighting: Option<LightingDef>,
+    shadows: Option<ShadowsDef>,
 }
 
 /// A shading mode: `[render] shading` and an object's `shading`.
@@ -85,6 +87,23 @@ enum GouraudClampDef {
 enum LightingDef {
     TwoSided,
     OneSided,
+}
+
+/// The names are [`ShadowMode::name`]'s.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum ShadowsDef {
+    None,
+    Planar,
+}
+
+/// The shadow method of the `[render]` table: [`ShadowMode::None`] without
+/// one or without its `shadows` key.
+pub(super) fn shadow_mode(render: Option<&RenderDef>) -> ShadowMode {
+    match render.and_then(|r| r.shadows) {
+        Some(ShadowsDef::Planar) => ShadowMode::Planar,
+        Some(ShadowsDef::None) | None => ShadowMode::None,
+    }
 }
 
 /// The render settings of the `[render]` table, the defaults without one.

@@ -4,11 +4,11 @@
 
 use std::sync::Arc;
 
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 use zline_io::{default_lights, load_scene_with_options, LoadOptions, SceneError, DEFAULT_AMBIENT};
 use zline_scene::{
     Attenuation, DepthMode, FogCoordinate, FogMode, GouraudClamp, Interpolation, Light, LightingSides,
-    Projection, RenderSettings, Scene, ShadingMode,
+    Projection, RenderSettings, Scene, ShadingMode, ShadowMode, Shadows,
 };
 
 use crate::{check_message, data, repo, temp_file};
@@ -449,4 +449,83 @@ fn bad_fog_is_rejected() {
     check_scene_error("neg.toml", &fog("mode = \"exp\"\ndensity = -1"), &["fog.density"]);
     check_scene_error("mode.toml", &fog("mode = \"fuzzy\""), &["unknown variant `fuzzy`"]);
     check_scene_error("col.toml", &fog("mode = \"exp\"\ncolor = [2, 0, 0]"), &["fog.color"]);
+}
+
+#[test]
+fn shadows_and_shadow_planes_are_read() {
+    let model = data("two.obj");
+    let text = format!(
+        "[render]\nshadows = \"planar\"\n\
+         [[objects]]\nprimitive = \"cube\"\n\
+         [[objects]]\nprimitive = \"plane\"\nsize = 4\nsubdivisions = 3\ntranslate = [0, -1, 0]\nshadow_plane = true\n\
+         [[objects]]\nmodel = {model:?}\ntranslate = [0, 0, 2]\nshadow_plane = true\n\
+         [[objects]]\nprimitive = \"plane\"\nshadow_plane = false\n"
+    );
+    let scene = load_scene(&temp_file("shadows.toml", &text)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.shadows.mode, ShadowMode::Planar);
+    assert_eq!(scene.objects.len(), 1 + 1 + 2 + 1);
+    // The plane, then each of the model's two meshes; not the cube, not
+    // the plane with shadow_plane = false.
+    let receivers: Vec<usize> = scene.shadows.planes.iter().map(|p| p.receiver).collect();
+    assert_eq!(receivers, [1, 2, 3]);
+    let close = |got: Vec4, want: Vec4| (got - want).abs().max_element() < 1e-6;
+    // y = -1 with the plane's normal +Y: 0·x + 1·y + 0·z + 1 = 0.
+    let floor = scene.shadows.planes[0].plane;
+    assert!(close(floor, Vec4::new(0.0, 1.0, 0.0, 1.0)), "{floor}");
+    // two.obj's meshes lie in z = 0, facing +Z; moved to z = 2.
+    for p in &scene.shadows.planes[1..] {
+        assert!(close(p.plane, Vec4::new(0.0, 0.0, 1.0, -2.0)), "{}", p.plane);
+    }
+    assert!(scene.shadows.receives(1) && !scene.shadows.receives(0) && !scene.shadows.receives(4));
+}
+
+#[test]
+fn shadows_default_to_none_and_planes_are_kept_without_them() {
+    let scene = load_scene(&temp_file("plain.toml", OBJECT)).expect("loads");
+    assert_eq!(scene.shadows, Shadows::default());
+    let text = "[render]\nshadows = \"none\"\n[[objects]]\nprimitive = \"plane\"\nshadow_plane = true\n";
+    let scene = load_scene(&temp_file("kept.toml", text)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.shadows.mode, ShadowMode::None);
+    assert_eq!(scene.shadows.planes.len(), 1, "the mode decides, the planes stay");
+    assert!(!scene.shadows.receives(0));
+    for mode in ShadowMode::ALL {
+        let text = format!("[render]\nshadows = {:?}\n{OBJECT}", mode.name());
+        let scene = load_scene(&temp_file("mode.toml", &text)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(scene.shadows.mode, mode, "the file's names are ShadowMode::name's");
+    }
+}
+
+#[test]
+fn bad_shadows_are_rejected() {
+    check_scene_error(
+        "soft.toml",
+        &format!("[render]\nshadows = \"soft\"\n{OBJECT}"),
+        &["line 2", "unknown variant `soft`", "`none`", "`planar`"],
+    );
+    check_scene_error(
+        "ball.toml",
+        "[[objects]]\nprimitive = \"plane\"\nshadow_plane = true\n\
+         [[objects]]\nprimitive = \"sphere\"\nshadow_plane = true\n",
+        &["line 6", "objects[1].shadow_plane: needs a flat object: its vertices are not on one plane"],
+    );
+    check_scene_error(
+        "type.toml",
+        &format!("{OBJECT}shadow_plane = \"yes\"\n"),
+        &["line 3", "invalid type: string \"yes\", expected a boolean"],
+    );
+    // A model with a flat mesh and a bent one: the bent one is named.
+    let bent =
+        temp_file("bent.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\ng flat\nf 1 2 3\ng bent\nf 1 2 3 4\n");
+    check_scene_error(
+        "model.toml",
+        &format!("[[objects]]\nmodel = {bent:?}\nshadow_plane = true\n"),
+        &["line 3", "objects[0].shadow_plane: needs a flat object: mesh 2 of 2 ('bent') is not"],
+    );
+    // A line has no plane at all.
+    let line = temp_file("line.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    check_scene_error(
+        "line.toml",
+        &format!("[[objects]]\nmodel = {line:?}\nshadow_plane = true\n"),
+        &["objects[0].shadow_plane: needs a flat object: it has no triangle of positive area"],
+    );
 }

@@ -1,6 +1,6 @@
 //! The commands README.md shows, and the promise of bit-identical output.
 
-use crate::{check_clean_error, check_png, repo, zline};
+use crate::{check_clean_error, check_error_line, check_png, repo, zline};
 
 #[test]
 fn demo_renders_and_threads_do_not_change_the_bytes() {
@@ -153,4 +153,47 @@ fn convention_flags_change_the_image_and_override_the_scene_file() {
     let out = zline(&["demo", "-o", "x.png", "--lighting", "three-sided"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("one-sided"));
+}
+
+#[test]
+fn the_shadows_flag_is_checked_and_warns_when_nothing_receives() {
+    let out = zline(&["demo", "-o", "x.png", "--shadows", "bogus"]);
+    check_error_line(&out, 2, &["bogus", "--shadows"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("planar"), "the valid names are listed");
+
+    let dir = tempfile::tempdir().unwrap();
+    let warning = "warning: --shadows planar: the scene has no shadow_plane objects";
+    // A bare model has no shadow planes: planar shadows draw nothing, and say so.
+    let suzanne = repo().join("assets/obj/suzanne/suzanne.obj");
+    let png = dir.path().join("bare.png");
+    let args = ["render", suzanne.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "32x24"];
+    let out = zline(&[&args[..], &["--shadows", "planar"]].concat());
+    check_png(&out, &png, (32, 24));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.lines().filter(|l| *l == warning).count(), 1, "{stderr}");
+    let out = zline(&[&args[..], &["--shadows", "none"]].concat());
+    check_png(&out, &png, (32, 24));
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("warning:"));
+
+    // A scene file with a receiving plane turns them on without a warning.
+    let scene = dir.path().join("floor.toml");
+    std::fs::write(
+        &scene,
+        "[[objects]]\nprimitive = \"plane\"\nsize = 4\ntranslate = [0, -1, 0]\nshadow_plane = true\n\
+         [[objects]]\nprimitive = \"cube\"\n",
+    )
+    .unwrap();
+    let png = dir.path().join("floor.png");
+    let out = zline(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "32x24",
+        "--shadows",
+        "planar",
+    ]);
+    check_png(&out, &png, (32, 24));
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("warning:"), "the scene has a shadow plane");
 }
