@@ -15,6 +15,11 @@
 //! camera and +z for an orthographic one — is lit with its normals turned
 //! around, as the fast renderer's setup does; one-sided lighting keeps the
 //! normals as given.
+//!
+//! With `ShadowMode::Planar`, the frame also holds every caster triangle
+//! (the objects that do not receive shadows) in eye space as
+//! [`Occluders`], and shadow receivers are shaded as Phong whatever their
+//! mode ([`crate::shadow`]).
 
 use std::sync::Arc;
 
@@ -27,6 +32,7 @@ use crate::camera::{self, Corner, ObjectTransforms, SampleSpace, Vertex};
 use crate::clip::clip_triangle;
 use crate::coverage::signed_area2;
 use crate::lighting::{EyeLights, MaterialF64};
+use crate::shadow::Occluders;
 
 /// Triangles per rayon task in setup.
 const TRIANGLE_CHUNK: usize = 4096;
@@ -40,8 +46,11 @@ pub(crate) struct ObjectFrame {
     pub(crate) vertices: Vec<Vertex>,
     /// The object's material, sanitized.
     pub(crate) material: MaterialF64,
-    /// Its shading mode (the object's, else the scene's).
+    /// Its shading mode (the object's, else the scene's; Phong for a
+    /// shadow receiver).
     pub(crate) mode: ShadingMode,
+    /// Receives shadows: lit without the lights the frame's occluders hide.
+    pub(crate) receives_shadows: bool,
     /// The diffuse texture with the scene's filter override, when the mesh
     /// has one and texture coordinates.
     pub(crate) texture: Option<TextureMap>,
@@ -96,6 +105,9 @@ pub(crate) struct Frame<'a> {
     pub(crate) lights: EyeLights,
     /// The objects.
     pub(crate) objects: Vec<ObjectFrame>,
+    /// The shadow casters' triangles, when some object receives shadows
+    /// and some caster triangle is not degenerate.
+    pub(crate) occluders: Option<Occluders>,
     /// Triangles to draw, in draw order.
     pub(crate) prims: Vec<Prim>,
 }
@@ -126,6 +138,7 @@ impl<'a> Frame<'a> {
             prims.extend(setup_object(&frame_object, &ctx));
             objects.push(frame_object);
         }
+        let occluders = shadow_casters(&objects);
         Frame {
             scene,
             n,
@@ -134,6 +147,7 @@ impl<'a> Frame<'a> {
             perspective: s.interpolation == Interpolation::PerspectiveCorrect,
             lights: EyeLights::new(scene.ambient, &scene.lights, &eye_from_world),
             objects,
+            occluders,
             prims,
         }
     }
@@ -179,14 +193,36 @@ fn object_frame(scene: &Scene, index: usize, t: &ObjectTransforms, space: &Sampl
     };
     let material = MaterialF64::new(&object.material());
     let transparent = material.opacity < 1.0 || texture.as_ref().is_some_and(|m| m.alpha_blend);
+    let receives_shadows = scene.shadows.receives(index);
     ObjectFrame {
-        mode: object.shading.unwrap_or(scene.settings.shading),
+        mode: if receives_shadows {
+            ShadingMode::Phong
+        } else {
+            object.shading.unwrap_or(scene.settings.shading)
+        },
+        receives_shadows,
         mesh,
         vertices,
         material,
         texture,
         transparent,
     }
+}
+
+/// The triangles of every object that does not receive shadows, in eye
+/// space; `None` when no object receives shadows or nothing casts them.
+fn shadow_casters(objects: &[ObjectFrame]) -> Option<Occluders> {
+    if !objects.iter().any(|o| o.receives_shadows) {
+        return None;
+    }
+    let triangles = objects.iter().filter(|o| !o.receives_shadows).flat_map(|o| {
+        o.mesh.triangles.iter().filter_map(|t| {
+            let [a, b, c] = gather(&o.vertices, *t)?;
+            Some([a.eye, b.eye, c.eye])
+        })
+    });
+    let occluders = Occluders::new(triangles);
+    (!occluders.is_empty()).then_some(occluders)
 }
 
 /// What setup needs to know about the object.

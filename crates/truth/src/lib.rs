@@ -19,7 +19,16 @@
 //! drawn triangles, culling, two- or one-sided lighting), `coverage` (edge
 //! functions, top-left rule, depth), `tile` (binning, opaque and
 //! transparency passes, box filter, diagnostics), `shade` (interpolation and
-//! shading modes), `lighting`, `texture`, `fog`, `image` and [`metrics`].
+//! shading modes), `lighting`, `shadow` (light visibility on shadow
+//! receivers), `texture`, `fog`, `image` and [`metrics`].
+//!
+//! Shadows (`ShadowMode::Planar`) are exact light visibility: a receiver
+//! (`Shadows::receives`) is lit per sample as with Phong shading, and a
+//! light drops out of a sample's diffuse and specular terms when a
+//! triangle of any other object crosses the segment (or, for a
+//! directional light, the ray) from the exact surface point to the light.
+//! The `shadow` module states the rule in full; without receivers the
+//! image is the one without shadows, bit for bit.
 //!
 //! With [`TruthOptions::diagnostics`] the image carries, per pixel, how far
 //! it is from an edge or a depth intersection and how fast its colour
@@ -55,6 +64,7 @@ mod image;
 mod lighting;
 pub mod metrics;
 mod shade;
+mod shadow;
 mod texture;
 mod tile;
 

@@ -14,10 +14,13 @@
 //! lights, and no specular term where N·L ≤ 0 or N·H ≤ 0. A point light at
 //! the surface point itself contributes nothing; a zero L + V leaves the
 //! specular term at 0. Materials are `sanitized` first, as the fast
-//! renderer does.
+//! renderer does. On a shadow receiver, a light hidden from the surface
+//! point drops out of the sum ([`crate::shadow`]).
 
 use glam::{DMat4, DVec3};
 use zline_shading::{Light, Material};
+
+use crate::shadow::Occluders;
 
 /// A material's coefficients in f64.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -112,6 +115,21 @@ impl EyeLights {
 
     /// The lighting model at eye-space `point` with unit (or zero) `normal`.
     pub(crate) fn shade(&self, m: &MaterialF64, point: DVec3, normal: DVec3) -> Parts {
+        self.shade_shadowed(m, point, normal, None)
+    }
+
+    /// The lighting model with shadows: with `shadow` = (occluders, P), a
+    /// light that would light the point (N·L > 0) but that the occluders
+    /// hide from the eye-space point P adds neither diffuse nor specular
+    /// (see [`crate::shadow`]). P is the exact surface point, which
+    /// screen-linear interpolation may move `point` away from.
+    pub(crate) fn shade_shadowed(
+        &self,
+        m: &MaterialF64,
+        point: DVec3,
+        normal: DVec3,
+        shadow: Option<(&Occluders, DVec3)>,
+    ) -> Parts {
         let view = (-point).normalize_or_zero();
         let specular_on = m.ks.max_element() > 0.0;
         let (mut diffuse, mut specular) = (DVec3::ZERO, DVec3::ZERO);
@@ -134,6 +152,15 @@ impl EyeLights {
             }
             if n_dot_l <= 0.0 {
                 continue;
+            }
+            if let Some((occluders, at)) = shadow {
+                let hidden = match *light {
+                    EyeLight::Point { position, .. } => occluders.hides_point(at, position),
+                    EyeLight::Directional { to_light, .. } => occluders.hides_direction(at, to_light),
+                };
+                if hidden {
+                    continue;
+                }
             }
             diffuse += intensity * n_dot_l;
             if specular_on {

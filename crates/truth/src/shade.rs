@@ -20,7 +20,9 @@
 //!   §7). A clipped piece's new vertices carry interpolated colours, not
 //!   relit ones.
 //! - Phong: eye position and normal interpolated, the normal renormalized
-//!   (a zero normal stays zero), the lighting model per sample.
+//!   (a zero normal stays zero), the lighting model per sample. A shadow
+//!   receiver is always shaded so, and a light the occluders hide from the
+//!   exact surface point is left out ([`crate::shadow`]).
 //!
 //! Vertex colours (`Mesh::colors`), like a texel, multiply the
 //! ambient+diffuse part (ka and kd), never the emission or the specular
@@ -184,7 +186,11 @@ impl Frame<'_> {
             ShadingMode::Phong => {
                 let n = blend3(&s.attr, normal).normalize_or_zero();
                 let color = tint.map(|c| blend3(&s.attr, |k| c[k]));
-                tinted(lights.shade(m, blend3(&s.attr, eye), n), color)
+                let shadow = match &self.occluders {
+                    Some(o) if s.object.receives_shadows => Some((o, blend3(&s.exact, eye))),
+                    _ => None,
+                };
+                tinted(lights.shade_shadowed(m, blend3(&s.attr, eye), n, shadow), color)
             }
         };
         let color = match texel {

@@ -3,6 +3,7 @@
 
 mod emission_colors;
 mod hand;
+mod shadows;
 mod supersampling;
 mod support;
 mod threads;
