@@ -190,10 +190,10 @@ impl Renderer {
             stats.triangles += object.mesh.triangles.len() as u64;
             self.setup_object(scene, index, object, &frame);
         }
+        stats.primitives = self.chunks[..self.used].iter().map(|c| c.draws.len() as u64).sum();
         if scene.shadows.mode == ShadowMode::Planar {
             self.setup_shadows(scene, &frame);
         }
-        stats.primitives = self.chunks[..self.used].iter().map(|c| c.draws.len() as u64).sum();
         stats.geometry = start.elapsed();
 
         let start = Instant::now();
