@@ -328,7 +328,11 @@ impl Renderer {
         let t = &self.tables;
         for (p, k, bit) in shadow::pairs(planes.len(), scene.lights.len()) {
             let casters = scene.objects.iter().enumerate().filter(|(i, _)| !scene.shadows.receives(*i));
-            shadow::project_casters(&planes[p], &scene.lights[k], casters.map(|(_, o)| o), &mut mesh);
+            let Some(receiver) = scene.objects.get(planes[p].receiver) else {
+                continue;
+            };
+            let casters = casters.map(|(_, o)| o);
+            shadow::project_casters(&planes[p], &scene.lights[k], (receiver, casters), &mut mesh);
             if mesh.triangles.is_empty() {
                 continue;
             }

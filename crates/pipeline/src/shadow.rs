@@ -1,8 +1,9 @@
 //! Planar projection shadows (the seed's method): the casters' triangles
 //! projected onto a receiving plane from one light with the shadow matrix
-//! (`zline_scene::shadow_matrix`), as a world-space mesh that the frame
-//! then transforms, clips and sets up like any other (flat, never drawn:
-//! `PassKind::Shadow` rasterizes it into the tiles' shadow masks).
+//! (`zline_scene::shadow_matrix_f64`, in f64 like the clipping), cut to the
+//! receiver's bounds, as a world-space mesh that the frame then transforms,
+//! clips and sets up like any other (flat, never drawn: `PassKind::Shadow`
+//! rasterizes it into the tiles' shadow masks).
 //!
 //! Only the part of a caster between the plane and the light casts a
 //! shadow on it: a point on the plane's far side from the light is hidden
@@ -15,14 +16,14 @@
 //! "the segment from P to the light crosses a caster", the rule the truth
 //! evaluates with rays.
 
-use glam::Vec3;
-use zline_scene::{light_position, shadow_matrix, Light, Mesh, Object, ShadowPlane};
+use glam::DVec3;
+use zline_scene::{light_position, shadow_matrix_f64, Light, Mesh, Object, ShadowPlane};
 
 /// How close to the light's height above the plane a caster point may be
 /// (as a fraction of it): a point at the light's own height projects to
 /// infinity, one within this margin beyond 10⁶ times its distance — far
 /// past the guard band, where clipping takes over.
-pub(crate) const SLAB_MARGIN: f32 = 1e-6;
+pub(crate) const SLAB_MARGIN: f64 = 1e-6;
 
 /// The shadow of `casters` on `plane` from `light`, as world-space
 /// triangles in `out` (cleared first; positions, a normal per vertex —
@@ -32,30 +33,39 @@ pub(crate) const SLAB_MARGIN: f32 = 1e-6;
 pub(crate) fn project_casters<'a>(
     plane: &ShadowPlane,
     light: &Light,
-    casters: impl Iterator<Item = &'a Object>,
+    (receiver, casters): (&Object, impl Iterator<Item = &'a Object>),
     out: &mut Mesh,
 ) {
     out.positions.clear();
     out.normals.clear();
     out.triangles.clear();
-    let g = plane.plane;
-    let l = light_position(light);
+    let g = plane.plane.as_dvec4();
+    let l = light_position(light).as_dvec4();
     let side = g.dot(l);
     if side == 0.0 || !side.is_finite() {
         return;
     }
     let s = side.signum();
-    let m = shadow_matrix(g, l);
-    let height = |x: Vec3| s * (g.truncate().dot(x) + g.w);
-    // The slab's planes as functions ≥ 0 inside.
+    let m = shadow_matrix_f64(g, l);
+    let height = |x: DVec3| s * (g.truncate().dot(x) + g.w);
     let top = (1.0 - SLAB_MARGIN) * side.abs();
     let point_light = l.w != 0.0;
-    let normal = g.truncate();
+    let normal = plane.plane.truncate();
+    // The receiver's world bounds, a little wider: a shadow matters only
+    // there, and clipping to them keeps the projected points (up to 10⁶
+    // times farther than their casters near a point light's height) at the
+    // receiver's size before they are rounded to f32.
+    let Some((lo, hi)) = world_bounds(receiver) else {
+        return;
+    };
+    let pad = (hi - lo).max_element().max(1.0) * 1e-3;
+    let (lo, hi) = (lo - pad, hi + pad);
     for object in casters {
-        let to_world = object.world_from_object;
-        let world: Vec<Vec3> = object.mesh.positions.iter().map(|&p| to_world.transform_point3(p)).collect();
+        let to_world = object.world_from_object.as_dmat4();
+        let world: Vec<DVec3> =
+            object.mesh.positions.iter().map(|&p| to_world.transform_point3(p.as_dvec3())).collect();
         for t in &object.mesh.triangles {
-            let Some(tri) = t.iter().map(|&i| world.get(i as usize).copied()).collect::<Option<Vec<Vec3>>>()
+            let Some(tri) = t.iter().map(|&i| world.get(i as usize).copied()).collect::<Option<Vec<DVec3>>>()
             else {
                 continue;
             };
@@ -66,13 +76,23 @@ pub(crate) fn project_casters<'a>(
             if point_light {
                 poly = clip(&poly, |x| top - height(x));
             }
-            if poly.len() < 3 {
+            let mut poly: Vec<DVec3> = poly
+                .iter()
+                .map(|&x| {
+                    let p = m * x.extend(1.0);
+                    p.truncate() / p.w
+                })
+                .collect();
+            for axis in 0..3 {
+                poly = clip(&poly, |x| x[axis] - lo[axis]);
+                poly = clip(&poly, |x| hi[axis] - x[axis]);
+            }
+            if poly.len() < 3 || poly.iter().any(|p| !p.is_finite()) {
                 continue;
             }
             let first = out.positions.len() as u32;
             for &x in &poly {
-                let p = m * x.extend(1.0);
-                out.positions.push(p.truncate() / p.w);
+                out.positions.push(x.as_vec3());
                 out.normals.push(normal);
             }
             for k in 1..poly.len() as u32 - 1 {
@@ -80,18 +100,21 @@ pub(crate) fn project_casters<'a>(
             }
         }
     }
-    // Projected points far past f32's range are not finite; drop their
-    // triangles (setup would too).
-    let finite = |t: &[u32; 3]| t.iter().all(|&i| out.positions[i as usize].is_finite());
-    let kept: Vec<[u32; 3]> = out.triangles.iter().copied().filter(finite).collect();
-    out.triangles = kept;
+}
+
+/// The world-space bounds of an object's vertices; `None` for an object
+/// without finite vertices.
+fn world_bounds(object: &Object) -> Option<(DVec3, DVec3)> {
+    let m = object.world_from_object.as_dmat4();
+    let points =
+        object.mesh.positions.iter().map(|&p| m.transform_point3(p.as_dvec3())).filter(|p| p.is_finite());
+    points.fold(None, |b, p| Some(b.map_or((p, p), |(lo, hi): (DVec3, DVec3)| (lo.min(p), hi.max(p)))))
 }
 
 /// Sutherland–Hodgman: the part of polygon `poly` where `f ≥ 0` (`f`
-/// affine, so the crossing is at the ratio of its values), with the
-/// strict side kept on ties: a vertex with f = 0 stays, an edge is split
-/// only where f changes sign.
-fn clip(poly: &[Vec3], f: impl Fn(Vec3) -> f32) -> Vec<Vec3> {
+/// affine, so the crossing is at the ratio of its values): a vertex with
+/// f = 0 stays, an edge is split only where f changes sign.
+fn clip(poly: &[DVec3], f: impl Fn(DVec3) -> f64) -> Vec<DVec3> {
     let mut out = Vec::with_capacity(poly.len() + 1);
     for (k, &a) in poly.iter().enumerate() {
         let b = poly[(k + 1) % poly.len()];
@@ -148,7 +171,7 @@ fn unit(g: glam::Vec4) -> Vec3 {
 mod tests {
     use std::sync::Arc;
 
-    use glam::{Mat4, Vec4};
+    use glam::{Mat4, Vec3, Vec4};
     use zline_scene::{Attenuation, Mesh};
 
     use super::*;
@@ -194,7 +217,7 @@ mod tests {
             attenuation: Attenuation::NONE,
         };
         let mut out = empty_mesh();
-        project_casters(&ground(), &light, [quad(1.0, 0.5)].iter(), &mut out);
+        project_casters(&ground(), &light, (&quad(0.0, 10.0), [quad(1.0, 0.5)].iter()), &mut out);
         assert_eq!(out.triangles.len(), 2);
         let (lo, hi) = bounds(&out);
         let h = 2.0 / 3.0;
@@ -211,7 +234,12 @@ mod tests {
             attenuation: Attenuation::NONE,
         };
         let mut out = empty_mesh();
-        project_casters(&ground(), &light, [quad(5.0, 0.5), quad(-1.0, 0.5)].iter(), &mut out);
+        project_casters(
+            &ground(),
+            &light,
+            (&quad(0.0, 10.0), [quad(5.0, 0.5), quad(-1.0, 0.5)].iter()),
+            &mut out,
+        );
         assert!(out.triangles.is_empty(), "{:?}", out.positions);
         // A light under the plane lights its underside: the quad at y = -1
         // now casts, the one above does not.
@@ -220,7 +248,12 @@ mod tests {
             color: Vec3::ONE,
             attenuation: Attenuation::NONE,
         };
-        project_casters(&ground(), &under, [quad(1.0, 0.5), quad(-1.0, 0.5)].iter(), &mut out);
+        project_casters(
+            &ground(),
+            &under,
+            (&quad(0.0, 10.0), [quad(1.0, 0.5), quad(-1.0, 0.5)].iter()),
+            &mut out,
+        );
         assert_eq!(out.triangles.len(), 2);
     }
 
@@ -238,7 +271,7 @@ mod tests {
         let wall = Object { mesh: Arc::new(tri), ..quad(0.0, 1.0) };
         let sun = Light::Directional { direction: Vec3::new(0.0, -1.0, -1.0), color: Vec3::ONE };
         let mut out = empty_mesh();
-        project_casters(&ground(), &sun, [wall].iter(), &mut out);
+        project_casters(&ground(), &sun, (&quad(0.0, 10.0), [wall].iter()), &mut out);
         // The cut is the triangle's tip above y = 0: (±0.5, 0, 0) and (0, 1, 0),
         // whose tip falls along (0, −1, −1) to (0, 0, −1).
         let (lo, hi) = bounds(&out);

@@ -31,7 +31,7 @@ pub use model::{
     Scene, ShadowMode, ShadowPlane, Shadows, TextureMap,
 };
 pub use primitives::{cube, plane, torus, uv_sphere};
-pub use shadow::{light_position, shadow_matrix};
+pub use shadow::{light_position, shadow_matrix, shadow_matrix_f64};
 pub use zline_shading::{
     Attenuation, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
 };

@@ -8,7 +8,7 @@
 //! of the sample's lighting (lit part minus the light, so coloured lights
 //! cast coloured shadows).
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{DMat4, DVec4, Mat4, Vec3, Vec4};
 
 use crate::model::ShadowPlane;
 
@@ -45,12 +45,20 @@ impl ShadowPlane {
 /// plane's far side from the light, and points farther from the plane
 /// than a point light, have no shadow on it; callers clip them away first.
 pub fn shadow_matrix(ground: Vec4, light: Vec4) -> Mat4 {
+    shadow_matrix_f64(ground.as_dvec4(), light.as_dvec4()).as_mat4()
+}
+
+/// [`shadow_matrix`] in f64. Near a point light's height above the plane
+/// the projection divides by (g·l) − (g·p), a difference of nearly equal
+/// values: a renderer that projects such points needs it in f64 (an f32
+/// g·l is off by ~10⁻⁷ of the plane's offset, enough to flip the sign).
+pub fn shadow_matrix_f64(ground: DVec4, light: DVec4) -> DMat4 {
     let dot = ground.dot(light);
     let g = ground.to_array();
     let l = light.to_array();
     let col =
-        |j: usize| Vec4::from_array(std::array::from_fn(|i| if i == j { dot } else { 0.0 } - l[i] * g[j]));
-    Mat4::from_cols(col(0), col(1), col(2), col(3))
+        |j: usize| DVec4::from_array(std::array::from_fn(|i| if i == j { dot } else { 0.0 } - l[i] * g[j]));
+    DMat4::from_cols(col(0), col(1), col(2), col(3))
 }
 
 /// The homogeneous position of a light for [`shadow_matrix`].
