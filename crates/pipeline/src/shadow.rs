@@ -163,7 +163,7 @@ pub(crate) fn pairs(planes: usize, lights: usize) -> impl Iterator<Item = (usize
 
 /// A plane's normal, for tests: the unit (a, b, c) of (a, b, c, d).
 #[cfg(test)]
-fn unit(g: glam::Vec4) -> Vec3 {
+fn unit(g: glam::Vec4) -> glam::Vec3 {
     g.truncate().normalize()
 }
 
