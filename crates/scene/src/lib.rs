@@ -12,6 +12,7 @@
 //! read and build), `primitives` (procedural
 //! meshes). The built-in scenes are in zline-scenes.
 
+mod area;
 mod error;
 mod limits;
 mod mesh;
@@ -19,11 +20,12 @@ mod model;
 mod primitives;
 mod shadow;
 
+pub use area::{AreaLight, AreaShape};
 pub use error::MeshError;
 pub use limits::{
-    MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE, MAX_MATERIAL_LIBRARIES,
-    MAX_MODEL_FILE_BYTES, MAX_PRIMITIVE_DIVISIONS, MAX_PRIMITIVE_TRIANGLES, MAX_SSAA, MAX_TEXTURE_PIXELS,
-    MAX_TEXTURE_PIXELS_PER_MODEL, MAX_TEXT_FILE_BYTES, MAX_TRIANGLES, MAX_VERTICES,
+    MAX_ADAPTIVE_TOLERANCE, MAX_AREA_SAMPLES_PER_SIDE, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE,
+    MAX_MATERIAL_LIBRARIES, MAX_MODEL_FILE_BYTES, MAX_PRIMITIVE_DIVISIONS, MAX_PRIMITIVE_TRIANGLES, MAX_SSAA,
+    MAX_TEXTURE_PIXELS, MAX_TEXTURE_PIXELS_PER_MODEL, MAX_TEXT_FILE_BYTES, MAX_TRIANGLES, MAX_VERTICES,
 };
 pub use mesh::{face_normal, FALLBACK_NORMAL};
 pub use model::{

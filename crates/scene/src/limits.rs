@@ -93,3 +93,7 @@ pub const MAX_TILE_SIZE: u32 = 1024;
 /// clamped to it with a warning (10 000 threads brought a two-core machine
 /// to a load average of 469).
 pub const MAX_THREADS: usize = 256;
+
+/// Samples along each side of an area light: k × k point lights, at most
+/// 256 per light (every sample costs a light per lit sample).
+pub const MAX_AREA_SAMPLES_PER_SIDE: u32 = 16;

@@ -23,9 +23,12 @@ use std::path::{Path, PathBuf};
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
 use zline_scene::{
-    cube, plane, torus, uv_sphere, Camera, Mesh, Object, Projection, Scene, ShadowPlane, Shadows,
-    MAX_PRIMITIVE_TRIANGLES,
+    cube, plane, torus, uv_sphere, AreaLight, AreaShape, Camera, Mesh, Object, Projection, Scene,
+    ShadowPlane, Shadows, MAX_AREA_SAMPLES_PER_SIDE, MAX_PRIMITIVE_TRIANGLES,
 };
+
+/// An area light's default samples per side (4 × 4 point lights).
+const DEFAULT_AREA_SAMPLES: u32 = 4;
 use zline_shading::{Attenuation, Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
 
 use crate::culling::default_culling;
@@ -85,6 +88,18 @@ use render::{settings, shadow_mode, RenderDef, ShadingDef};
 /// type = "directional"
 /// direction = [-1, -1, -1]          # required: the way the light travels
 /// color = [0.3, 0.3, 0.4]
+/// [[lights]]                        # an area light (SPEC §5): k × k point lights at
+/// type = "rect"                     #   the centres of a grid over it, each colour/k²
+/// position = [0, 3, 0]              # required: the centre
+/// u = [0.5, 0, 0]                   # required: half of one edge
+/// v = [0, 0, 0.5]                   # required: half of the other
+/// samples = 4                       # k, samples per side, 1..=16; default 4 (16 lights)
+/// color = [1, 1, 1]                 # the whole light's Il; attenuation as for points
+/// [[lights]]
+/// type = "disc"                     # a disc: position, normal, radius; samples as rect
+/// position = [0, 3, 0]
+/// normal = [0, -1, 0]
+/// radius = 0.4
 ///
 /// [fog]                             # optional (SPEC §8); no table, no fog
 /// mode = "linear"                   # required: linear | exp | exp2
@@ -212,6 +227,20 @@ struct CameraDef {
 enum LightKind {
     Point,
     Directional,
+    Rect,
+    Disc,
+}
+
+impl LightKind {
+    /// The name the file uses.
+    fn name(self) -> &'static str {
+        match self {
+            LightKind::Point => "point",
+            LightKind::Directional => "directional",
+            LightKind::Rect => "rect",
+            LightKind::Disc => "disc",
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -223,6 +252,11 @@ struct LightDef {
     direction: Option<S<[f32; 3]>>,
     color: Option<S<[f32; 3]>>,
     attenuation: Option<S<[f32; 3]>>,
+    u: Option<S<[f32; 3]>>,
+    v: Option<S<[f32; 3]>>,
+    normal: Option<S<[f32; 3]>>,
+    radius: Option<S<f32>>,
+    samples: Option<S<u32>>,
 }
 
 #[derive(Clone, Copy, Deserialize, PartialEq)]
@@ -300,7 +334,10 @@ impl Builder<'_> {
                 .iter()
                 .enumerate()
                 .map(|(i, l)| self.light(l, &format!("lights[{i}]")))
-                .collect::<Result<_>>()?,
+                .collect::<Result<Vec<_>>>()?
+                .into_iter()
+                .flatten()
+                .collect(),
             None => default_lights(),
         };
         if file.objects.is_empty() {
@@ -466,28 +503,83 @@ impl Builder<'_> {
         Ok(Fog { mode, color, coordinate })
     }
 
-    fn light(&self, def: &S<LightDef>, key: &str) -> Result<Light> {
+    /// One `[[lights]]` entry: one light, or an area light's samples.
+    fn light(&self, def: &S<LightDef>, key: &str) -> Result<Vec<Light>> {
         let l = def.get_ref();
         let color = match &l.color {
             Some(c) => self.check.vec3_in(c, &format!("{key}.color"), 0.0, f32::INFINITY)?,
             None => Vec3::ONE,
         };
+        let area_only = |name: &str, v: bool| match v {
+            true => Err(self.check.error(
+                def.span(),
+                &format!("{key}.{name}"),
+                "applies to rect and disc lights only",
+            )),
+            false => Ok(()),
+        };
+        if !matches!(l.kind, LightKind::Rect | LightKind::Disc) {
+            area_only("samples", l.samples.is_some())?;
+        }
+        if !matches!(l.kind, LightKind::Rect) {
+            area_only("u", l.u.is_some())?;
+            area_only("v", l.v.is_some())?;
+        }
+        if !matches!(l.kind, LightKind::Disc) {
+            area_only("normal", l.normal.is_some())?;
+            area_only("radius", l.radius.is_some())?;
+        }
+        let attenuation = match &l.attenuation {
+            Some(a) => {
+                let [a0, a1, a2] =
+                    self.check.vec3_in(a, &format!("{key}.attenuation"), 0.0, f32::INFINITY)?.into();
+                Attenuation { a0, a1, a2 }
+            }
+            None => Attenuation::NONE,
+        };
+        let position = || match &l.position {
+            Some(p) => self.check.vec3(p, &format!("{key}.position")),
+            None => {
+                Err(self.check.error(def.span(), key, format!("a {} light needs 'position'", l.kind.name())))
+            }
+        };
+        let vector = |v: &Option<S<[f32; 3]>>, name: &str| match v {
+            Some(v) if *v.get_ref() == [0.0; 3] => {
+                Err(self.check.error(v.span(), &format!("{key}.{name}"), "must not be [0, 0, 0]"))
+            }
+            Some(v) => self.check.vec3(v, &format!("{key}.{name}")),
+            None => {
+                Err(self.check.error(def.span(), key, format!("a {} light needs '{name}'", l.kind.name())))
+            }
+        };
+        let samples = || match &l.samples {
+            Some(n) if !(1..=MAX_AREA_SAMPLES_PER_SIDE).contains(n.get_ref()) => Err(self.check.error(
+                n.span(),
+                &format!("{key}.samples"),
+                format!("must be in 1..={MAX_AREA_SAMPLES_PER_SIDE} (samples per side), got {}", n.get_ref()),
+            )),
+            Some(n) => Ok(*n.get_ref()),
+            None => Ok(DEFAULT_AREA_SAMPLES),
+        };
         match l.kind {
+            LightKind::Rect | LightKind::Disc => {
+                self.check.not_allowed(&l.direction, key, "direction", "area lights")?;
+                let center = position()?;
+                let shape = if let LightKind::Rect = l.kind {
+                    AreaShape::Rect { center, u: vector(&l.u, "u")?, v: vector(&l.v, "v")? }
+                } else {
+                    let radius = self.check.positive(&l.radius, &format!("{key}.radius"), 0.0)?;
+                    if radius <= 0.0 {
+                        return Err(self.check.error(def.span(), key, "a disc light needs 'radius' > 0"));
+                    }
+                    AreaShape::Disc { center, normal: vector(&l.normal, "normal")?, radius }
+                };
+                Ok(AreaLight { shape, color, attenuation }.sample(samples()?))
+            }
             LightKind::Point => {
                 self.check.not_allowed(&l.direction, key, "direction", "point lights")?;
-                let Some(position) = &l.position else {
-                    return Err(self.check.error(def.span(), key, "a point light needs 'position'"));
-                };
-                let position = self.check.vec3(position, &format!("{key}.position"))?;
-                let attenuation = match &l.attenuation {
-                    Some(a) => {
-                        let [a0, a1, a2] =
-                            self.check.vec3_in(a, &format!("{key}.attenuation"), 0.0, f32::INFINITY)?.into();
-                        Attenuation { a0, a1, a2 }
-                    }
-                    None => Attenuation::NONE,
-                };
-                Ok(Light::Point { position, color, attenuation })
+                let position = position()?;
+                Ok(vec![Light::Point { position, color, attenuation }])
             }
             LightKind::Directional => {
                 self.check.not_allowed(&l.position, key, "position", "directional lights")?;
@@ -503,7 +595,7 @@ impl Builder<'_> {
                         "must not be [0, 0, 0]",
                     ));
                 }
-                Ok(Light::Directional { direction, color })
+                Ok(vec![Light::Directional { direction, color }])
             }
         }
     }

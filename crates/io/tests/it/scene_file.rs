@@ -228,6 +228,69 @@ fn bad_render_settings_are_rejected() {
     check_scene_error("amb.toml", &format!("ambient = [0, -1, 0]\n{OBJECT}"), &["ambient", "[0, ∞)"]);
 }
 
+#[test]
+fn area_lights_become_their_samples() {
+    let text = format!(
+        "[[lights]]\ntype = \"rect\"\nposition = [0, 3, 0]\nu = [1, 0, 0]\nv = [0, 0, 0.5]\nsamples = 2\n\
+         color = [0.8, 0.4, 1.6]\nattenuation = [1, 0.5, 0]\n\
+         [[lights]]\ntype = \"disc\"\nposition = [0, 2, 0]\nnormal = [0, -1, 0]\nradius = 0.5\n{OBJECT}"
+    );
+    let scene = load_scene(&temp_file("area.toml", &text)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.lights.len(), 4 + 16, "2 × 2 rect samples and the disc's default 4 × 4");
+    let attenuation = Attenuation { a0: 1.0, a1: 0.5, a2: 0.0 };
+    let color = Vec3::new(0.2, 0.1, 0.4);
+    for (light, (x, z)) in scene.lights.iter().zip([(-0.5, -0.25), (0.5, -0.25), (-0.5, 0.25), (0.5, 0.25)]) {
+        assert_eq!(*light, Light::Point { position: Vec3::new(x, 3.0, z), color, attenuation });
+    }
+    for light in &scene.lights[4..] {
+        let Light::Point { position, color, .. } = *light else { panic!("{light:?}") };
+        let off_centre = Vec3::new(position.x, 0.0, position.z).length();
+        assert!((position.y - 2.0).abs() < 1e-6 && off_centre <= 0.5 + 1e-6, "{position}");
+        assert_eq!(color, Vec3::splat(1.0 / 16.0));
+    }
+}
+
+#[test]
+fn bad_area_lights_are_rejected() {
+    let light = |body: &str| format!("[[lights]]\n{body}\n{OBJECT}");
+    let rect = "type = \"rect\"\nposition = [0, 3, 0]\nu = [1, 0, 0]\nv = [0, 0, 1]";
+    check_scene_error(
+        "nov.toml",
+        &light("type = \"rect\"\nposition = [0, 3, 0]\nu = [1, 0, 0]"),
+        &["lights[0]: a rect light needs 'v'"],
+    );
+    check_scene_error(
+        "zerou.toml",
+        &light("type = \"rect\"\nposition = [0, 3, 0]\nu = [0, 0, 0]\nv = [0, 0, 1]"),
+        &["lights[0].u: must not be [0, 0, 0]"],
+    );
+    check_scene_error(
+        "samples0.toml",
+        &light(&format!("{rect}\nsamples = 0")),
+        &["lights[0].samples: must be in 1..=16"],
+    );
+    check_scene_error(
+        "samples17.toml",
+        &light(&format!("{rect}\nsamples = 17")),
+        &["lights[0].samples: must be in 1..=16"],
+    );
+    check_scene_error(
+        "noradius.toml",
+        &light("type = \"disc\"\nposition = [0, 3, 0]\nnormal = [0, 1, 0]"),
+        &["a disc light needs 'radius' > 0"],
+    );
+    check_scene_error(
+        "pointu.toml",
+        &light("type = \"point\"\nposition = [0, 3, 0]\nu = [1, 0, 0]"),
+        &["lights[0].u: applies to rect and disc lights only"],
+    );
+    check_scene_error(
+        "dirsamples.toml",
+        &light("type = \"directional\"\ndirection = [0, -1, 0]\nsamples = 3"),
+        &["lights[0].samples: applies to rect and disc lights only"],
+    );
+}
+
 fn settings_of(name: &str, render: &str) -> RenderSettings {
     let text = format!("[render]\n{render}\n{OBJECT}");
     load_scene(&temp_file(name, &text)).unwrap_or_else(|e| panic!("{e}")).settings
