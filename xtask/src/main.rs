@@ -14,6 +14,7 @@ mod docs;
 mod modules;
 mod regress;
 mod report;
+mod report_shadows;
 mod versus;
 
 /// Developer tasks for zline.

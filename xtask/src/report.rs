@@ -160,8 +160,14 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         .into_iter()
         .filter(|s| args.filter.as_deref().is_none_or(|f| s.name.contains(f)))
         .collect();
+    if scenes.is_empty() && args.filter.as_deref() == Some("shadows") {
+        let markdown = crate::report_shadows::section(args.frames)?;
+        write(&args.out, markdown.as_bytes())?;
+        println!("wrote {}", args.out.display());
+        return Ok(());
+    }
     if scenes.is_empty() {
-        bail!("no scene matches the filter");
+        bail!("no scene matches the filter (\"shadows\" gives the shadow section alone)");
     }
     let mut rows = Vec::new();
     for (si, rs) in scenes.iter().enumerate() {
@@ -202,7 +208,12 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         eprintln!("{}: {:.1} s", rs.name, start.elapsed().as_secs_f64());
     }
     let points = chart_points(&scenes, &settings, &rows);
-    let markdown = table(&scenes, &settings, &rows, &points, args);
+    let mut markdown = table(&scenes, &settings, &rows, &points, args);
+    if args.filter.as_deref().is_none_or(|f| "shadows".contains(f)) {
+        let start = Instant::now();
+        markdown += &crate::report_shadows::section(args.frames)?;
+        eprintln!("shadows: {:.1} s", start.elapsed().as_secs_f64());
+    }
     write(&args.out, markdown.as_bytes())?;
     crate::chart::draw(&args.chart, &args.font, &points)?;
     for p in points.iter().filter(|p| p.name.contains("adaptive")) {
@@ -217,7 +228,7 @@ pub(crate) fn run(args: &Args) -> Result<()> {
 /// one frame of every variant per round — so the machine's drifting speed
 /// spreads over all variants instead of favouring whichever ran in a fast
 /// phase; the fastest frame is the least disturbed measure of the work.
-fn time_interleaved(variants: &[Scene], frames: usize) -> (Vec<(f64, f64)>, Vec<Image>) {
+pub(crate) fn time_interleaved(variants: &[Scene], frames: usize) -> (Vec<(f64, f64)>, Vec<Image>) {
     let options = RenderOptions::default();
     let mut renderers: Vec<(Renderer, Image)> =
         variants.iter().map(|_| (Renderer::default(), Image::empty())).collect();

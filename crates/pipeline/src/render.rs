@@ -100,6 +100,8 @@ pub struct Renderer {
 #[derive(Debug, Default)]
 struct FrameTables {
     lighting: PreparedLights,
+    /// No lights: what shadow primitives are set up with.
+    unlit: PreparedLights,
     /// Each object's material at its index; with the adaptive mode, each
     /// object's material without specular at objects + index.
     materials: Vec<PreparedMaterial>,
@@ -349,7 +351,8 @@ impl Renderer {
                 gouraud_clamp: scene.settings.gouraud_clamp,
                 viewer: frame.viewer,
                 material,
-                lighting: &t.lighting,
+                // Never drawn: no lights to light their flat colour with.
+                lighting: &t.unlit,
                 adaptive: None,
                 diffuse_only: material,
                 texture: None,
@@ -377,6 +380,14 @@ impl Renderer {
             self.buffers.resize_with(threads, Mutex::default);
         }
         let buffers = &self.buffers[..threads];
+        let shadows = self.bins.shadow.iter().any(|b| !b.is_empty());
+        let transparent = self.bins.transparent.iter().map(Vec::len).max().unwrap_or(0);
+        for b in buffers {
+            let mut guard = b.lock().unwrap_or_else(PoisonError::into_inner);
+            guard.target.reserve(grid.tile_size, shadows);
+            let order = &mut guard.order;
+            order.reserve(transparent.saturating_sub(order.len()));
+        }
         let t = &self.tables;
         let shade = ShadeContext { lighting: &t.lighting, materials: &t.materials, textures: &t.textures };
         let (bins, chunks) = (&self.bins, &self.chunks[..self.used]);

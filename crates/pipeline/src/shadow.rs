@@ -65,37 +65,35 @@ pub(crate) fn project_casters<'a>(
         let world: Vec<DVec3> =
             object.mesh.positions.iter().map(|&p| to_world.transform_point3(p.as_dvec3())).collect();
         for t in &object.mesh.triangles {
-            let Some(tri) = t.iter().map(|&i| world.get(i as usize).copied()).collect::<Option<Vec<DVec3>>>()
+            let (Some(&a), Some(&b), Some(&c)) =
+                (world.get(t[0] as usize), world.get(t[1] as usize), world.get(t[2] as usize))
             else {
                 continue;
             };
-            if tri.iter().any(|p| !p.is_finite()) {
+            if !(a.is_finite() && b.is_finite() && c.is_finite()) {
                 continue;
             }
-            let mut poly = clip(&tri, height);
+            let mut poly = Polygon::triangle(a, b, c).clip(height);
             if point_light {
-                poly = clip(&poly, |x| top - height(x));
+                poly = poly.clip(|x| top - height(x));
             }
-            let mut poly: Vec<DVec3> = poly
-                .iter()
-                .map(|&x| {
-                    let p = m * x.extend(1.0);
-                    p.truncate() / p.w
-                })
-                .collect();
+            for x in poly.points_mut() {
+                let p = m * x.extend(1.0);
+                *x = p.truncate() / p.w;
+            }
             for axis in 0..3 {
-                poly = clip(&poly, |x| x[axis] - lo[axis]);
-                poly = clip(&poly, |x| hi[axis] - x[axis]);
+                poly = poly.clip(|x| x[axis] - lo[axis]).clip(|x| hi[axis] - x[axis]);
             }
-            if poly.len() < 3 || poly.iter().any(|p| !p.is_finite()) {
+            let points = poly.points_mut();
+            if points.len() < 3 || points.iter().any(|p| !p.is_finite()) {
                 continue;
             }
             let first = out.positions.len() as u32;
-            for &x in &poly {
+            for x in points.iter() {
                 out.positions.push(x.as_vec3());
                 out.normals.push(normal);
             }
-            for k in 1..poly.len() as u32 - 1 {
+            for k in 1..points.len() as u32 - 1 {
                 out.triangles.push([first, first + k, first + k + 1]);
             }
         }
@@ -111,23 +109,53 @@ fn world_bounds(object: &Object) -> Option<(DVec3, DVec3)> {
     points.fold(None, |b, p| Some(b.map_or((p, p), |(lo, hi): (DVec3, DVec3)| (lo.min(p), hi.max(p)))))
 }
 
-/// Sutherland–Hodgman: the part of polygon `poly` where `f ≥ 0` (`f`
-/// affine, so the crossing is at the ratio of its values): a vertex with
-/// f = 0 stays, an edge is split only where f changes sign.
-fn clip(poly: &[DVec3], f: impl Fn(DVec3) -> f64) -> Vec<DVec3> {
-    let mut out = Vec::with_capacity(poly.len() + 1);
-    for (k, &a) in poly.iter().enumerate() {
-        let b = poly[(k + 1) % poly.len()];
-        let (fa, fb) = (f(a), f(b));
-        if fa >= 0.0 {
-            out.push(a);
-        }
-        if (fa >= 0.0) != (fb >= 0.0) {
-            let t = fa / (fa - fb);
-            out.push(a + (b - a) * t);
-        }
+/// A convex polygon of at most [`Polygon::MAX`] points, on the stack: a
+/// triangle cut by the two slab planes and the six faces of a box has at
+/// most 3 + 8 corners.
+#[derive(Clone, Copy)]
+struct Polygon {
+    points: [DVec3; Polygon::MAX],
+    len: usize,
+}
+
+impl Polygon {
+    const MAX: usize = 12;
+
+    fn triangle(a: DVec3, b: DVec3, c: DVec3) -> Polygon {
+        let mut points = [DVec3::ZERO; Polygon::MAX];
+        points[..3].copy_from_slice(&[a, b, c]);
+        Polygon { points, len: 3 }
     }
-    out
+
+    fn points_mut(&mut self) -> &mut [DVec3] {
+        &mut self.points[..self.len]
+    }
+
+    /// Sutherland–Hodgman: the part where `f ≥ 0` (`f` affine, so the
+    /// crossing is at the ratio of its values): a point with f = 0 stays,
+    /// an edge is split only where f changes sign. A convex polygon gains
+    /// at most one point per cut.
+    fn clip(&self, f: impl Fn(DVec3) -> f64) -> Polygon {
+        let mut out = Polygon { points: [DVec3::ZERO; Polygon::MAX], len: 0 };
+        let points = &self.points[..self.len];
+        for (k, &a) in points.iter().enumerate() {
+            let b = points[(k + 1) % points.len()];
+            let (fa, fb) = (f(a), f(b));
+            let mut push = |p: DVec3| {
+                if out.len < Polygon::MAX {
+                    out.points[out.len] = p;
+                    out.len += 1;
+                }
+            };
+            if fa >= 0.0 {
+                push(a);
+            }
+            if (fa >= 0.0) != (fb >= 0.0) {
+                push(a + (b - a) * (fa / (fa - fb)));
+            }
+        }
+        out
+    }
 }
 
 /// An empty mesh for [`project_casters`] to fill.

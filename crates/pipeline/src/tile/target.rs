@@ -88,6 +88,22 @@ impl TileTarget {
         }
     }
 
+    /// Makes room for a tile of `side` × `side` samples (and its shadow
+    /// mask when `shadows`), so that no later [`Self::clear`] of such a tile
+    /// allocates: every thread's buffers are sized by the frame, not by the
+    /// first tile the scheduler happens to hand that thread.
+    pub fn reserve(&mut self, side: u32, shadows: bool) {
+        let lanes = LANES;
+        // A tile may start anywhere in a block of eight columns: one more block.
+        let blocks = (side as usize).div_ceil(lanes).saturating_add(1).saturating_mul(side as usize);
+        let grow = |v: &mut Vec<f32x8>| v.reserve(blocks.saturating_sub(v.len()));
+        grow(&mut self.depth);
+        self.rgb.iter_mut().for_each(grow);
+        if shadows {
+            self.shadow.reserve(blocks.saturating_sub(self.shadow.len()));
+        }
+    }
+
     #[inline]
     pub(crate) fn index(&self, x: i32, y: i32) -> usize {
         (y - self.rect.y0) as usize * self.stride + (x - self.origin) as usize
