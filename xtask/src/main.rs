@@ -15,6 +15,7 @@ mod modules;
 mod regress;
 mod report;
 mod report_shadows;
+mod timing;
 mod versus;
 
 /// Developer tasks for zline.

@@ -18,7 +18,7 @@ use anyhow::{Context, Result};
 use zline::scene::{Scene, ShadowMode};
 use zline_truth::{render_truth, ErrorStats};
 
-use crate::report::time_interleaved;
+use crate::timing::time_interleaved;
 
 /// Image size of the shadow scenes (the truth lights 256 samples per pixel
 /// for the dense area light).
