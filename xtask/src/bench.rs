@@ -184,6 +184,17 @@ fn cases(assets: &Path) -> Result<Vec<Case>> {
     // one transparent, over that floor.
     out.push(Case { name: "plane textured + fog".into(), build: Box::new(|| textured_plane(false)) });
     out.push(Case { name: "transparent spheres".into(), build: Box::new(|| textured_plane(true)) });
+    // The same with the floor receiving planar shadows from both spheres
+    // (two default lights): the cost of the shadow mode.
+    out.push(Case {
+        name: "transparent spheres + planar shadows".into(),
+        build: Box::new(|| {
+            let mut scene = textured_plane(true)?;
+            let floor = zline::scene::ShadowPlane::of_object(0, &scene.objects[0]).context("the floor is flat")?;
+            scene.shadows = zline::scene::Shadows { mode: zline::scene::ShadowMode::Planar, planes: vec![floor] };
+            Ok(scene)
+        }),
+    });
     // 500 × 1000 ≈ 1M triangles.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
         out.push(Case {
