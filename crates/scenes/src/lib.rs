@@ -2,11 +2,15 @@
 //! zline-scene and its procedural meshes: no files, no loaders.
 //!
 //! Modules: `demo` (the demo scene: the three shading modes side by side,
-//! texture, transparency and fog) and [`hard_cases`](mod@hard_cases) (scenes that stress
+//! texture, transparency and fog), `room` (the course's realistic room: a
+//! globe on a table under a pendant lamp, textured floor and walls, planar
+//! shadows on the floor) and [`hard_cases`](mod@hard_cases) (scenes that stress
 //! numerical stability, each with the outcome a correct render shows).
 
 mod demo;
 pub mod hard_cases;
+mod room;
 
 pub use demo::demo_scene;
 pub use hard_cases::{hard_cases, HardCase};
+pub use room::{room_scene, ROOM_HALF_WIDTH, ROOM_HEIGHT};

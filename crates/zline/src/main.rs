@@ -40,8 +40,13 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
-    /// Render the built-in demo scene (needs no files).
+    /// Render a built-in scene (needs no files).
     Demo {
+        /// Which built-in scene: the demo (shading modes, texture,
+        /// transparency, fog) or the room (a globe and a lamp, planar
+        /// shadows on the floor).
+        #[arg(long, value_enum, default_value_t = BuiltIn::Demo)]
+        scene: BuiltIn,
         #[command(flatten)]
         common: Common,
     },
@@ -112,6 +117,31 @@ struct Common {
         value_parser = clap::value_parser!(u32).range(MIN_TILE_SIZE as i64..=MAX_TILE_SIZE as i64)
     )]
     tile_size: u32,
+}
+
+/// The built-in scenes of `zline demo --scene`.
+#[derive(Clone, Copy, PartialEq, Eq, Debug, ValueEnum)]
+enum BuiltIn {
+    /// The demo scene (the default).
+    Demo,
+    /// The room lit by a lamp, with planar shadows on the floor.
+    Room,
+}
+
+impl BuiltIn {
+    fn scene(self) -> Scene {
+        match self {
+            BuiltIn::Demo => zline::scenes::demo_scene(),
+            BuiltIn::Room => zline::scenes::room_scene(),
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            BuiltIn::Demo => "demo",
+            BuiltIn::Room => "room",
+        }
+    }
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -298,9 +328,11 @@ fn one_line(e: &anyhow::Error) -> String {
 }
 
 fn run(cli: Cli) -> Result<()> {
-    let (input, allow_paths_outside, common) = match cli.command {
-        Command::Render { input, allow_paths_outside, common } => (Some(input), allow_paths_outside, common),
-        Command::Demo { common } => (None, false, common),
+    let (input, built_in, allow_paths_outside, common) = match cli.command {
+        Command::Render { input, allow_paths_outside, common } => {
+            (Some(input), BuiltIn::Demo, allow_paths_outside, common)
+        }
+        Command::Demo { scene, common } => (None, scene, false, common),
     };
     // Everything that can be checked without the scene is checked before
     // loading it: a bad output path or thread count fails at once.
@@ -313,7 +345,7 @@ fn run(cli: Cli) -> Result<()> {
     let loading = Instant::now();
     let mut scene = match &input {
         Some(input) => load_input(input, LoadOptions { allow_outside: allow_paths_outside })?,
-        None => zline::scenes::demo_scene(),
+        None => built_in.scene(),
     };
     apply_overrides(&mut scene.settings, &common);
     apply_fog(&mut scene, &common);
@@ -345,7 +377,7 @@ fn run(cli: Cli) -> Result<()> {
         elapsed.as_secs_f64() * 1e3
     );
     if let Some(why) = blank_image(&scene, &stats) {
-        let name = input.as_deref().map_or_else(|| "demo".into(), |p| p.display().to_string());
+        let name = input.as_deref().map_or_else(|| built_in.name().into(), |p| p.display().to_string());
         eprintln!("warning: {name}: the image is blank: {why}");
     }
     if common.timings {

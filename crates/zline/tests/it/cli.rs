@@ -197,3 +197,46 @@ fn the_shadows_flag_is_checked_and_warns_when_nothing_receives() {
     check_png(&out, &png, (32, 24));
     assert!(!String::from_utf8_lossy(&out.stderr).contains("warning:"), "the scene has a shadow plane");
 }
+
+#[test]
+fn demo_scene_room_renders_the_room_with_shadows_on_the_floor() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("room.png");
+    let out = zline(&["demo", "--scene", "room", "-o", png.to_str().unwrap()]);
+    // The room's own size, as README shows it.
+    let room = check_png(&out, &png, (960, 540));
+    let distinct: std::collections::HashSet<_> = room.pixels().collect();
+    assert!(distinct.len() > 1000, "the room looks empty ({} colours)", distinct.len());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("warning"), "{stderr}");
+
+    // The room is not the demo (the default), and its shadows are on by
+    // default: turning them off brightens the floor and changes nothing
+    // else's colour for the worse.
+    let small = |name: &str, extra: &[&str]| {
+        let p = dir.path().join(name);
+        let args = [&["demo", "-o", p.to_str().unwrap(), "--size", "240x135"][..], extra].concat();
+        check_png(&zline(&args), &p, (240, 135))
+    };
+    let demo = small("demo.png", &[]);
+    assert_eq!(demo, small("demo-named.png", &["--scene", "demo"]), "--scene demo is the default");
+    let shadowed = small("room.png", &["--scene", "room"]);
+    assert_ne!(shadowed, demo);
+    let lit = small("lit.png", &["--scene", "room", "--shadows", "none"]);
+    let luma = |p: &image::Rgb<u8>| p.0.iter().map(|&c| u32::from(c)).sum::<u32>();
+    let darker = shadowed.pixels().zip(lit.pixels()).filter(|(s, l)| luma(s) + 6 < luma(l)).count();
+    let brighter = shadowed.pixels().zip(lit.pixels()).filter(|(s, l)| luma(s) > luma(l) + 6).count();
+    assert!(darker > 240 * 135 / 50, "only {darker} pixels are in shadow");
+    assert_eq!(brighter, 0, "a shadow brightened a pixel");
+}
+
+#[test]
+fn an_unknown_built_in_scene_is_a_usage_error() {
+    let out = zline(&["demo", "--scene", "bogus", "-o", "x.png"]);
+    check_error_line(&out, 2, &["bogus", "--scene"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("demo") && stderr.contains("room"), "the valid names are listed:\n{stderr}");
+    // Only the demo subcommand has built-in scenes.
+    let out = zline(&["render", "x.obj", "--scene", "room", "-o", "x.png"]);
+    assert_eq!(out.status.code(), Some(2));
+}
