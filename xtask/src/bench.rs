@@ -190,8 +190,10 @@ fn cases(assets: &Path) -> Result<Vec<Case>> {
         name: "transparent spheres + planar shadows".into(),
         build: Box::new(|| {
             let mut scene = textured_plane(true)?;
-            let floor = zline::scene::ShadowPlane::of_object(0, &scene.objects[0]).context("the floor is flat")?;
-            scene.shadows = zline::scene::Shadows { mode: zline::scene::ShadowMode::Planar, planes: vec![floor] };
+            let floor =
+                zline::scene::ShadowPlane::of_object(0, &scene.objects[0]).context("the floor is flat")?;
+            scene.shadows =
+                zline::scene::Shadows { mode: zline::scene::ShadowMode::Planar, planes: vec![floor] };
             Ok(scene)
         }),
     });

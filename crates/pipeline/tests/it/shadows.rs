@@ -141,3 +141,29 @@ fn shadows_are_the_same_for_any_tile_size_and_thread_count() {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(3).build().expect("pool");
     assert!(pool.install(|| draw(&s)) == reference, "3 threads");
 }
+
+#[test]
+fn hostile_shadow_geometry_draws_a_defined_image() {
+    use zline_shading::Attenuation;
+    let point = |position: Vec3| Light::Point { position, color: Vec3::ONE, attenuation: Attenuation::NONE };
+    let cases: Vec<(&str, Vec<Light>, f32)> = vec![
+        ("light on the plane", vec![point(Vec3::new(0.0, 0.0, -4.0))], 1.0),
+        ("light inside the occluder's plane", vec![point(Vec3::new(-1.0, 0.0, -2.0))], 1.0),
+        ("light a hair above the plane", vec![point(Vec3::new(0.0, 0.0, -4.0 + 1e-6))], 1.0),
+        ("light at 1e30", vec![point(Vec3::splat(1e30))], 1.0),
+        (
+            "directional along the plane",
+            vec![Light::Directional { direction: Vec3::X, color: Vec3::ONE }],
+            1.0,
+        ),
+        ("huge occluder", vec![sun(Vec3::ONE)], 1e30),
+        ("40 lights", (0..40).map(|k| point(Vec3::new(k as f32 * 0.1 - 2.0, 1.0, -1.0))).collect(), 1.0),
+    ];
+    for (name, lights, scale) in cases {
+        let mut s = shadow_scene(lights, ShadingMode::Phong);
+        s.objects[1].world_from_object = glam::Mat4::from_scale(Vec3::splat(scale));
+        let a = draw(&s);
+        let b = zline_pipeline::render(&s, &zline_pipeline::RenderOptions { tile_size: 16 }).0;
+        assert!(a == b, "{name}: the image depends on the tile size");
+    }
+}
