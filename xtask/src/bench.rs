@@ -192,8 +192,11 @@ fn cases(assets: &Path) -> Result<Vec<Case>> {
             let mut scene = textured_plane(true)?;
             let floor =
                 zline::scene::ShadowPlane::of_object(0, &scene.objects[0]).context("the floor is flat")?;
-            scene.shadows =
-                zline::scene::Shadows { mode: zline::scene::ShadowMode::Planar, planes: vec![floor] };
+            scene.shadows = zline::scene::Shadows {
+                mode: zline::scene::ShadowMode::Planar,
+                planes: vec![floor],
+                ..Default::default()
+            };
             Ok(scene)
         }),
     });

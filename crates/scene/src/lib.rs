@@ -24,13 +24,14 @@ pub use area::{AreaLight, AreaShape};
 pub use error::MeshError;
 pub use limits::{
     MAX_ADAPTIVE_TOLERANCE, MAX_AREA_SAMPLES_PER_SIDE, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE,
-    MAX_MATERIAL_LIBRARIES, MAX_MODEL_FILE_BYTES, MAX_PRIMITIVE_DIVISIONS, MAX_PRIMITIVE_TRIANGLES, MAX_SSAA,
-    MAX_TEXTURE_PIXELS, MAX_TEXTURE_PIXELS_PER_MODEL, MAX_TEXT_FILE_BYTES, MAX_TRIANGLES, MAX_VERTICES,
+    MAX_MATERIAL_LIBRARIES, MAX_MODEL_FILE_BYTES, MAX_PRIMITIVE_DIVISIONS, MAX_PRIMITIVE_TRIANGLES,
+    MAX_SHADOW_MAP_SIZE, MAX_SSAA, MAX_TEXTURE_PIXELS, MAX_TEXTURE_PIXELS_PER_MODEL, MAX_TEXT_FILE_BYTES,
+    MAX_TRIANGLES, MAX_VERTICES,
 };
 pub use mesh::{face_normal, FALLBACK_NORMAL};
 pub use model::{
     Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, Object, Projection, RenderSettings,
-    Scene, ShadowMode, ShadowPlane, Shadows, TextureMap,
+    Scene, ShadowMode, ShadowPlane, Shadows, TextureMap, DEFAULT_SHADOW_MAP_SIZE,
 };
 pub use primitives::{cube, plane, torus, uv_sphere};
 pub use shadow::{light_position, shadow_matrix, shadow_matrix_f64};

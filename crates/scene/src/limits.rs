@@ -97,3 +97,6 @@ pub const MAX_THREADS: usize = 256;
 /// Samples along each side of an area light: k × k point lights, at most
 /// 256 per light (every sample costs a light per lit sample).
 pub const MAX_AREA_SAMPLES_PER_SIDE: u32 = 16;
+
+/// Shadow map side (each cube face of a point light), in texels.
+pub const MAX_SHADOW_MAP_SIZE: u32 = 8192;

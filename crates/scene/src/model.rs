@@ -363,17 +363,22 @@ pub enum ShadowMode {
     None,
     /// Planar projection shadows on the scene's [`ShadowPlane`]s.
     Planar,
+    /// Shadow maps: every surface receives and every surface casts; a
+    /// depth image from each light (six faces for a point light) decides
+    /// per sample whether the light is seen.
+    Map,
 }
 
 impl ShadowMode {
     /// Every mode, in the order the CLI lists them.
-    pub const ALL: [ShadowMode; 2] = [ShadowMode::None, ShadowMode::Planar];
+    pub const ALL: [ShadowMode; 3] = [ShadowMode::None, ShadowMode::Planar, ShadowMode::Map];
 
-    /// The name the scene file and the CLI use: "none", "planar".
+    /// The name the scene file and the CLI use: "none", "planar", "map".
     pub fn name(self) -> &'static str {
         match self {
             ShadowMode::None => "none",
             ShadowMode::Planar => "planar",
+            ShadowMode::Map => "map",
         }
     }
 }
@@ -390,18 +395,39 @@ pub struct ShadowPlane {
 }
 
 /// Shadows of a scene: the method and the surfaces that receive them.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Shadows {
     /// The method; [`ShadowMode::None`] ignores the planes.
     pub mode: ShadowMode,
     /// The receiving planes of [`ShadowMode::Planar`].
     pub planes: Vec<ShadowPlane>,
+    /// The side of each shadow map (each face of a point light's cube) in
+    /// texels, for [`ShadowMode::Map`].
+    pub map_size: u32,
+    /// Percentage-closer filtering for [`ShadowMode::Map`]: the light's
+    /// share is the fraction of the 3 × 3 nearest texels that see it,
+    /// instead of the one nearest texel's yes or no.
+    pub pcf: bool,
+}
+
+/// [`Shadows::map_size`] by default.
+pub const DEFAULT_SHADOW_MAP_SIZE: u32 = 1024;
+
+impl Default for Shadows {
+    fn default() -> Shadows {
+        Shadows { mode: ShadowMode::None, planes: Vec::new(), map_size: DEFAULT_SHADOW_MAP_SIZE, pcf: true }
+    }
 }
 
 impl Shadows {
-    /// True when object `index` receives shadows in this mode.
+    /// True when object `index` receives shadows in this mode: a planar
+    /// mode's planes, every object with shadow maps.
     pub fn receives(&self, index: usize) -> bool {
-        self.mode == ShadowMode::Planar && self.planes.iter().any(|p| p.receiver == index)
+        match self.mode {
+            ShadowMode::None => false,
+            ShadowMode::Planar => self.planes.iter().any(|p| p.receiver == index),
+            ShadowMode::Map => true,
+        }
     }
 }
 

@@ -365,7 +365,7 @@ impl Builder<'_> {
             None => framing_camera(min, max, aspect(&settings)),
         };
         let fog = file.fog.as_ref().map(|f| self.fog(f)).transpose()?;
-        let shadows = Shadows { mode, planes };
+        let shadows = Shadows { mode, planes, ..Shadows::default() };
         Ok(Scene { shadows, camera, background, ambient, lights, objects, settings, fog })
     }
 

@@ -37,6 +37,7 @@ fn shadow_scene(lights: Vec<Light>, receiver_shading: ShadingMode) -> zline_scen
     s.shadows = Shadows {
         mode: ShadowMode::Planar,
         planes: vec![ShadowPlane::of_object(0, &s.objects[0]).expect("the floor is flat")],
+        ..Shadows::default()
     };
     s
 }

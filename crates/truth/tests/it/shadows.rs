@@ -66,7 +66,11 @@ fn occluder() -> zline_scene::Object {
 /// shadows (plane y = 0) in `mode`.
 fn scene(eye_y: f32, lights: Vec<Light>, objects: Vec<zline_scene::Object>, mode: ShadowMode) -> Scene {
     Scene {
-        shadows: Shadows { mode, planes: vec![ShadowPlane { receiver: 0, plane: glam::Vec4::Y }] },
+        shadows: Shadows {
+            mode,
+            planes: vec![ShadowPlane { receiver: 0, plane: glam::Vec4::Y }],
+            ..Default::default()
+        },
         camera: Camera {
             eye: Vec3::new(0.0, eye_y, 0.0),
             target: Vec3::ZERO,

@@ -403,7 +403,7 @@ prop_compose! {
         objects.extend(casters);
         let plane = ShadowPlane::of_object(0, &objects[0]).expect("the floor is flat");
         Scene {
-            shadows: Shadows { mode: ShadowMode::Planar, planes: vec![plane] },
+            shadows: Shadows { mode: ShadowMode::Planar, planes: vec![plane], ..Default::default() },
             camera,
             background: Vec3::ZERO,
             ambient: ambient * 0.4,
