@@ -28,6 +28,7 @@ mod render;
 pub mod resolve;
 pub mod setup;
 mod shadow;
+mod shadow_map;
 pub mod tile;
 pub mod vertex;
 pub mod volume;

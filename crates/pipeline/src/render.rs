@@ -22,6 +22,7 @@ use crate::setup::{
     TextureUse, VertexColors, Viewer,
 };
 use crate::shadow;
+use crate::shadow_map::ShadowMaps;
 use crate::tile::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 use crate::vertex::{
     transform_mesh, ClipVertex, ObjectTransforms, Screen, VertexLighting, VertexLights, Viewport,
@@ -94,6 +95,8 @@ pub struct Renderer {
     buffers: Vec<Mutex<BandBuffers>>,
     /// Scratch for one (plane, light) pair's planar shadow mesh.
     shadow_mesh: Option<zline_scene::Mesh>,
+    /// The frame's shadow maps (`ShadowMode::Map`).
+    maps: Option<ShadowMaps>,
 }
 
 /// The frame's lights, materials and textures, indexed by the primitives.
@@ -196,6 +199,8 @@ impl Renderer {
         if scene.shadows.mode == ShadowMode::Planar {
             self.setup_shadows(scene, &frame);
         }
+        self.maps = (scene.shadows.mode == ShadowMode::Map && !scene.lights.is_empty())
+            .then(|| ShadowMaps::build(scene, &frame.eye_from_world));
         stats.geometry = start.elapsed();
 
         let start = Instant::now();
@@ -389,7 +394,12 @@ impl Renderer {
             order.reserve(transparent.saturating_sub(order.len()));
         }
         let t = &self.tables;
-        let shade = ShadeContext { lighting: &t.lighting, materials: &t.materials, textures: &t.textures };
+        let shade = ShadeContext {
+            lighting: &t.lighting,
+            materials: &t.materials,
+            textures: &t.textures,
+            maps: self.maps.as_ref(),
+        };
         let (bins, chunks) = (&self.bins, &self.chunks[..self.used]);
         let (vw, vh) = (frame.viewport.width, frame.viewport.height);
         let fog = scene.fog.map(|f| FogPass::new(f, frame.clip_from_eye, vw, vh, frame.depth));

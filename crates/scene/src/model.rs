@@ -408,6 +408,10 @@ pub struct Shadows {
     /// share is the fraction of the 3 × 3 nearest texels that see it,
     /// instead of the one nearest texel's yes or no.
     pub pcf: bool,
+    /// A scale on the shadow maps' slope-scaled depth bias (1 by default:
+    /// 1.5 + 2·tan θ texels of depth). 0 shows the acne a map without bias
+    /// has; large values detach shadows from their casters (peter-panning).
+    pub bias: f32,
 }
 
 /// [`Shadows::map_size`] by default.
@@ -415,7 +419,13 @@ pub const DEFAULT_SHADOW_MAP_SIZE: u32 = 1024;
 
 impl Default for Shadows {
     fn default() -> Shadows {
-        Shadows { mode: ShadowMode::None, planes: Vec::new(), map_size: DEFAULT_SHADOW_MAP_SIZE, pcf: true }
+        Shadows {
+            mode: ShadowMode::None,
+            planes: Vec::new(),
+            map_size: DEFAULT_SHADOW_MAP_SIZE,
+            pcf: true,
+            bias: 1.0,
+        }
     }
 }
 

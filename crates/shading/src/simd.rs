@@ -132,7 +132,22 @@ impl PreparedLights {
     /// ambient+diffuse and specular parts, for texturing (SPEC §7).
     #[inline]
     pub fn shade_parts_x8(&self, m: &PreparedMaterial, point: Vec3x8, normal: Vec3x8) -> (Vec3x8, Vec3x8) {
-        self.parts_x8(m, point, normal, |_| all_lanes())
+        self.parts_x8(m, point, normal, |_| all_lanes(), |_| None)
+    }
+
+    /// [`Self::shade_parts_x8`] where light k (its index in the scene's
+    /// list) reaches each lane with the share `share(k, point, normal)` in
+    /// [0, 1] of its intensity (shadow maps: the fraction of the filter's
+    /// texels that see it).
+    #[inline]
+    pub fn shade_parts_x8_shared(
+        &self,
+        m: &PreparedMaterial,
+        point: Vec3x8,
+        normal: Vec3x8,
+        share: impl Fn(u32, Vec3x8, Vec3x8) -> f32x8,
+    ) -> (Vec3x8, Vec3x8) {
+        self.parts_x8(m, point, normal, |_| all_lanes(), |k| Some(share(k, point, normal)))
     }
 
     /// [`Self::shade_x8`] where some lights may be hidden: light k (its
@@ -162,17 +177,19 @@ impl PreparedLights {
         mask: i32x8,
     ) -> (Vec3x8, Vec3x8) {
         let first = m.shadow_bits.unwrap_or(u32::MAX);
-        self.parts_x8(m, point, normal, |k| match first.checked_add(k).filter(|&b| b < 32) {
+        let visible = |k: u32| match first.checked_add(k).filter(|&b| b < 32) {
             Some(b) => {
                 let bit = i32x8::splat(1 << b);
                 bytemuck::cast::<i32x8, f32x8>((mask & bit).cmp_eq(i32x8::ZERO))
             }
             None => all_lanes(),
-        })
+        };
+        self.parts_x8(m, point, normal, visible, |_| None)
     }
 
     /// The sums over the lights, light k counting in the lanes
-    /// `visible(k)` sets.
+    /// `visible(k)` sets, with its intensity scaled by `share(k)` when
+    /// that is given.
     #[inline(always)]
     fn parts_x8(
         &self,
@@ -180,11 +197,16 @@ impl PreparedLights {
         point: Vec3x8,
         normal: Vec3x8,
         visible: impl Fn(u32) -> f32x8,
+        share: impl Fn(u32) -> Option<f32x8>,
     ) -> (Vec3x8, Vec3x8) {
         let view = Vec3x8::default().sub(point).normalize_or_zero();
         let mut sum = SumsX8::default();
         for (to_light, color, k) in self.directional_lights() {
-            sum.add(m, normal, view, Vec3x8::splat(to_light), Vec3x8::splat(color), visible(k));
+            let mut intensity = Vec3x8::splat(color);
+            if let Some(f) = share(k) {
+                intensity = intensity.scale(f);
+            }
+            sum.add(m, normal, view, Vec3x8::splat(to_light), intensity, visible(k));
         }
         for (position, color, attenuation, k) in self.point_lights() {
             let v = Vec3x8::splat(position).sub(point);
@@ -194,6 +216,9 @@ impl PreparedLights {
             if let Some(a) = attenuation {
                 let denom = f32x8::splat(a.a0) + dist * (f32x8::splat(a.a1) + dist * f32x8::splat(a.a2));
                 let f = denom.cmp_gt(f32x8::ONE).blend(f32x8::ONE / denom, f32x8::ONE);
+                intensity = intensity.scale(f);
+            }
+            if let Some(f) = share(k) {
                 intensity = intensity.scale(f);
             }
             sum.add(m, normal, view, v.div(dist), intensity, present);

@@ -407,6 +407,13 @@ impl TileTarget {
     ) -> u64 {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
+        if let Some(maps) = ctx.maps {
+            return self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
+                let (_, eye, normal) = phong_point::<_, I>(a);
+                let (ad, sp) = l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n));
+                ((ad + sp).clamp01(), f32x8::ONE)
+            });
+        }
         if m.shadow_bits.is_some() {
             return self.scan(edges, planes, pass, &IgnoreAlpha, |a, mask| {
                 let (_, eye, normal) = phong_point::<_, I>(a);
@@ -429,6 +436,14 @@ impl TileTarget {
     ) -> u64 {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
+        if let Some(maps) = ctx.maps {
+            return self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
+                let (w, eye, normal) = phong_point::<_, I>(a);
+                let (ambient_diffuse, specular) =
+                    l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n));
+                ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
+            });
+        }
         if m.shadow_bits.is_some() {
             return self.scan(edges, planes, pass, &IgnoreAlpha, |a, mask| {
                 let (w, eye, normal) = phong_point::<_, I>(a);
@@ -505,6 +520,13 @@ impl TileTarget {
         let map = &ctx.textures[p.shader.texture as usize];
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let prim = (&p.edges, &p.depth, &p.shader.planes);
+        if let Some(maps) = ctx.maps {
+            return self.textured::<_, I, L, P, A>(prim, map, pass, |a, w, _| {
+                let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
+                let share = |k, p, n| maps.visibility_x8(k, p, n);
+                l.shade_parts_x8_shared(m, triple(a, textured::EYE, w), normal, share)
+            });
+        }
         if m.shadow_bits.is_some() {
             return self.textured::<_, I, L, P, A>(prim, map, pass, |a, w, mask| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
@@ -532,10 +554,14 @@ impl TileTarget {
         let map = &ctx.textures[p.shader.texture as usize];
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         // Shadowed or not in one body: this kernel is out of line already.
+        let maps = ctx.maps;
         self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w, mask| {
             let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-            let (ambient_diffuse, specular) =
-                l.shade_parts_x8_shadowed(m, triple(a, textured::EYE, w), normal, mask);
+            let eye = triple(a, textured::EYE, w);
+            let (ambient_diffuse, specular) = match maps {
+                Some(maps) => l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n)),
+                None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
+            };
             (triple(a, textured::COLOR, w) * ambient_diffuse, specular)
         })
     }

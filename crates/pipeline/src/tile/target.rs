@@ -35,6 +35,9 @@ pub struct ShadeContext<'a> {
     pub materials: &'a [PreparedMaterial],
     /// The frame's textures, indexed by the primitives' `texture`.
     pub textures: &'a [FrameTexture],
+    /// The frame's shadow maps (`ShadowMode::Map`): every Phong kernel
+    /// scales each light by the share of it its sample sees.
+    pub maps: Option<&'a crate::shadow_map::ShadowMaps>,
 }
 
 /// A tile's depth buffer and colour planes, one value per sample, covering

@@ -168,3 +168,50 @@ fn hostile_shadow_geometry_draws_a_defined_image() {
         assert!(a == b, "{name}: the image depends on the tile size");
     }
 }
+
+#[test]
+fn a_shadow_map_darkens_the_same_square_of_pixels() {
+    // The planar scene's square under the same sun, with shadow maps: the
+    // map's texels (≈ 0.06 px on the floor at 1024²) and its 3 × 3 filter
+    // stay far from the pixel centres, which lie ≥ ½ px from the shadow's
+    // edges, so the prediction is the same.
+    for pcf in [true, false] {
+        let mut s = shadow_scene(vec![sun(Vec3::ONE)], ShadingMode::Phong);
+        s.shadows = Shadows { mode: ShadowMode::Map, pcf, ..Shadows::default() };
+        let image = draw(&s);
+        let (lit, dark) = (floor_color(&[Vec3::ONE]), floor_color(&[]));
+        for y in 0..SIZE {
+            for x in 0..SIZE {
+                if on_occluder(x, y) {
+                    continue;
+                }
+                let want = if in_shadow(x, y) { dark } else { lit };
+                assert_eq!(image.pixel(x, y), want, "pcf {pcf}: pixel ({x}, {y})");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_point_light_s_cube_map_shadows_the_floor_under_the_square() {
+    // A point light at (−1, 0, 0) right above the occluder's centre line
+    // (at z = 0, 2 in front of it): the shadow on the floor at z = −4 is the
+    // square scaled by 4/2 about the light's foot: x ∈ [−2, 0], y ∈ [−1, 1],
+    // which is NC [−0.5, 0] × [−0.25, 0.25]: columns 16..32, rows 24..40.
+    let light = Light::Point {
+        position: Vec3::new(-1.0, 0.0, 0.0),
+        color: Vec3::ONE,
+        attenuation: Default::default(),
+    };
+    let mut s = shadow_scene(vec![light], ShadingMode::Phong);
+    s.shadows = Shadows { mode: ShadowMode::Map, ..Shadows::default() };
+    let image = draw(&s);
+    // Behind the occluder (columns 8..24) the floor is hidden; check the
+    // visible part of the shadow and the lit floor beside it.
+    let centre = image.pixel(28, 31);
+    let beside = image.pixel(40, 31);
+    assert!(centre.iter().zip(&beside).all(|(c, b)| c < b), "shadowed {centre:?} vs lit {beside:?}");
+    let ambient = floor_color(&[]);
+    assert_eq!(centre, ambient, "in the shadow only the ambient term is left");
+    assert_ne!(image.pixel(33, 31), ambient, "column 33 lies outside the shadow");
+}

@@ -1,0 +1,323 @@
+//! Shadow maps (`ShadowMode::Map`): a depth image from each light, drawn
+//! with the raster core (`zline_raster`: snapped vertices, the edge table,
+//! depth planes), then read per sample by the Phong kernels.
+//!
+//! - A directional light gets one orthographic map fitted to the scene's
+//!   bounds, looking along the light; depth is the distance along it.
+//! - A point light gets a cube: six 90° perspective faces, one per axis of
+//!   eye space (±x, ±y, ±z); a sample reads the face of its largest
+//!   coordinate seen from the light, depth is that coordinate's magnitude.
+//!   Faces are drawn with 1/depth interpolated (it is affine in the face's
+//!   screen) and store the nearest depth.
+//! - Every triangle casts, both sides, the receiver's own included.
+//!
+//! A sample at depth d (from the light) is hidden when d − bias exceeds
+//! the stored depth. The bias is slope-scaled: (1.5 + 2·tan θ) texels'
+//! worth of depth at the sample, θ the angle between the normal and the
+//! light, tan θ at most 10, times `Shadows::bias` (1 by default). With PCF the light's share is the fraction of
+//! the 3 × 3 texels around the sample that see it; without, the nearest
+//! texel decides.
+
+use glam::{Mat4, Vec3};
+use wide::f32x8;
+use zline_raster::{DepthPlane, EdgeTable, FixedPoint, PlaneBasis, Rect};
+use zline_scene::{Light, Scene};
+use zline_shading::Vec3x8;
+
+/// The near plane of a point light's faces, as a share of the scene's size.
+const NEAR: f32 = 1e-4;
+
+/// One depth image: `size` × `size` texels, row-major.
+#[derive(Clone, Debug, Default)]
+struct DepthMap {
+    size: u32,
+    depth: Vec<f32>,
+}
+
+impl DepthMap {
+    fn new(size: u32) -> DepthMap {
+        DepthMap { size, depth: vec![f32::INFINITY; size as usize * size as usize] }
+    }
+
+    /// Draws a triangle given in map texel coordinates (x, y) with the value
+    /// `v` per vertex interpolated affinely; stores `depth(v)` where it is
+    /// nearer than what is there.
+    fn draw(&mut self, p: [(f32, f32); 3], v: [f64; 3], depth: impl Fn(f64) -> f32) {
+        let Some(fixed) = p.iter().map(|&(x, y)| FixedPoint::snap(x, y)).collect::<Option<Vec<_>>>() else {
+            return;
+        };
+        let fixed = [fixed[0], fixed[1], fixed[2]];
+        let (Some(edges), Some(basis)) = (EdgeTable::new(fixed), PlaneBasis::new(fixed)) else {
+            return;
+        };
+        let plane = DepthPlane::new(&basis, v);
+        let n = self.size as i32;
+        let size = self.size as usize;
+        edges.scan(Rect { x0: 0, y0: 0, x1: n, y1: n }, |s| {
+            for x in s.x0..s.x1 {
+                let d = depth(plane.at(f64::from(x) + 0.5, f64::from(s.y) + 0.5));
+                let t = &mut self.depth[s.y as usize * size + x as usize];
+                if d < *t {
+                    *t = d;
+                }
+            }
+        });
+    }
+
+    /// The stored depth at texel (x, y), clamped to the map.
+    #[inline]
+    fn at(&self, x: i32, y: i32) -> f32 {
+        let last = self.size as i32 - 1;
+        self.depth[y.clamp(0, last) as usize * self.size as usize + x.clamp(0, last) as usize]
+    }
+}
+
+/// A light's maps, in eye space.
+#[derive(Clone, Debug)]
+enum LightMap {
+    /// Orthographic: `from_eye` takes an eye-space point to (x, y) in
+    /// texels and z the depth along the light.
+    Directional { from_eye: Mat4, map: DepthMap, texel: f32, to_light: Vec3 },
+    /// Six faces around the light at `position`; face 2·axis + (1 if the
+    /// coordinate is negative).
+    Point { position: Vec3, faces: Vec<DepthMap> },
+    /// A light that casts nothing (no geometry, or a degenerate light).
+    Unshadowed,
+}
+
+/// The frame's shadow maps, one entry per scene light, and the filter.
+#[derive(Clone, Debug, Default)]
+pub struct ShadowMaps {
+    lights: Vec<LightMap>,
+    pcf: bool,
+    /// The scale on the slope-scaled bias (`Shadows::bias`).
+    bias: f32,
+}
+
+/// The two axes that span a cube face of `axis` (texel x, texel y).
+fn face_axes(axis: usize) -> (usize, usize) {
+    match axis {
+        0 => (1, 2),
+        1 => (2, 0),
+        _ => (0, 1),
+    }
+}
+
+impl ShadowMaps {
+    /// Draws the maps of every light of `scene` with `eye_from_world` as
+    /// the frame's view.
+    pub fn build(scene: &Scene, eye_from_world: &Mat4) -> ShadowMaps {
+        let size = scene.shadows.map_size.clamp(16, zline_scene::MAX_SHADOW_MAP_SIZE);
+        // Every triangle of the scene in eye space.
+        let mut tris: Vec<[Vec3; 3]> = Vec::new();
+        for o in &scene.objects {
+            let m = *eye_from_world * o.world_from_object;
+            let p: Vec<Vec3> = o.mesh.positions.iter().map(|&p| m.transform_point3(p)).collect();
+            for t in &o.mesh.triangles {
+                let v = t.map(|i| p.get(i as usize).copied().unwrap_or(Vec3::NAN));
+                if v.iter().all(|p| p.is_finite()) {
+                    tris.push(v);
+                }
+            }
+        }
+        let (lo, hi) = tris
+            .iter()
+            .flatten()
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        let extent = (hi - lo).max_element();
+        let lights = scene
+            .lights
+            .iter()
+            .map(|light| {
+                if tris.is_empty() || !(extent.is_finite() && extent > 0.0) {
+                    return LightMap::Unshadowed;
+                }
+                match light.transformed(eye_from_world) {
+                    Light::Directional { direction, .. } => directional(&tris, (lo, hi), direction, size),
+                    Light::Point { position, .. } => point(&tris, position, extent, size),
+                }
+            })
+            .collect();
+        let bias = if scene.shadows.bias.is_finite() { scene.shadows.bias.max(0.0) } else { 1.0 };
+        ShadowMaps { lights, pcf: scene.shadows.pcf, bias }
+    }
+
+    /// The share of light `k` that reaches each lane's eye-space `point`
+    /// with unit `normal`: 0 (hidden) to 1 (seen).
+    pub fn visibility_x8(&self, k: u32, point: Vec3x8, normal: Vec3x8) -> f32x8 {
+        let Some(map) = self.lights.get(k as usize) else {
+            return f32x8::ONE;
+        };
+        let (px, py, pz) = (point.x.to_array(), point.y.to_array(), point.z.to_array());
+        let (nx, ny, nz) = (normal.x.to_array(), normal.y.to_array(), normal.z.to_array());
+        let lane = |i: usize| {
+            let (p, n) = (Vec3::new(px[i], py[i], pz[i]), Vec3::new(nx[i], ny[i], nz[i]));
+            self.visibility(map, p, n)
+        };
+        f32x8::from(std::array::from_fn::<f32, 8, _>(lane))
+    }
+
+    fn visibility(&self, map: &LightMap, p: Vec3, n: Vec3) -> f32 {
+        match map {
+            LightMap::Unshadowed => 1.0,
+            LightMap::Directional { from_eye, map, texel, to_light } => {
+                let q = from_eye.transform_point3(p);
+                let bias = self.bias * slope_bias(n.dot(*to_light)) * texel;
+                self.lookup(map, q.x, q.y, q.z - bias)
+            }
+            LightMap::Point { position, faces } => {
+                let v = p - *position;
+                let a = v.abs();
+                let axis = if a.x >= a.y && a.x >= a.z {
+                    0
+                } else if a.y >= a.z {
+                    1
+                } else {
+                    2
+                };
+                let major = a[axis];
+                if major.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                    return 1.0;
+                }
+                let face = &faces[2 * axis + usize::from(v[axis] < 0.0)];
+                let (ua, ub) = face_axes(axis);
+                let s = face.size as f32;
+                let (x, y) = ((v[ua] / major + 1.0) * 0.5 * s, (v[ub] / major + 1.0) * 0.5 * s);
+                let to_light = (-v).normalize_or_zero();
+                // A texel spans 2·d/size of depth d across the face.
+                let bias = self.bias * slope_bias(n.dot(to_light)) * 2.0 * major / s;
+                self.lookup(face, x, y, major - bias)
+            }
+        }
+    }
+
+    /// 1 when the texel at (x, y) stores a depth of at least `d` (the
+    /// sample is nearest), 0 when something nearer hides it; with PCF the
+    /// mean over the 3 × 3 texels around it.
+    fn lookup(&self, map: &DepthMap, x: f32, y: f32, d: f32) -> f32 {
+        let (tx, ty) = (x.floor() as i32, y.floor() as i32);
+        if !self.pcf {
+            return if d > map.at(tx, ty) { 0.0 } else { 1.0 };
+        }
+        let mut seen = 0u32;
+        for dy in -1..=1 {
+            for dx in -1..=1 {
+                seen += u32::from(d <= map.at(tx + dx, ty + dy));
+            }
+        }
+        seen as f32 / 9.0
+    }
+}
+
+/// The slope-scaled bias in texels: 1.5 + 2·tan θ for cos θ = `n_dot_l`,
+/// tan θ at most 10.
+fn slope_bias(n_dot_l: f32) -> f32 {
+    let c = n_dot_l.abs().max(0.0995);
+    let tan = (1.0 - c * c).max(0.0).sqrt() / c;
+    1.5 + 2.0 * tan.min(10.0)
+}
+
+/// The orthographic map of a directional light travelling along
+/// `direction` (eye space) over the bounds (lo, hi).
+fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size: u32) -> LightMap {
+    let forward = direction.normalize_or_zero();
+    if forward == Vec3::ZERO {
+        return LightMap::Unshadowed;
+    }
+    let (right, up) = forward.any_orthonormal_pair();
+    let view =
+        Mat4::from_cols(right.extend(0.0), up.extend(0.0), forward.extend(0.0), glam::Vec4::W).transpose();
+    let corners = (0..8).map(|i| {
+        Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    });
+    let (a, b) = corners
+        .map(|c| view.transform_point3(c))
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), p| (a.min(p), b.max(p)));
+    let span = (b.x - a.x).max(b.y - a.y).max(f32::MIN_POSITIVE);
+    let s = size as f32;
+    // Texels: x = (v.x − a.x)/span·size; depth from the box's near side.
+    let to_texels = Mat4::from_scale(Vec3::new(s / span, s / span, 1.0)) * Mat4::from_translation(-a);
+    let from_eye = to_texels * view;
+    let mut map = DepthMap::new(size);
+    for t in tris {
+        let q = t.map(|p| from_eye.transform_point3(p));
+        map.draw(q.map(|q| (q.x, q.y)), q.map(|q| f64::from(q.z)), |d| d as f32);
+    }
+    LightMap::Directional { from_eye, map, texel: span / s, to_light: -forward }
+}
+
+/// The six faces of a point light at `position` (eye space).
+fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32) -> LightMap {
+    let near = NEAR * extent;
+    let s = size as f32;
+    let mut faces = Vec::with_capacity(6);
+    for face in 0..6 {
+        let (axis, sign) = (face / 2, if face % 2 == 0 { 1.0 } else { -1.0 });
+        let (ua, ub) = face_axes(axis);
+        let mut map = DepthMap::new(size);
+        for t in tris {
+            // Face space: (a, b, depth) with depth along the face's axis.
+            let q = t.map(|p| {
+                let v = p - position;
+                Vec3::new(v[ua], v[ub], sign * v[axis])
+            });
+            for piece in clip_near(q, near) {
+                let tex = piece.map(|q| ((q.x / q.z + 1.0) * 0.5 * s, (q.y / q.z + 1.0) * 0.5 * s));
+                map.draw(tex, piece.map(|q| 1.0 / f64::from(q.z)), |inv| (1.0 / inv) as f32);
+            }
+        }
+        faces.push(map);
+    }
+    LightMap::Point { position, faces }
+}
+
+/// The parts of triangle `q` (face space) with depth ≥ `near`, as at most
+/// two triangles.
+fn clip_near(q: [Vec3; 3], near: f32) -> Vec<[Vec3; 3]> {
+    let mut poly: Vec<Vec3> = Vec::with_capacity(4);
+    for k in 0..3 {
+        let (a, b) = (q[k], q[(k + 1) % 3]);
+        let (fa, fb) = (a.z - near, b.z - near);
+        if fa >= 0.0 {
+            poly.push(a);
+        }
+        if (fa >= 0.0) != (fb >= 0.0) {
+            poly.push(a + (b - a) * (fa / (fa - fb)));
+        }
+    }
+    (1..poly.len().saturating_sub(1)).map(|k| [poly[0], poly[k], poly[k + 1]]).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_drawn_triangle_keeps_the_nearest_depth() {
+        let mut m = DepthMap::new(16);
+        m.draw([(0.0, 0.0), (16.0, 0.0), (0.0, 16.0)], [5.0; 3], |d| d as f32);
+        m.draw([(0.0, 0.0), (16.0, 0.0), (0.0, 16.0)], [7.0; 3], |d| d as f32);
+        assert_eq!(m.at(2, 2), 5.0);
+        assert_eq!(m.at(15, 15), f32::INFINITY, "outside the triangle");
+    }
+
+    #[test]
+    fn the_bias_grows_with_the_slope() {
+        assert_eq!(slope_bias(1.0), 1.5);
+        assert!(slope_bias(0.5) > slope_bias(0.9));
+        assert!(slope_bias(0.0) <= 21.5 + 1e-3);
+    }
+
+    #[test]
+    fn near_clipping_keeps_the_far_part() {
+        let q = [Vec3::new(0.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0), Vec3::new(0.0, 1.0, 1.0)];
+        let pieces = clip_near(q, 0.5);
+        assert_eq!(pieces.len(), 2);
+        assert!(pieces.iter().flatten().all(|p| p.z >= 0.5 - 1e-6));
+        assert!(clip_near([Vec3::NEG_Z; 3], 0.1).is_empty());
+    }
+}
