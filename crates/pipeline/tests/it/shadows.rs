@@ -123,24 +123,27 @@ fn a_receiver_does_not_shadow_other_planes_through_its_mask() {
 
 #[test]
 fn shadows_are_the_same_for_any_tile_size_and_thread_count() {
-    let s = shadow_scene(
-        vec![
-            sun(Vec3::ONE),
-            Light::Point {
-                position: Vec3::new(1.0, 2.0, -1.0),
-                color: Vec3::splat(0.5),
-                attenuation: zline_shading::Attenuation::NONE,
-            },
-        ],
-        ShadingMode::Phong,
-    );
-    let reference = draw(&s);
-    for tile_size in [1, 7, 16, 1000] {
-        let image = zline_pipeline::render(&s, &zline_pipeline::RenderOptions { tile_size }).0;
-        assert!(image == reference, "tile {tile_size}");
+    for mode in [ShadowMode::Planar, ShadowMode::Map] {
+        let mut s = shadow_scene(
+            vec![
+                sun(Vec3::ONE),
+                Light::Point {
+                    position: Vec3::new(1.0, 2.0, -1.0),
+                    color: Vec3::splat(0.5),
+                    attenuation: zline_shading::Attenuation::NONE,
+                },
+            ],
+            ShadingMode::Phong,
+        );
+        s.shadows.mode = mode;
+        let reference = draw(&s);
+        for tile_size in [1, 7, 16, 1000] {
+            let image = zline_pipeline::render(&s, &zline_pipeline::RenderOptions { tile_size }).0;
+            assert!(image == reference, "{mode:?}: tile {tile_size}");
+        }
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(3).build().expect("pool");
+        assert!(pool.install(|| draw(&s)) == reference, "{mode:?}: 3 threads");
     }
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(3).build().expect("pool");
-    assert!(pool.install(|| draw(&s)) == reference, "3 threads");
 }
 
 #[test]
