@@ -164,11 +164,15 @@ fn hostile_shadow_geometry_draws_a_defined_image() {
         ("40 lights", (0..40).map(|k| point(Vec3::new(k as f32 * 0.1 - 2.0, 1.0, -1.0))).collect(), 1.0),
     ];
     for (name, lights, scale) in cases {
-        let mut s = shadow_scene(lights, ShadingMode::Phong);
-        s.objects[1].world_from_object = glam::Mat4::from_scale(Vec3::splat(scale));
-        let a = draw(&s);
-        let b = zline_pipeline::render(&s, &zline_pipeline::RenderOptions { tile_size: 16 }).0;
-        assert!(a == b, "{name}: the image depends on the tile size");
+        for mode in [ShadowMode::Planar, ShadowMode::Map] {
+            let mut s = shadow_scene(lights.clone(), ShadingMode::Phong);
+            s.shadows.mode = mode;
+            s.shadows.map_size = 64;
+            s.objects[1].world_from_object = glam::Mat4::from_scale(Vec3::splat(scale));
+            let a = draw(&s);
+            let b = zline_pipeline::render(&s, &zline_pipeline::RenderOptions { tile_size: 16 }).0;
+            assert!(a == b, "{name}, {mode:?}: the image depends on the tile size");
+        }
     }
 }
 
