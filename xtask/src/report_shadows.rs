@@ -10,6 +10,13 @@
 //!   point lights, k = 1 … 5 (up to 25 lights: the shadow mask has 32 bits
 //!   per plane), against the truth of a dense 16 × 16 sampling: the error
 //!   of the sampling itself, with the time each k costs.
+//! - Shadow maps on the planar scene (every surface receives and casts) at
+//!   512², 1024², 2048², 4096², with and without PCF, against the truth of
+//!   map mode (a ray per sample and light against every triangle).
+//! - Acne and peter-panning: a floor under a grazing sun (80° from the
+//!   normal) with a thin slab lying on it, at bias scales 0 … 8: the share
+//!   of pixels the map darkens wrongly (acne, or a shadow bleeding past
+//!   its caster) and lights wrongly (a shadow detached from its caster).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -86,7 +93,112 @@ pub(crate) fn section(frames: usize) -> Result<String> {
         row(&mut md, &format!("{k} × {k}"), *t, &e);
     }
     md.push('\n');
+    maps(&mut md, frames)?;
+    acne(&mut md)?;
     Ok(md)
+}
+
+/// Shadow maps at several sizes, with and without PCF.
+fn maps(md: &mut String, frames: usize) -> Result<()> {
+    let mut scene = load("tests/scenes/shadows_planar.toml", None)?;
+    scene.shadows.mode = ShadowMode::Map;
+    let truth = render_truth(&scene);
+    let variants: Vec<(String, Scene)> = [512u32, 1024, 2048, 4096]
+        .iter()
+        .flat_map(|&size| [true, false].map(|pcf| (size, pcf)))
+        .map(|(size, pcf)| {
+            let mut s = scene.clone();
+            (s.shadows.map_size, s.shadows.pcf) = (size, pcf);
+            (format!("{size}² {}", if pcf { "PCF 3 × 3" } else { "nearest" }), s)
+        })
+        .collect();
+    let scenes: Vec<Scene> = variants.iter().map(|(_, s)| s.clone()).collect();
+    let (times, images) = time_interleaved(&scenes, frames);
+    let _ = writeln!(
+        md,
+        "### Shadow maps (`tests/scenes/shadows_planar.toml` in map mode: every surface receives and casts)\n"
+    );
+    let _ = writeln!(md, "| map | ms (fastest) | ms (median) | RMSE | max | exact | > 1 |");
+    let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|---:|");
+    for ((name, _), (t, image)) in variants.iter().zip(times.iter().zip(&images)) {
+        row(md, name, *t, &ErrorStats::of_rgb8(&image.to_rgb(), &truth));
+    }
+    md.push('\n');
+    Ok(())
+}
+
+/// The hard case for shadow-map bias: a grazing sun over a floor with a
+/// thin slab on it.
+fn grazing_scene() -> Scene {
+    use std::sync::Arc;
+    use zline::scene::{cube, plane, Camera, Material, Object, Projection, RenderSettings};
+    use zline::shading::Light;
+    let object = |mesh, m: glam::Mat4, color| Object {
+        mesh: Arc::new(mesh),
+        world_from_object: m,
+        material: Some(Material::plastic(color, 0.0, 1.0)),
+        shading: None,
+        cull_back_faces: false,
+    };
+    let slab = glam::Mat4::from_translation(glam::Vec3::new(0.0, 0.02, 0.0))
+        * glam::Mat4::from_scale(glam::Vec3::new(2.0, 0.04, 1.0));
+    let angle = 80f32.to_radians();
+    Scene {
+        camera: Camera {
+            eye: glam::Vec3::new(0.0, 3.0, 4.0),
+            target: glam::Vec3::ZERO,
+            up: glam::Vec3::Y,
+            projection: Projection::Perspective { fovy_degrees: 45.0, near: 0.5, far: 20.0 },
+        },
+        background: glam::Vec3::ZERO,
+        ambient: glam::Vec3::splat(0.1),
+        lights: vec![Light::Directional {
+            direction: glam::Vec3::new(angle.sin(), -angle.cos(), 0.0),
+            color: glam::Vec3::ONE,
+        }],
+        objects: vec![
+            object(plane(8.0, 8), glam::Mat4::IDENTITY, glam::Vec3::splat(0.8)),
+            object(cube(1.0), slab, glam::Vec3::new(0.3, 0.5, 0.8)),
+        ],
+        settings: RenderSettings { width: SIZE.0, height: SIZE.1, ..RenderSettings::default() },
+        fog: None,
+        shadows: zline::scene::Shadows { mode: ShadowMode::Map, ..Default::default() },
+    }
+}
+
+/// Wrongly darkened and wrongly lit pixels at each bias scale.
+fn acne(md: &mut String) -> Result<()> {
+    let scene = grazing_scene();
+    let truth = render_truth(&scene);
+    let reference = truth.quantized_rgb8();
+    let _ = writeln!(
+        md,
+        "### Acne and peter-panning (a floor under a sun 80° from its normal, a 4 cm slab lying on it; 1024², PCF)\n\n\
+         *darker* is the share of pixels more than one step darker than the truth (acne; a shadow \
+         reaching past its caster), *lighter* the share more than one step lighter (a shadow detached \
+         from its caster, or light leaking under it).\n"
+    );
+    let _ = writeln!(md, "| bias scale | darker | lighter | RMSE |");
+    let _ = writeln!(md, "|---:|---:|---:|---:|");
+    for bias in [0.0f32, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0] {
+        let mut s = scene.clone();
+        s.shadows.bias = bias;
+        let image = zline::pipeline::render(&s, &zline::pipeline::RenderOptions::default()).0.to_rgb();
+        let pixels = image.len() / 3;
+        let (mut darker, mut lighter) = (0usize, 0usize);
+        for (got, want) in image.chunks(3).zip(reference.chunks(3)) {
+            let d: i32 = got.iter().zip(want).map(|(&a, &b)| i32::from(a) - i32::from(b)).sum();
+            darker +=
+                usize::from(got.iter().zip(want).any(|(&a, &b)| i32::from(a) < i32::from(b) - 1) && d < 0);
+            lighter +=
+                usize::from(got.iter().zip(want).any(|(&a, &b)| i32::from(a) > i32::from(b) + 1) && d > 0);
+        }
+        let e = ErrorStats::of_rgb8(&image, &truth);
+        let share = |n: usize| 100.0 * n as f64 / pixels as f64;
+        let _ = writeln!(md, "| {bias} | {:.3} % | {:.3} % | {:.3} |", share(darker), share(lighter), e.rmse);
+    }
+    md.push('\n');
+    Ok(())
 }
 
 fn row(md: &mut String, name: &str, (fastest, median): (f64, f64), e: &ErrorStats) {
