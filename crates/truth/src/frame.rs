@@ -16,23 +16,23 @@
 //! around, as the fast renderer's setup does; one-sided lighting keeps the
 //! normals as given.
 //!
-//! With `ShadowMode::Planar`, the frame also holds every caster triangle
-//! (the objects that do not receive shadows) in eye space as
-//! [`Occluders`], and shadow receivers are shaded as Phong whatever their
-//! mode ([`crate::shadow`]).
+//! With `ShadowMode::Planar` or `ShadowMode::Map`, the frame also holds
+//! every caster triangle in eye space as [`Occluders`] (Planar: the
+//! objects that do not receive shadows; Map: every object), and shadow
+//! receivers are shaded as Phong whatever their mode ([`crate::shadow`]).
 
 use std::sync::Arc;
 
 use glam::DVec3;
 use rayon::prelude::*;
-use zline_scene::{Interpolation, LightingSides, Mesh, Projection, Scene, TextureMap};
+use zline_scene::{Interpolation, LightingSides, Mesh, Projection, Scene, ShadowMode, TextureMap};
 use zline_shading::ShadingMode;
 
 use crate::camera::{self, Corner, ObjectTransforms, SampleSpace, Vertex};
 use crate::clip::clip_triangle;
 use crate::coverage::signed_area2;
 use crate::lighting::{EyeLights, MaterialF64};
-use crate::shadow::Occluders;
+use crate::shadow::{Occluders, TriangleId};
 
 /// Triangles per rayon task in setup.
 const TRIANGLE_CHUNK: usize = 4096;
@@ -138,7 +138,7 @@ impl<'a> Frame<'a> {
             prims.extend(setup_object(&frame_object, &ctx));
             objects.push(frame_object);
         }
-        let occluders = shadow_casters(&objects);
+        let occluders = shadow_casters(scene.shadows.mode, &objects);
         Frame {
             scene,
             n,
@@ -209,16 +209,20 @@ fn object_frame(scene: &Scene, index: usize, t: &ObjectTransforms, space: &Sampl
     }
 }
 
-/// The triangles of every object that does not receive shadows, in eye
-/// space; `None` when no object receives shadows or nothing casts them.
-fn shadow_casters(objects: &[ObjectFrame]) -> Option<Occluders> {
+/// The caster triangles in eye space, with their identities: in Map mode
+/// every object's, else (Planar) those of every object that does not
+/// receive shadows; `None` when no object receives shadows or nothing
+/// casts them.
+fn shadow_casters(mode: ShadowMode, objects: &[ObjectFrame]) -> Option<Occluders> {
     if !objects.iter().any(|o| o.receives_shadows) {
         return None;
     }
-    let triangles = objects.iter().filter(|o| !o.receives_shadows).flat_map(|o| {
-        o.mesh.triangles.iter().filter_map(|t| {
+    let casts = |o: &ObjectFrame| mode == ShadowMode::Map || !o.receives_shadows;
+    let triangles = objects.iter().enumerate().filter(|(_, o)| casts(o)).flat_map(|(object, o)| {
+        o.mesh.triangles.iter().enumerate().filter_map(move |(triangle, t)| {
             let [a, b, c] = gather(&o.vertices, *t)?;
-            Some([a.eye, b.eye, c.eye])
+            let id = TriangleId { object: object as u32, triangle: triangle as u32 };
+            Some((id, [a.eye, b.eye, c.eye]))
         })
     });
     let occluders = Occluders::new(triangles);

@@ -22,13 +22,17 @@
 //! shading modes), `lighting`, `shadow` (light visibility on shadow
 //! receivers), `texture`, `fog`, `image` and [`metrics`].
 //!
-//! Shadows (`ShadowMode::Planar`) are exact light visibility: a receiver
-//! (`Shadows::receives`) is lit per sample as with Phong shading, and a
-//! light drops out of a sample's diffuse and specular terms when a
-//! triangle of any other object crosses the segment (or, for a
-//! directional light, the ray) from the exact surface point to the light.
-//! The `shadow` module states the rule in full; without receivers the
-//! image is the one without shadows, bit for bit.
+//! Shadows (`ShadowMode::Planar` and `ShadowMode::Map`) are exact light
+//! visibility: a receiver (`Shadows::receives`; every object in Map mode)
+//! is lit per sample as with Phong shading, and a light drops out of a
+//! sample's diffuse and specular terms when a caster triangle crosses the
+//! segment (or, for a directional light, the ray) from the exact surface
+//! point to the light. Casters are, in Planar mode, the triangles of every
+//! object that does not receive; in Map mode every triangle of every
+//! object, the sample's own object included (self-shadowing), except the
+//! triangle the sample lies on, skipped by identity. The `shadow` module
+//! states the rule in full; without receivers the image is the one
+//! without shadows, bit for bit.
 //!
 //! With [`TruthOptions::diagnostics`] the image carries, per pixel, how far
 //! it is from an edge or a depth intersection and how fast its colour

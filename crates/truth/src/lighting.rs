@@ -20,7 +20,7 @@
 use glam::{DMat4, DVec3};
 use zline_shading::{Light, Material};
 
-use crate::shadow::Occluders;
+use crate::shadow::{Occluders, TriangleId};
 
 /// A material's coefficients in f64.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -118,17 +118,18 @@ impl EyeLights {
         self.shade_shadowed(m, point, normal, None)
     }
 
-    /// The lighting model with shadows: with `shadow` = (occluders, P), a
-    /// light that would light the point (N·L > 0) but that the occluders
-    /// hide from the eye-space point P adds neither diffuse nor specular
-    /// (see [`crate::shadow`]). P is the exact surface point, which
-    /// screen-linear interpolation may move `point` away from.
+    /// The lighting model with shadows: with `shadow` = (occluders, P, on),
+    /// a light that would light the point (N·L > 0) but that the occluders
+    /// other than triangle `on` (the one P lies on) hide from the eye-space
+    /// point P adds neither diffuse nor specular (see [`crate::shadow`]).
+    /// P is the exact surface point, which screen-linear interpolation may
+    /// move `point` away from.
     pub(crate) fn shade_shadowed(
         &self,
         m: &MaterialF64,
         point: DVec3,
         normal: DVec3,
-        shadow: Option<(&Occluders, DVec3)>,
+        shadow: Option<(&Occluders, DVec3, TriangleId)>,
     ) -> Parts {
         let view = (-point).normalize_or_zero();
         let specular_on = m.ks.max_element() > 0.0;
@@ -153,10 +154,10 @@ impl EyeLights {
             if n_dot_l <= 0.0 {
                 continue;
             }
-            if let Some((occluders, at)) = shadow {
+            if let Some((occluders, at, on)) = shadow {
                 let hidden = match *light {
-                    EyeLight::Point { position, .. } => occluders.hides_point(at, position),
-                    EyeLight::Directional { to_light, .. } => occluders.hides_direction(at, to_light),
+                    EyeLight::Point { position, .. } => occluders.hides_point(at, on, position),
+                    EyeLight::Directional { to_light, .. } => occluders.hides_direction(at, on, to_light),
                 };
                 if hidden {
                     continue;

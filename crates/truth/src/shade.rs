@@ -45,6 +45,7 @@ use crate::coverage::SampleTriangle;
 use crate::fog::apply_fog;
 use crate::frame::{face_cross, Frame, ObjectFrame, Prim};
 use crate::lighting::Parts;
+use crate::shadow::TriangleId;
 use crate::texture::{self, UvDerivatives};
 
 /// A shaded fragment.
@@ -187,7 +188,10 @@ impl Frame<'_> {
                 let n = blend3(&s.attr, normal).normalize_or_zero();
                 let color = tint.map(|c| blend3(&s.attr, |k| c[k]));
                 let shadow = match &self.occluders {
-                    Some(o) if s.object.receives_shadows => Some((o, blend3(&s.exact, eye))),
+                    Some(o) if s.object.receives_shadows => {
+                        let on = TriangleId { object: s.prim.object, triangle: s.prim.triangle };
+                        Some((o, blend3(&s.exact, eye), on))
+                    }
                     _ => None,
                 };
                 tinted(lights.shade_shadowed(m, blend3(&s.attr, eye), n, shadow), color)

@@ -1,16 +1,32 @@
-//! Planar shadows (`ShadowMode::Planar`) as light visibility, decided per
-//! sample by ray casting in f64 — the exact answer the seed's planar
-//! projection approximates.
+//! Shadows (`ShadowMode::Planar` and `ShadowMode::Map`) as light
+//! visibility, decided per sample by ray casting in f64 — the exact answer
+//! the fast renderer's planar projection and shadow maps approximate.
 //!
 //! The rule:
-//! - Receivers are the objects `i` with `scene.shadows.receives(i)`. A
+//! - Receivers are the objects `i` with `scene.shadows.receives(i)`: the
+//!   planes' receivers in Planar mode, every object in Map mode. A
 //!   receiver is lit per sample like Phong shading (interpolated eye-space
 //!   position and normal, the normal renormalized; a texel or a vertex
 //!   colour modulates ambient+diffuse as with Phong), whatever its shading
 //!   mode: shadows need the light's visibility per sample.
-//! - Casters are every other object, opaque or transparent, culled or not:
-//!   all their triangles after `world_from_object`. A caster triangle with
-//!   zero area or a non-finite vertex is ignored.
+//! - Casters, opaque or transparent, culled or not, are all the triangles
+//!   of some objects after `world_from_object`: in Planar mode the
+//!   objects that do not receive; in Map mode every object, so that a
+//!   surface shadows itself and the rest of its own mesh (a concave
+//!   mesh's parts shadow each other). A caster triangle with zero area or
+//!   a non-finite vertex is ignored.
+//! - Self-intersection: the test at a sample ignores the triangle the
+//!   sample lies on — the mesh triangle (object index, triangle index) of
+//!   the drawn prim, a clipped piece counting as its whole triangle — by
+//!   identity, not by an offset of the ray's start. Every other triangle,
+//!   of the same mesh or not, counts, including one that shares an edge or
+//!   a corner with it (only its hits at t ≤ 1e-9 are dropped, as below).
+//!   In Planar mode a receiver's triangle is never a caster, so the rule
+//!   changes nothing there. Note that a smooth-shaded receiver is lit by
+//!   its interpolated normal but shadowed by its geometry: where that
+//!   normal faces a light its triangles face away from, the ray goes
+//!   into the mesh and the light is hidden (the exact answer; a shadow
+//!   map's bias hides the same terminator differently).
 //! - At a receiver sample, at the exact (perspective-correct) surface point
 //!   P, light k is hidden when a caster triangle crosses the open segment
 //!   from P to the light's position (a point light), or the ray from P
@@ -90,21 +106,31 @@ impl Bounds {
     }
 }
 
-/// A caster triangle in eye space: a corner and the two edges from it.
+/// Which mesh triangle a caster is, or which one a receiver sample lies
+/// on: the object's index in the scene and the triangle's in its mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct TriangleId {
+    pub(crate) object: u32,
+    pub(crate) triangle: u32,
+}
+
+/// A caster triangle in eye space: a corner and the two edges from it,
+/// and which mesh triangle it is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Triangle {
     a: DVec3,
     e1: DVec3,
     e2: DVec3,
+    id: TriangleId,
 }
 
 impl Triangle {
     /// The triangle a, b, c; `None` with a non-finite corner or zero area.
-    fn new(a: DVec3, b: DVec3, c: DVec3) -> Option<Triangle> {
+    fn new(id: TriangleId, a: DVec3, b: DVec3, c: DVec3) -> Option<Triangle> {
         let (e1, e2) = (b - a, c - a);
         let n = e1.cross(e2);
         (a.is_finite() && b.is_finite() && c.is_finite() && n.is_finite() && n != DVec3::ZERO)
-            .then_some(Triangle { a, e1, e2 })
+            .then_some(Triangle { a, e1, e2, id })
     }
 
     fn bounds(&self) -> Bounds {
@@ -156,11 +182,11 @@ pub(crate) struct Occluders {
 }
 
 impl Occluders {
-    /// The occluders formed by `triangles` (eye-space corners); degenerate
-    /// and non-finite ones are dropped.
-    pub(crate) fn new(triangles: impl IntoIterator<Item = [DVec3; 3]>) -> Occluders {
+    /// The occluders formed by `triangles` (identity and eye-space
+    /// corners); degenerate and non-finite ones are dropped.
+    pub(crate) fn new(triangles: impl IntoIterator<Item = (TriangleId, [DVec3; 3])>) -> Occluders {
         let mut triangles: Vec<Triangle> =
-            triangles.into_iter().filter_map(|[a, b, c]| Triangle::new(a, b, c)).collect();
+            triangles.into_iter().filter_map(|(id, [a, b, c])| Triangle::new(id, a, b, c)).collect();
         let mut nodes = Vec::new();
         if !triangles.is_empty() {
             let all = triangles.iter().fold(Bounds::EMPTY, |b, t| b.union(t.bounds()));
@@ -179,20 +205,22 @@ impl Occluders {
         self.triangles.is_empty()
     }
 
-    /// True when a caster triangle crosses the segment from `point` to a
-    /// point light at `light`.
-    pub(crate) fn hides_point(&self, point: DVec3, light: DVec3) -> bool {
-        self.crossed(point, light - point, 1.0 - T_EPSILON)
+    /// True when a caster triangle other than `on` (the one `point` lies
+    /// on) crosses the segment from `point` to a point light at `light`.
+    pub(crate) fn hides_point(&self, point: DVec3, on: TriangleId, light: DVec3) -> bool {
+        self.crossed(point, light - point, 1.0 - T_EPSILON, on)
     }
 
-    /// True when a caster triangle crosses the ray from `point` along the
-    /// unit vector `to_light` (a directional light).
-    pub(crate) fn hides_direction(&self, point: DVec3, to_light: DVec3) -> bool {
-        self.crossed(point, to_light, f64::INFINITY)
+    /// True when a caster triangle other than `on` (the one `point` lies
+    /// on) crosses the ray from `point` along the unit vector `to_light`
+    /// (a directional light).
+    pub(crate) fn hides_direction(&self, point: DVec3, on: TriangleId, to_light: DVec3) -> bool {
+        self.crossed(point, to_light, f64::INFINITY, on)
     }
 
-    /// True when some triangle meets o + t·d for T_EPSILON < t < t_max.
-    fn crossed(&self, o: DVec3, d: DVec3, t_max: f64) -> bool {
+    /// True when some triangle other than `skip` meets o + t·d for
+    /// T_EPSILON < t < t_max.
+    fn crossed(&self, o: DVec3, d: DVec3, t_max: f64, skip: TriangleId) -> bool {
         if self.nodes.is_empty() || !o.is_finite() || !d.is_finite() || d == DVec3::ZERO {
             return false;
         }
@@ -214,6 +242,7 @@ impl Occluders {
             }
             let hit = self.triangles[node.first..node.first + node.count]
                 .iter()
+                .filter(|t| t.id != skip)
                 .filter_map(|t| t.hit(o, d))
                 .any(|t| t > T_EPSILON && t < t_max);
             if hit {
@@ -259,47 +288,62 @@ fn build(triangles: &mut [Triangle], nodes: &mut Vec<Node>, index: usize, margin
 mod tests {
     use super::*;
 
+    /// Triangle `triangle` of object 0.
+    fn id(triangle: u32) -> TriangleId {
+        TriangleId { object: 0, triangle }
+    }
+
+    /// A receiver triangle that is no caster.
+    const ELSEWHERE: TriangleId = TriangleId { object: 9, triangle: 0 };
+
     /// The unit square at y = 1, x and z in [0, 1], as two triangles.
     fn roof() -> Occluders {
         let p = |x: f64, z: f64| DVec3::new(x, 1.0, z);
-        Occluders::new([[p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)], [p(0.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)]])
+        Occluders::new([
+            (id(0), [p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)]),
+            (id(1), [p(0.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)]),
+        ])
     }
 
     #[test]
     fn a_point_light_above_the_roof_is_hidden_below_it_only() {
         let o = roof();
         let light = DVec3::new(0.5, 3.0, 0.5);
-        assert!(o.hides_point(DVec3::new(0.5, 0.0, 0.5), light));
+        assert!(o.hides_point(DVec3::new(0.5, 0.0, 0.5), ELSEWHERE, light));
         // Through the shared diagonal: still hidden.
-        assert!(o.hides_point(DVec3::new(0.25, 0.0, 0.25), DVec3::new(0.25, 3.0, 0.25)));
+        assert!(o.hides_point(DVec3::new(0.25, 0.0, 0.25), ELSEWHERE, DVec3::new(0.25, 3.0, 0.25)));
         // Beside the roof's shadow (the shadow of x ∈ [0, 1] from x = 0.5,
         // height 3, reaches x ∈ [−0.25, 1.25] at y = 0).
-        assert!(!o.hides_point(DVec3::new(1.3, 0.0, 0.5), light));
-        assert!(o.hides_point(DVec3::new(1.2, 0.0, 0.5), light));
+        assert!(!o.hides_point(DVec3::new(1.3, 0.0, 0.5), ELSEWHERE, light));
+        assert!(o.hides_point(DVec3::new(1.2, 0.0, 0.5), ELSEWHERE, light));
         // A point between the roof and the light, and a light below the roof.
-        assert!(!o.hides_point(DVec3::new(0.5, 2.0, 0.5), light));
-        assert!(!o.hides_point(DVec3::new(0.5, 0.0, 0.5), DVec3::new(0.5, 0.5, 0.5)));
+        assert!(!o.hides_point(DVec3::new(0.5, 2.0, 0.5), ELSEWHERE, light));
+        assert!(!o.hides_point(DVec3::new(0.5, 0.0, 0.5), ELSEWHERE, DVec3::new(0.5, 0.5, 0.5)));
         // Hits at the segment's ends do not count.
-        assert!(!o.hides_point(DVec3::new(0.5, 1.0, 0.5), light));
-        assert!(!o.hides_point(DVec3::new(0.5, 0.0, 0.5), DVec3::new(0.5, 1.0, 0.5)));
+        assert!(!o.hides_point(DVec3::new(0.5, 1.0, 0.5), ELSEWHERE, light));
+        assert!(!o.hides_point(DVec3::new(0.5, 0.0, 0.5), ELSEWHERE, DVec3::new(0.5, 1.0, 0.5)));
     }
 
     #[test]
     fn a_directional_light_is_hidden_along_its_ray() {
         let o = roof();
-        assert!(o.hides_direction(DVec3::new(0.5, -5.0, 0.5), DVec3::Y));
-        assert!(!o.hides_direction(DVec3::new(0.5, -5.0, 0.5), -DVec3::Y));
-        assert!(!o.hides_direction(DVec3::new(1.5, -5.0, 0.5), DVec3::Y));
+        assert!(o.hides_direction(DVec3::new(0.5, -5.0, 0.5), ELSEWHERE, DVec3::Y));
+        assert!(!o.hides_direction(DVec3::new(0.5, -5.0, 0.5), ELSEWHERE, -DVec3::Y));
+        assert!(!o.hides_direction(DVec3::new(1.5, -5.0, 0.5), ELSEWHERE, DVec3::Y));
         let slant = DVec3::new(1.0, 1.0, 0.0).normalize();
-        assert!(o.hides_direction(DVec3::new(-0.5, 0.0, 0.5), slant));
+        assert!(o.hides_direction(DVec3::new(-0.5, 0.0, 0.5), ELSEWHERE, slant));
     }
 
     #[test]
     fn degenerate_triangles_cast_nothing() {
         let a = DVec3::new(0.0, 1.0, 0.0);
-        let o = Occluders::new([[a, a, DVec3::new(1.0, 1.0, 1.0)], [a, DVec3::NAN, a], [a; 3]]);
+        let o = Occluders::new([
+            (id(0), [a, a, DVec3::new(1.0, 1.0, 1.0)]),
+            (id(1), [a, DVec3::NAN, a]),
+            (id(2), [a; 3]),
+        ]);
         assert!(o.is_empty());
-        assert!(!o.hides_point(DVec3::ZERO, DVec3::new(0.0, 3.0, 0.0)));
+        assert!(!o.hides_point(DVec3::ZERO, ELSEWHERE, DVec3::new(0.0, 3.0, 0.0)));
     }
 
     /// The hierarchy answers as brute force over a grid of many triangles.
@@ -313,8 +357,9 @@ mod tests {
                 tris.push([DVec3::new(x, y, z), DVec3::new(x + 0.3, y, z), DVec3::new(x, y + 0.2, z + 0.3)]);
             }
         }
-        let o = Occluders::new(tris.iter().copied());
-        let flat: Vec<Triangle> = tris.iter().filter_map(|&[a, b, c]| Triangle::new(a, b, c)).collect();
+        let o = Occluders::new((0..).map(id).zip(tris.iter().copied()));
+        let flat: Vec<Triangle> =
+            tris.iter().filter_map(|&[a, b, c]| Triangle::new(id(0), a, b, c)).collect();
         let light = DVec3::new(0.3, 6.0, -0.2);
         let mut hidden = 0;
         for i in 0..60 {
@@ -324,10 +369,30 @@ mod tests {
                     .iter()
                     .filter_map(|t| t.hit(p, light - p))
                     .any(|t| t > T_EPSILON && t < 1.0 - T_EPSILON);
-                assert_eq!(o.hides_point(p, light), brute, "{p}");
+                assert_eq!(o.hides_point(p, ELSEWHERE, light), brute, "{p}");
                 hidden += usize::from(brute);
             }
         }
         assert!(hidden > 100 && hidden < 3500, "{hidden}");
+    }
+
+    /// The triangle a point lies on is skipped by identity; every other
+    /// triangle of the same object still hides.
+    #[test]
+    fn the_sample_s_own_triangle_is_skipped() {
+        let o = roof();
+        // A point on triangle 0 (z < x), slightly below the roof's plane so
+        // that its own triangle would hit at t ≈ 1e-6 > 1e-9.
+        let p = DVec3::new(0.75, 1.0 - 1e-6, 0.25);
+        assert!(o.hides_direction(p, ELSEWHERE, DVec3::Y));
+        assert!(!o.hides_direction(p, id(0), DVec3::Y));
+        assert!(o.hides_direction(p, id(1), DVec3::Y));
+        // Under triangle 1 (z > x): only skipping triangle 1 itself lets
+        // the light through.
+        let q = DVec3::new(0.25, 0.5, 0.75);
+        assert!(o.hides_point(q, id(0), DVec3::new(0.25, 3.0, 0.75)));
+        assert!(!o.hides_point(q, id(1), DVec3::new(0.25, 3.0, 0.75)));
+        // The identity is the pair: triangle 1 of another object is not it.
+        assert!(o.hides_point(q, TriangleId { object: 1, triangle: 1 }, DVec3::new(0.25, 3.0, 0.75)));
     }
 }

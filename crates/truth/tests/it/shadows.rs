@@ -1,5 +1,7 @@
-//! Planar shadows (`ShadowMode::Planar`) as light visibility, with answers
-//! computed here from the geometry, independently of the truth's code.
+//! Shadows (`ShadowMode::Planar`, and `ShadowMode::Map` where every
+//! surface receives and casts, its own mesh included) as light visibility,
+//! with answers computed here from the geometry, independently of the
+//! truth's code.
 //!
 //! The scenes: a floor at y = 0 (x, z ∈ [−8, 8], normal +y, the shadow
 //! receiver) and a unit square, the occluder, at y = 2 over
@@ -337,4 +339,209 @@ fn the_shadow_under_a_perspective_camera() {
     // 44 pixels per unit of NC), its shadow 44·2/10 = 8.8 (side 2 at
     // distance 10).
     assert!((25..=36).contains(&occluded) && (64..=81).contains(&shadowed), "{occluded} {shadowed}");
+}
+
+/// `ShadowMode::Map` without planes: every object receives and casts.
+fn map_scene(eye_y: f32, lights: Vec<Light>, objects: Vec<zline_scene::Object>) -> Scene {
+    let mut s = scene(eye_y, lights, objects, ShadowMode::Map);
+    s.shadows.planes.clear();
+    s
+}
+
+/// A white directional light straight down.
+fn sun() -> Light {
+    Light::Directional { direction: Vec3::NEG_Y, color: Vec3::ONE }
+}
+
+/// Map (a) The occluder under a directional light straight down, in Map
+/// mode with no planes: its shadow is its own footprint, x_win ∈ [58, 66],
+/// y_win ∈ [44, 52]. Facing down (clockwise from above) and culled, the
+/// occluder is not drawn but still casts, so the camera sees exactly
+/// `OCCLUDER_PIXELS` of floor at ambient alone and every other floor pixel
+/// lit. Drawn facing up, with a diffuse term, it is lit itself: its two
+/// coplanar triangles do not shadow each other.
+#[test]
+fn map_mode_a_square_shadows_its_footprint() {
+    let p =
+        [(1.25, -0.5), (1.25, 0.5), (2.25, 0.5), (2.25, -0.5)].map(|(x, z)| Vec3::new(x, 2.0, z)).to_vec();
+    let down =
+        mesh(p, vec![Vec3::NEG_Y; 4], vec![[0, 2, 1], [0, 3, 2]], emissive(Vec3::new(0.0, 1.0, 0.0), 1.0));
+    let culled = zline_scene::Object { cull_back_faces: true, ..object(down, None) };
+    let image = render_truth(&map_scene(10.0, vec![sun()], vec![floor(FLOOR), culled]));
+    let lit = ambient(&FLOOR) + d(FLOOR.kd);
+    for j in 0..SIZE {
+        for i in 0..SIZE {
+            let want = if in_box(i, j, OCCLUDER_PIXELS) { ambient(&FLOOR) } else { lit };
+            check_close(image.pixel(i, j), want, F64_TOLERANCE);
+        }
+    }
+    let dark = count(&image, |_, _, c| (c - ambient(&FLOOR)).abs().max_element() < 1e-9);
+    assert_eq!(dark, 8 * 8);
+
+    let green = Material { kd: Vec3::new(0.0, 0.5, 0.0), ..emissive(Vec3::new(0.0, 1.0, 0.0), 1.0) };
+    let up = object(slab([1.25, 2.25], [-0.5, 0.5], 2.0, green), Some(ShadingMode::Gouraud));
+    let image = render_truth(&map_scene(10.0, vec![sun()], vec![floor(FLOOR), up]));
+    for j in 0..SIZE {
+        for i in 0..SIZE {
+            let want = if in_box(i, j, OCCLUDER_PIXELS) { DVec3::new(0.0, 0.75, 0.0) } else { lit };
+            check_close(image.pixel(i, j), want, F64_TOLERANCE);
+        }
+    }
+}
+
+/// Map (a) with the lights of the planar test (c), a red point light
+/// straight above and a blue directional light along (−1, −1, 0): in Map
+/// mode without planes the floor shows the same two shadows.
+#[test]
+fn map_mode_matches_the_planar_shadows_on_the_floor() {
+    let m = Material { ks: Vec3::splat(0.25), ns: 8.0, ..FLOOR };
+    let red = Vec3::new(1.0, 0.0, 0.0);
+    let blue = Vec3::new(0.0, 0.0, 1.0);
+    let lights = vec![
+        point_light(TOP, red),
+        Light::Directional { direction: Vec3::new(-1.0, -1.0, 0.0), color: blue },
+    ];
+    let image = render_truth(&map_scene(10.0, lights.clone(), vec![floor(m), occluder()]));
+    let eye = DVec3::new(0.0, 10.0, 0.0);
+    let blue_shadow = [42, 49, 44, 51];
+    for j in 0..SIZE {
+        for i in 0..SIZE {
+            if in_box(i, j, OCCLUDER_PIXELS) {
+                // The occluder receives too; with kd = ks = 0 it stays green.
+                check_close(image.pixel(i, j), DVec3::new(0.0, 0.25, 0.0), F64_TOLERANCE);
+                continue;
+            }
+            let p = world(i, j, 0.0);
+            let mut want = ambient(&m);
+            if !in_box(i, j, SHADOW_PIXELS) {
+                want += contribution(&m, p, d(TOP) - p, red, eye);
+            }
+            if !in_box(i, j, blue_shadow) {
+                want += contribution(&m, p, DVec3::new(1.0, 1.0, 0.0), blue, eye);
+            }
+            check_close(image.pixel(i, j), want.min(DVec3::ONE), F64_TOLERANCE);
+        }
+    }
+    let planar = render_truth(&scene(10.0, lights, vec![floor(m), occluder()], ShadowMode::Planar));
+    for j in 0..SIZE {
+        for i in (0..SIZE).filter(|&i| !in_box(i, j, OCCLUDER_PIXELS)) {
+            assert_eq!(image.pixel(i, j), planar.pixel(i, j), "({i}, {j})");
+        }
+    }
+}
+
+/// Map (b) Self-shadowing. One object, an L: the floor (x, z ∈ [−8, 8],
+/// y = 0, facing up) and a wall at x = 2 over z ∈ [−2, 2], y ∈ [0, 2],
+/// facing −x, in one mesh. Under a directional light along (−1, −1, 0)
+/// the ray from floor point (x, 0, z) along (1, 1, 0)/√2 reaches x = 2 at
+/// height 2 − x, so the wall hides the light from x ∈ (0, 2), z ∈ (−2, 2):
+/// x_win ∈ [48, 64], y_win ∈ [32, 64]. The wall, edge-on to the camera,
+/// draws nothing. In Map mode those 16 × 32 pixels show ambient alone; in
+/// Planar mode without planes nothing receives and every pixel is lit.
+#[test]
+fn map_mode_a_concave_object_shadows_itself() {
+    let p = vec![
+        Vec3::new(-8.0, 0.0, -8.0),
+        Vec3::new(-8.0, 0.0, 8.0),
+        Vec3::new(8.0, 0.0, 8.0),
+        Vec3::new(8.0, 0.0, -8.0),
+        Vec3::new(2.0, 0.0, -2.0),
+        Vec3::new(2.0, 0.0, 2.0),
+        Vec3::new(2.0, 2.0, 2.0),
+        Vec3::new(2.0, 2.0, -2.0),
+    ];
+    let n = [Vec3::Y; 4].into_iter().chain([Vec3::NEG_X; 4]).collect();
+    // The wall's corners seen from −x: (z, y) = (−2, 0), (2, 0), (2, 2),
+    // (−2, 2) run clockwise, so the triangles list them the other way.
+    let l = mesh(p, n, vec![[0, 1, 2], [0, 2, 3], [4, 6, 5], [4, 7, 6]], FLOOR);
+    let light = Light::Directional { direction: Vec3::new(-1.0, -1.0, 0.0), color: Vec3::ONE };
+    let objects = vec![object(l, Some(ShadingMode::Flat))];
+    let lit = ambient(&FLOOR) + d(FLOOR.kd) * std::f64::consts::FRAC_1_SQRT_2;
+    let shadow = [48, 63, 32, 63];
+
+    let map = render_truth(&map_scene(10.0, vec![light], objects.clone()));
+    for j in 0..SIZE {
+        for i in 0..SIZE {
+            let want = if in_box(i, j, shadow) { ambient(&FLOOR) } else { lit };
+            check_close(map.pixel(i, j), want, F64_TOLERANCE);
+        }
+    }
+    let dark = count(&map, |_, _, c| (c - ambient(&FLOOR)).abs().max_element() < 1e-9);
+    assert_eq!(dark, 16 * 32);
+
+    let mut planar = map_scene(10.0, vec![light], objects);
+    planar.shadows.mode = ShadowMode::Planar;
+    let planar = render_truth(&planar);
+    for j in 0..SIZE {
+        for i in 0..SIZE {
+            check_close(planar.pixel(i, j), lit, F64_TOLERANCE);
+        }
+    }
+}
+
+/// A flat-shaded cube of half side 1 around the origin: four corners and
+/// one normal per face, counter-clockwise from outside.
+fn cube(material: Material) -> Arc<Mesh> {
+    let faces = [
+        (Vec3::X, Vec3::Y, Vec3::Z),
+        (Vec3::NEG_X, Vec3::Z, Vec3::Y),
+        (Vec3::Y, Vec3::Z, Vec3::X),
+        (Vec3::NEG_Y, Vec3::X, Vec3::Z),
+        (Vec3::Z, Vec3::X, Vec3::Y),
+        (Vec3::NEG_Z, Vec3::Y, Vec3::X),
+    ];
+    let (mut p, mut n, mut t) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, (normal, u, v)) in faces.into_iter().enumerate() {
+        assert_eq!(u.cross(v), normal);
+        p.extend([(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(a, b)| normal + u * a + v * b));
+        n.extend([normal; 4]);
+        let b = 4 * k as u32;
+        t.extend([[b, b + 1, b + 2], [b, b + 2, b + 3]]);
+    }
+    mesh(p, n, t, material)
+}
+
+/// Map (c) A convex object never shadows its own lit faces. A flat-shaded
+/// cube seen obliquely (orthographic, from (6, 5, 4)) shows its +x, +y
+/// and +z faces. Under a directional light along −(1, 2, 3) all three face
+/// the light (N·L = 1, 2, 3 over √14) and each shows exactly its lit
+/// colour; every pixel is background or one of those three. Under a point
+/// light at (3, 4, 5) as well, the Map image is bit for bit the image
+/// without shadows drawn in Phong: no light is hidden anywhere.
+#[test]
+fn map_mode_a_convex_cube_does_not_shadow_its_lit_faces() {
+    let m = Material { ks: Vec3::ZERO, ..FLOOR };
+    let cube_scene = |light: Light, mode: ShadowMode| {
+        let shading = if mode == ShadowMode::None { ShadingMode::Phong } else { ShadingMode::Flat };
+        let mut s = map_scene(10.0, vec![light], vec![object(cube(m), Some(shading))]);
+        s.shadows.mode = mode;
+        s.camera = Camera {
+            eye: Vec3::new(6.0, 5.0, 4.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            projection: Projection::Orthographic { height: 4.0, near: 0.5, far: 20.0 },
+        };
+        s
+    };
+    let sun = Light::Directional { direction: Vec3::new(-1.0, -2.0, -3.0), color: Vec3::ONE };
+    let image = render_truth(&cube_scene(sun, ShadowMode::Map));
+    let faces = [1.0, 2.0, 3.0].map(|c: f64| ambient(&m) + d(m.kd) * (c / 14f64.sqrt()));
+    let mut seen = [0; 3];
+    for j in 0..SIZE {
+        for i in 0..SIZE {
+            let c = image.pixel(i, j);
+            if c == DVec3::ZERO {
+                continue;
+            }
+            let k = faces.iter().position(|f| (c - *f).abs().max_element() < 1e-9);
+            let k = k.unwrap_or_else(|| panic!("({i}, {j}): {c} is no lit face"));
+            seen[k] += 1;
+        }
+    }
+    assert!(seen.iter().all(|&n| n > 300), "{seen:?}");
+    assert_eq!(image.rgb, render_truth(&cube_scene(sun, ShadowMode::None)).rgb);
+
+    let bulb = point_light(Vec3::new(3.0, 4.0, 5.0), Vec3::ONE);
+    let map = render_truth(&cube_scene(bulb, ShadowMode::Map));
+    assert_eq!(map.rgb, render_truth(&cube_scene(bulb, ShadowMode::None)).rgb);
 }
