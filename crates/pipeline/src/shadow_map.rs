@@ -19,6 +19,7 @@
 //! texel decides.
 
 use glam::{Mat4, Vec3};
+use rayon::prelude::*;
 use wide::f32x8;
 use zline_raster::{DepthPlane, EdgeTable, FixedPoint, PlaneBasis, Rect};
 use zline_scene::{Light, Scene};
@@ -125,9 +126,11 @@ impl ShadowMaps {
             .flatten()
             .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
         let extent = (hi - lo).max_element();
+        // Lights, and a point light's faces, are drawn in parallel: each
+        // map is its own, so the result does not depend on the threads.
         let lights = scene
             .lights
-            .iter()
+            .par_iter()
             .map(|light| {
                 if tris.is_empty() || !(extent.is_finite() && extent > 0.0) {
                     return LightMap::Unshadowed;
@@ -254,8 +257,7 @@ fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size
 fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32) -> LightMap {
     let near = NEAR * extent;
     let s = size as f32;
-    let mut faces = Vec::with_capacity(6);
-    for face in 0..6 {
+    let faces = (0..6usize).into_par_iter().map(|face| {
         let (axis, sign) = (face / 2, if face % 2 == 0 { 1.0 } else { -1.0 });
         let (ua, ub) = face_axes(axis);
         let mut map = DepthMap::new(size);
@@ -270,9 +272,9 @@ fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32) -> LightMap
                 map.draw(tex, piece.map(|q| 1.0 / f64::from(q.z)), |inv| (1.0 / inv) as f32);
             }
         }
-        faces.push(map);
-    }
-    LightMap::Point { position, faces }
+        map
+    });
+    LightMap::Point { position, faces: faces.collect() }
 }
 
 /// The parts of triangle `q` (face space) with depth ≥ `near`, as at most
