@@ -12,9 +12,13 @@ use zline::pipeline::RenderStats;
 use zline::pipeline::{render, RenderOptions};
 use zline::scene::{
     DepthMode, Fog, FogCoordinate, FogMode, GouraudClamp, Interpolation, LightingSides, RenderSettings,
-    Scene, ShadingMode, ShadowMode, MAX_IMAGE_SIDE, MAX_SAMPLES, MAX_THREADS, MAX_TILE_SIZE, MIN_TILE_SIZE,
+    Scene, ShadingMode, ShadowMode, MAX_IMAGE_SIDE, MAX_SAMPLES, MAX_SHADOW_MAP_SIZE, MAX_THREADS,
+    MAX_TILE_SIZE, MIN_TILE_SIZE,
 };
 use zline::shading::Filter;
+
+/// The smallest `--shadow-map-size`, as the scene file's.
+const MIN_SHADOW_MAP_SIZE: u32 = 16;
 
 /// zline — a CPU renderer for the classical rendering pipeline.
 #[derive(Parser)]
@@ -106,9 +110,21 @@ struct Common {
     #[arg(long, value_enum)]
     lighting: Option<Sides>,
     /// Shadows (replaces the scene file's `[render] shadows`): planar ones
-    /// fall on the scene file's `shadow_plane` objects.
+    /// fall on the scene file's `shadow_plane` objects; shadow maps fall on
+    /// every object, from every object.
     #[arg(long, value_enum)]
     shadows: Option<Shadows>,
+    /// Shadow map side in texels, 16..=8192 (a point light renders six such
+    /// faces); replaces `[render] shadow_map_size`, default 1024.
+    #[arg(
+        long,
+        value_name = "N",
+        value_parser = clap::value_parser!(u32).range(MIN_SHADOW_MAP_SIZE as i64..=MAX_SHADOW_MAP_SIZE as i64)
+    )]
+    shadow_map_size: Option<u32>,
+    /// How shadow maps are sampled (replaces `[render] shadow_filter`).
+    #[arg(long, value_enum)]
+    shadow_filter: Option<ShadowFilter>,
     /// Tile edge in pixels, 8..=1024; the image does not depend on it.
     #[arg(
         long,
@@ -200,6 +216,18 @@ enum Shadows {
     None,
     /// Projected onto the scene's shadow planes from each light.
     Planar,
+    /// Shadow maps: a depth image from each light; every object casts and
+    /// receives.
+    Map,
+}
+
+/// `--shadow-filter`: [`zline::scene::Shadows::pcf`].
+#[derive(Clone, Copy, ValueEnum)]
+enum ShadowFilter {
+    /// 3×3 percentage-closer filtering: soft-edged (the default).
+    Pcf,
+    /// The one nearest texel: hard-edged.
+    Nearest,
 }
 
 impl From<Shadows> for ShadowMode {
@@ -207,6 +235,7 @@ impl From<Shadows> for ShadowMode {
         match s {
             Shadows::None => ShadowMode::None,
             Shadows::Planar => ShadowMode::Planar,
+            Shadows::Map => ShadowMode::Map,
         }
     }
 }
@@ -520,9 +549,16 @@ fn apply_fog(scene: &mut Scene, common: &Common) {
     }
 }
 
-/// `--shadows` over the scene's mode; planar shadows with no receiving
-/// plane draw none, which is worth a warning.
+/// `--shadows`, `--shadow-map-size` and `--shadow-filter` over the
+/// scene's; planar shadows with no receiving plane draw none, which is
+/// worth a warning.
 fn apply_shadows(scene: &mut Scene, common: &Common) {
+    if let Some(size) = common.shadow_map_size {
+        scene.shadows.map_size = size;
+    }
+    if let Some(filter) = common.shadow_filter {
+        scene.shadows.pcf = matches!(filter, ShadowFilter::Pcf);
+    }
     let Some(mode) = common.shadows else { return };
     scene.shadows.mode = mode.into();
     if scene.shadows.mode == ShadowMode::Planar && scene.shadows.planes.is_empty() {

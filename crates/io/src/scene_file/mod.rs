@@ -24,7 +24,7 @@ use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
 use zline_scene::{
     cube, plane, torus, uv_sphere, AreaLight, AreaShape, Camera, Mesh, Object, Projection, Scene,
-    ShadowPlane, Shadows, MAX_AREA_SAMPLES_PER_SIDE, MAX_PRIMITIVE_TRIANGLES,
+    ShadowPlane, MAX_AREA_SAMPLES_PER_SIDE, MAX_PRIMITIVE_TRIANGLES,
 };
 
 /// An area light's default samples per side (4 × 4 point lights).
@@ -44,7 +44,7 @@ mod render;
 
 use checks::{Checker, Result, S};
 use models::{ModelCache, ModelPart};
-use render::{settings, shadow_mode, RenderDef, ShadingDef};
+use render::{settings, shadows, RenderDef, ShadingDef};
 
 /// Loads a TOML scene file. Warnings about model files (a missing MTL
 /// file, say) are printed to stderr as `warning: ...` lines.
@@ -67,7 +67,10 @@ use render::{settings, shadow_mode, RenderDef, ShadingDef};
 /// adaptive = 0.5                    # adaptive mode's tolerance in 8-bit units, in [0, 255]; default off
 /// gouraud_clamp = "vertex"          # vertex (default) | sample: where untextured Gouraud clamps (SPEC §11)
 /// lighting = "two-sided"            # two-sided (default) | one-sided: back faces drawn without culling
-/// shadows = "planar"                # none (default) | planar: shadows cast on the shadow_plane objects
+/// shadows = "planar"                # none (default) | planar: shadows cast on the shadow_plane objects |
+///                                   #   map: shadow maps, every object casts and receives
+/// shadow_map_size = 1024            # map: texels per side (per cube face for a point light), 16..=8192; default 1024
+/// shadow_filter = "pcf"             # map: pcf (3×3 percentage-closer filtering, default) | nearest (one texel)
 ///
 /// [camera]                          # omitted: the scene is framed
 /// eye = [0, 1, 5]                   # required
@@ -319,7 +322,7 @@ struct Builder<'a> {
 
 impl Builder<'_> {
     fn scene(mut self, file: SceneFile) -> Result<Scene> {
-        let mode = shadow_mode(file.render.as_ref());
+        let mut shadows = shadows(&self.check, file.render.as_ref())?;
         let settings = settings(&self.check, file.render)?;
         let background = match &file.background {
             Some(c) => self.check.vec3_in(c, "background", 0.0, 1.0)?,
@@ -365,7 +368,7 @@ impl Builder<'_> {
             None => framing_camera(min, max, aspect(&settings)),
         };
         let fog = file.fog.as_ref().map(|f| self.fog(f)).transpose()?;
-        let shadows = Shadows { mode, planes, ..Shadows::default() };
+        shadows.planes = planes;
         Ok(Scene { shadows, camera, background, ambient, lights, objects, settings, fog })
     }
 

@@ -2,14 +2,15 @@
 //! shading, interpolation, texture filter, supersampling, depth mode, the
 //! adaptive mode's tolerance and the two conventions of SPEC §11 (Gouraud
 //! clamp, lighting sides), each checked and located on error; and the
-//! shadow method, which the scene (not its settings) keeps.
+//! shadow method with its shadow-map size and filter, which the scene (not
+//! its settings) keeps.
 
 use serde::Deserialize;
 use zline_shading::Filter;
 
 use zline_scene::{
-    DepthMode, GouraudClamp, Interpolation, LightingSides, RenderSettings, ShadowMode,
-    MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_SSAA,
+    DepthMode, GouraudClamp, Interpolation, LightingSides, RenderSettings, ShadowMode, Shadows,
+    MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_SHADOW_MAP_SIZE, MAX_SSAA,
 };
 use zline_shading::ShadingMode;
 
@@ -29,6 +30,10 @@ pub(super) struct RenderDef {
     gouraud_clamp: Option<GouraudClampDef>,
     lighting: Option<LightingDef>,
     shadows: Option<ShadowsDef>,
+    /// Any TOML value, so that a string or a float is an error naming the
+    /// key like an integer out of range.
+    shadow_map_size: Option<S<toml::Value>>,
+    shadow_filter: Option<ShadowFilterDef>,
 }
 
 /// A shading mode: `[render] shading` and an object's `shading`.
@@ -95,14 +100,52 @@ enum LightingDef {
 enum ShadowsDef {
     None,
     Planar,
+    Map,
 }
 
-/// The shadow method of the `[render]` table: [`ShadowMode::None`] without
-/// one or without its `shadows` key.
-pub(super) fn shadow_mode(render: Option<&RenderDef>) -> ShadowMode {
-    match render.and_then(|r| r.shadows) {
+/// How a shadow map is sampled: [`Shadows::pcf`].
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum ShadowFilterDef {
+    Pcf,
+    Nearest,
+}
+
+/// The smallest shadow map side, in texels.
+pub(super) const MIN_SHADOW_MAP_SIZE: u32 = 16;
+
+/// The shadows of the `[render]` table, without planes (the objects bring
+/// them): [`Shadows::default`] without a table or without its keys.
+pub(super) fn shadows(check: &Checker, render: Option<&RenderDef>) -> Result<Shadows> {
+    let mut shadows = Shadows::default();
+    let Some(render) = render else { return Ok(shadows) };
+    shadows.mode = match render.shadows {
         Some(ShadowsDef::Planar) => ShadowMode::Planar,
+        Some(ShadowsDef::Map) => ShadowMode::Map,
         Some(ShadowsDef::None) | None => ShadowMode::None,
+    };
+    if let Some(v) = &render.shadow_map_size {
+        shadows.map_size = shadow_map_size(check, v)?;
+    }
+    if let Some(f) = render.shadow_filter {
+        shadows.pcf = matches!(f, ShadowFilterDef::Pcf);
+    }
+    Ok(shadows)
+}
+
+fn shadow_map_size(check: &Checker, v: &S<toml::Value>) -> Result<u32> {
+    let range = format!("{MIN_SHADOW_MAP_SIZE}..={MAX_SHADOW_MAP_SIZE}");
+    let key = "render.shadow_map_size";
+    match v.get_ref() {
+        toml::Value::Integer(n) => u32::try_from(*n)
+            .ok()
+            .filter(|n| (MIN_SHADOW_MAP_SIZE..=MAX_SHADOW_MAP_SIZE).contains(n))
+            .ok_or_else(|| check.error(v.span(), key, format!("must be in {range}, got {n}"))),
+        other => Err(check.error(
+            v.span(),
+            key,
+            format!("must be a whole number of texels in {range}, got {other}"),
+        )),
     }
 }
 

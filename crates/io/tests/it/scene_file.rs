@@ -8,7 +8,8 @@ use glam::{Vec3, Vec4};
 use zline_io::{default_lights, load_scene_with_options, LoadOptions, SceneError, DEFAULT_AMBIENT};
 use zline_scene::{
     Attenuation, DepthMode, FogCoordinate, FogMode, GouraudClamp, Interpolation, Light, LightingSides,
-    Projection, RenderSettings, Scene, ShadingMode, ShadowMode, Shadows,
+    Projection, RenderSettings, Scene, ShadingMode, ShadowMode, Shadows, DEFAULT_SHADOW_MAP_SIZE,
+    MAX_SHADOW_MAP_SIZE,
 };
 
 use crate::{check_message, data, repo, temp_file};
@@ -563,7 +564,7 @@ fn bad_shadows_are_rejected() {
     check_scene_error(
         "soft.toml",
         &format!("[render]\nshadows = \"soft\"\n{OBJECT}"),
-        &["line 2", "unknown variant `soft`", "`none`", "`planar`"],
+        &["line 2", "unknown variant `soft`", "`none`", "`planar`", "`map`"],
     );
     check_scene_error(
         "ball.toml",
@@ -590,5 +591,80 @@ fn bad_shadows_are_rejected() {
         "line.toml",
         &format!("[[objects]]\nmodel = {line:?}\nshadow_plane = true\n"),
         &["objects[0].shadow_plane: needs a flat object: it has no triangle of positive area"],
+    );
+}
+
+#[test]
+fn shadow_maps_are_read_with_their_size_and_filter() {
+    let render = |body: &str| format!("[render]\n{body}\n{OBJECT}");
+    let load = |name: &str, text: &str| load_scene(&temp_file(name, text)).unwrap_or_else(|e| panic!("{e}"));
+
+    // The defaults: 1024 texels, PCF, with or without map mode.
+    let scene = load("map.toml", &render("shadows = \"map\""));
+    assert_eq!(scene.shadows.mode, ShadowMode::Map);
+    assert_eq!((scene.shadows.map_size, scene.shadows.pcf), (DEFAULT_SHADOW_MAP_SIZE, true));
+    assert_eq!(DEFAULT_SHADOW_MAP_SIZE, 1024);
+    assert!(scene.shadows.planes.is_empty());
+    assert!(scene.shadows.receives(0), "with shadow maps every object receives");
+    let scene = load("plain.toml", OBJECT);
+    assert_eq!((scene.shadows.map_size, scene.shadows.pcf), (1024, true));
+
+    let scene =
+        load("full.toml", &render("shadows = \"map\"\nshadow_map_size = 256\nshadow_filter = \"nearest\""));
+    assert_eq!(scene.shadows.mode, ShadowMode::Map);
+    assert_eq!((scene.shadows.map_size, scene.shadows.pcf), (256, false));
+    let scene = load("pcf.toml", &render("shadows = \"map\"\nshadow_filter = \"pcf\""));
+    assert!(scene.shadows.pcf);
+
+    // Both ends of the range; the keys are kept whatever the mode.
+    for size in [16, MAX_SHADOW_MAP_SIZE] {
+        let scene = load("ends.toml", &render(&format!("shadow_map_size = {size}")));
+        assert_eq!(scene.shadows.map_size, size);
+        assert_eq!(scene.shadows.mode, ShadowMode::None);
+    }
+}
+
+#[test]
+fn bad_shadow_map_keys_are_rejected() {
+    let render = |body: &str| format!("[render]\n{body}\n{OBJECT}");
+    check_scene_error(
+        "small.toml",
+        &render("shadow_map_size = 8"),
+        &["line 2, column 19: render.shadow_map_size: must be in 16..=8192, got 8"],
+    );
+    check_scene_error(
+        "large.toml",
+        &render("shadows = \"map\"\nshadow_map_size = 9000"),
+        &["line 3, column 19: render.shadow_map_size: must be in 16..=8192, got 9000"],
+    );
+    check_scene_error(
+        "negative.toml",
+        &render("shadow_map_size = -1"),
+        &["line 2, column 19: render.shadow_map_size", "got -1"],
+    );
+    check_scene_error(
+        "huge.toml",
+        &render("shadow_map_size = 99999999999"),
+        &["line 2, column 19: render.shadow_map_size", "got 99999999999"],
+    );
+    check_scene_error(
+        "big.toml",
+        &render("shadow_map_size = \"big\""),
+        &["line 2, column 19: render.shadow_map_size: must be a whole number of texels in 16..=8192", "big"],
+    );
+    check_scene_error(
+        "float.toml",
+        &render("shadow_map_size = 512.0"),
+        &["line 2, column 19: render.shadow_map_size: must be a whole number", "512"],
+    );
+    check_scene_error(
+        "filter.toml",
+        &render("shadow_filter = \"bilinear\""),
+        &["line 2, column 17", "unknown variant `bilinear`", "`pcf`", "`nearest`"],
+    );
+    check_scene_error(
+        "typo.toml",
+        &render("shadow_map = 512"),
+        &["line 2", "unknown field `shadow_map`", "shadow_map_size"],
     );
 }

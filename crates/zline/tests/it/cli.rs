@@ -199,6 +199,33 @@ fn the_shadows_flag_is_checked_and_warns_when_nothing_receives() {
 }
 
 #[test]
+fn shadow_map_flags_are_checked_and_map_mode_renders_a_bare_model() {
+    for bad in ["9000", "8", "big"] {
+        let out = zline(&["demo", "-o", "x.png", "--shadow-map-size", bad]);
+        check_error_line(&out, 2, &[bad, "--shadow-map-size"]);
+    }
+    let out = zline(&["demo", "-o", "x.png", "--shadow-filter", "bilinear"]);
+    check_error_line(&out, 2, &["bilinear", "--shadow-filter"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("nearest"), "the valid names are listed");
+
+    // Shadow maps need no shadow planes: no warning on a bare model.
+    let dir = tempfile::tempdir().unwrap();
+    let suzanne = repo().join("assets/obj/suzanne/suzanne.obj");
+    let png = dir.path().join("map.png");
+    let args = ["render", suzanne.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "32x24"];
+    for extra in [
+        &["--shadows", "map"][..],
+        &["--shadows", "map", "--shadow-map-size", "16", "--shadow-filter", "nearest"],
+        &["--shadows", "map", "--shadow-map-size", "64", "--shadow-filter", "pcf"],
+    ] {
+        let out = zline(&[&args[..], extra].concat());
+        check_png(&out, &png, (32, 24));
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!stderr.contains("warning:"), "{extra:?}: {stderr}");
+    }
+}
+
+#[test]
 fn demo_scene_room_renders_the_room_with_shadows_on_the_floor() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("room.png");
