@@ -59,7 +59,7 @@ pub(crate) fn section(frames: usize) -> Result<String> {
     let _ = writeln!(
         md,
         "## Shadows\n\n{}×{}, fastest and median of {frames} frames in interleaved rounds; errors in 8-bit \
-         steps against the f64 truth, which casts a ray from each sample of a receiving plane to each light \
+         steps against the f64 truth, which casts a ray from each receiving sample (every sample with shadow maps) to each light \
          (`crates/truth/src/shadow.rs`).\n",
         SIZE.0, SIZE.1
     );
