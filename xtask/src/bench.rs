@@ -200,6 +200,16 @@ fn cases(assets: &Path) -> Result<Vec<Case>> {
             Ok(scene)
         }),
     });
+    // And with shadow maps (every surface receives and casts; 1024², PCF).
+    out.push(Case {
+        name: "transparent spheres + shadow maps".into(),
+        build: Box::new(|| {
+            let mut scene = textured_plane(true)?;
+            scene.shadows =
+                zline::scene::Shadows { mode: zline::scene::ShadowMode::Map, ..Default::default() };
+            Ok(scene)
+        }),
+    });
     // 500 × 1000 ≈ 1M triangles.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
         out.push(Case {
