@@ -151,6 +151,23 @@ impl ShadowMaps {
         let Some(map) = self.lights.get(k as usize) else {
             return f32x8::ONE;
         };
+        if let LightMap::Directional { from_eye, map, texel, to_light } = map {
+            // The lanes together, with the scalar path's operations in its
+            // order (glam's affine transform and dot product), so every lane
+            // is what `visibility` computes; only the texel reads are per lane.
+            let c = from_eye.to_cols_array();
+            let row = |r: usize| {
+                f32x8::splat(c[12 + r])
+                    + (f32x8::splat(c[8 + r]) * point.z
+                        + (f32x8::splat(c[4 + r]) * point.y + f32x8::splat(c[r]) * point.x))
+            };
+            let n_dot_l = normal.x * f32x8::splat(to_light.x)
+                + normal.y * f32x8::splat(to_light.y)
+                + normal.z * f32x8::splat(to_light.z);
+            let bias = f32x8::splat(self.bias) * slope_bias_x8(n_dot_l) * f32x8::splat(*texel);
+            let (x, y, d) = (row(0).to_array(), row(1).to_array(), (row(2) - bias).to_array());
+            return f32x8::from(std::array::from_fn::<f32, 8, _>(|i| self.lookup(map, x[i], y[i], d[i])));
+        }
         let (px, py, pz) = (point.x.to_array(), point.y.to_array(), point.z.to_array());
         let (nx, ny, nz) = (normal.x.to_array(), normal.y.to_array(), normal.z.to_array());
         let lane = |i: usize| {
@@ -210,6 +227,13 @@ impl ShadowMaps {
         }
         seen as f32 / 9.0
     }
+}
+
+/// [`slope_bias`] per lane, with the same operations.
+fn slope_bias_x8(n_dot_l: f32x8) -> f32x8 {
+    let c = n_dot_l.abs().max(f32x8::splat(0.0995));
+    let tan = (f32x8::ONE - c * c).max(f32x8::ZERO).sqrt() / c;
+    f32x8::splat(1.5) + f32x8::splat(2.0) * tan.min(f32x8::splat(10.0))
 }
 
 /// The slope-scaled bias in texels: 1.5 + 2·tan θ for cos θ = `n_dot_l`,
@@ -312,6 +336,72 @@ mod tests {
         assert_eq!(slope_bias(1.0), 1.5);
         assert!(slope_bias(0.5) > slope_bias(0.9));
         assert!(slope_bias(0.0) <= 21.5 + 1e-3);
+    }
+
+    #[test]
+    fn eight_lanes_give_each_lane_s_visibility() {
+        use std::sync::Arc;
+        use zline_scene::{Camera, Object, Projection, RenderSettings, Shadows};
+        let object = |mesh, m: Mat4| Object {
+            mesh: Arc::new(mesh),
+            world_from_object: m,
+            material: None,
+            shading: None,
+            cull_back_faces: false,
+        };
+        let mut scene = Scene {
+            camera: Camera {
+                eye: Vec3::new(0.0, 3.0, 4.0),
+                target: Vec3::ZERO,
+                up: Vec3::Y,
+                projection: Projection::Perspective { fovy_degrees: 45.0, near: 0.5, far: 20.0 },
+            },
+            background: Vec3::ZERO,
+            ambient: Vec3::ZERO,
+            lights: vec![
+                Light::Directional { direction: Vec3::new(0.4, -1.0, 0.3), color: Vec3::ONE },
+                Light::Point {
+                    position: Vec3::new(0.5, 2.0, 0.2),
+                    color: Vec3::ONE,
+                    attenuation: Default::default(),
+                },
+            ],
+            objects: vec![
+                object(zline_scene::plane(6.0, 4), Mat4::IDENTITY),
+                object(zline_scene::cube(1.0), Mat4::from_translation(Vec3::new(0.0, 0.7, 0.0))),
+            ],
+            settings: RenderSettings::default(),
+            fog: None,
+            shadows: Shadows { map_size: 64, ..Shadows::default() },
+        };
+        let view = scene.camera.eye_from_world();
+        for pcf in [true, false] {
+            scene.shadows.pcf = pcf;
+            let maps = ShadowMaps::build(&scene, &view);
+            for seed in 0..64u32 {
+                let f = |i: u32| ((seed * 8 + i) as f32 * 0.618_034).fract() * 4.0 - 2.0;
+                let points: [Vec3; 8] = std::array::from_fn(|i| {
+                    view.transform_point3(Vec3::new(f(i as u32), 0.05 * f(i as u32 + 3), f(i as u32 + 5)))
+                });
+                let normals: [Vec3; 8] = std::array::from_fn(|i| {
+                    view.transform_vector3(
+                        Vec3::new(0.1 * f(i as u32 + 1), 1.0, 0.1 * f(i as u32 + 2)).normalize(),
+                    )
+                });
+                let lanes = |v: &[Vec3; 8]| Vec3x8 {
+                    x: f32x8::from(v.map(|p| p.x)),
+                    y: f32x8::from(v.map(|p| p.y)),
+                    z: f32x8::from(v.map(|p| p.z)),
+                };
+                for k in 0..2 {
+                    let got = maps.visibility_x8(k, lanes(&points), lanes(&normals)).to_array();
+                    for i in 0..8 {
+                        let want = maps.visibility(&maps.lights[k as usize], points[i], normals[i]);
+                        assert_eq!(got[i].to_bits(), want.to_bits(), "pcf {pcf}, light {k}, lane {i}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]
