@@ -34,7 +34,8 @@
 //!   relative) — about 0.001 step at these magnitudes. 1500 random scenes
 //!   gave at most 0.003 step beyond the sensitivity; TOLERANCE = 0.01 step.
 //! - The exact share: a colour error e flips the rounding of a channel with
-//!   probability about e. Two runs of 1500 scenes gave 99.8 % and 99.9 %
+//!   probability about e. A pixel with a channel within TOLERANCE of a
+//!   rounding boundary counts as exact (either rounding is right). Two runs of 1500 scenes gave 99.8 % and 99.9 %
 //!   exact pixels overall and at least 98.3 % per scene; 95 % still catches
 //!   a systematic difference (rounding off by half a step makes about half
 //!   the pixels inexact).
@@ -345,7 +346,15 @@ fn compare_skipping(scene: &Scene, skip: &[bool]) -> Result<(usize, usize), Stri
                 ));
             }
         }
-        exact += usize::from(got == want);
+        // A channel whose exact value lies within TOLERANCE of a rounding
+        // boundary (k + ½ steps) may round either way; such a pixel counts
+        // as exact. (A background of 134.5/255 made every pixel of a scene
+        // "inexact" by one step, both roundings being right.)
+        let ambiguous = exact_colour.iter().any(|&c| {
+            let v = c.clamp(0.0, 1.0) * 255.0;
+            (v - v.floor() - 0.5).abs() <= TOLERANCE
+        });
+        exact += usize::from(got == want || ambiguous);
     }
     Ok((compared, exact))
 }
