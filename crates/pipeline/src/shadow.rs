@@ -113,7 +113,7 @@ fn world_bounds(object: &Object) -> Option<(DVec3, DVec3)> {
 /// triangle cut by the two slab planes and the six faces of a box has at
 /// most 3 + 8 corners.
 #[derive(Clone, Copy)]
-struct Polygon {
+pub(crate) struct Polygon {
     points: [DVec3; Polygon::MAX],
     len: usize,
 }
@@ -121,13 +121,13 @@ struct Polygon {
 impl Polygon {
     const MAX: usize = 12;
 
-    fn triangle(a: DVec3, b: DVec3, c: DVec3) -> Polygon {
+    pub(crate) fn triangle(a: DVec3, b: DVec3, c: DVec3) -> Polygon {
         let mut points = [DVec3::ZERO; Polygon::MAX];
         points[..3].copy_from_slice(&[a, b, c]);
         Polygon { points, len: 3 }
     }
 
-    fn points_mut(&mut self) -> &mut [DVec3] {
+    pub(crate) fn points_mut(&mut self) -> &mut [DVec3] {
         &mut self.points[..self.len]
     }
 
@@ -135,7 +135,7 @@ impl Polygon {
     /// crossing is at the ratio of its values): a point with f = 0 stays,
     /// an edge is split only where f changes sign. A convex polygon gains
     /// at most one point per cut.
-    fn clip(&self, f: impl Fn(DVec3) -> f64) -> Polygon {
+    pub(crate) fn clip(&self, f: impl Fn(DVec3) -> f64) -> Polygon {
         let mut out = Polygon { points: [DVec3::ZERO; Polygon::MAX], len: 0 };
         let points = &self.points[..self.len];
         for (k, &a) in points.iter().enumerate() {

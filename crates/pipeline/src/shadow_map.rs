@@ -25,6 +25,8 @@ use zline_raster::{DepthPlane, EdgeTable, FixedPoint, PlaneBasis, Rect};
 use zline_scene::{Light, Scene};
 use zline_shading::Vec3x8;
 
+use crate::shadow::Polygon;
+
 /// The near plane of a point light's faces, as a share of the scene's size.
 const NEAR: f32 = 1e-4;
 
@@ -291,31 +293,26 @@ fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32) -> LightMap
                 let v = p - position;
                 Vec3::new(v[ua], v[ub], sign * v[axis])
             });
-            for piece in clip_near(q, near) {
+            clip_near(q, near, |piece| {
                 let tex = piece.map(|q| ((q.x / q.z + 1.0) * 0.5 * s, (q.y / q.z + 1.0) * 0.5 * s));
                 map.draw(tex, piece.map(|q| 1.0 / f64::from(q.z)), |inv| (1.0 / inv) as f32);
-            }
+            });
         }
         map
     });
     LightMap::Point { position, faces: faces.collect() }
 }
 
-/// The parts of triangle `q` (face space) with depth ≥ `near`, as at most
-/// two triangles.
-fn clip_near(q: [Vec3; 3], near: f32) -> Vec<[Vec3; 3]> {
-    let mut poly: Vec<Vec3> = Vec::with_capacity(4);
-    for k in 0..3 {
-        let (a, b) = (q[k], q[(k + 1) % 3]);
-        let (fa, fb) = (a.z - near, b.z - near);
-        if fa >= 0.0 {
-            poly.push(a);
-        }
-        if (fa >= 0.0) != (fb >= 0.0) {
-            poly.push(a + (b - a) * (fa / (fa - fb)));
-        }
+/// The parts of triangle `q` (face space) with depth ≥ `near`, as a fan
+/// of at most two triangles handed to `piece` (clipped on the stack with
+/// the planar shadows' [`Polygon`], in f64).
+fn clip_near(q: [Vec3; 3], near: f32, mut piece: impl FnMut([Vec3; 3])) {
+    let [a, b, c] = q.map(|p| p.as_dvec3());
+    let mut poly = Polygon::triangle(a, b, c).clip(|x| x.z - f64::from(near));
+    let points = poly.points_mut();
+    for k in 1..points.len().saturating_sub(1) {
+        piece([points[0], points[k], points[k + 1]].map(|p| p.as_vec3()));
     }
-    (1..poly.len().saturating_sub(1)).map(|k| [poly[0], poly[k], poly[k + 1]]).collect()
 }
 
 #[cfg(test)]
@@ -407,9 +404,10 @@ mod tests {
     #[test]
     fn near_clipping_keeps_the_far_part() {
         let q = [Vec3::new(0.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0), Vec3::new(0.0, 1.0, 1.0)];
-        let pieces = clip_near(q, 0.5);
+        let mut pieces = Vec::new();
+        clip_near(q, 0.5, |t| pieces.push(t));
         assert_eq!(pieces.len(), 2);
         assert!(pieces.iter().flatten().all(|p| p.z >= 0.5 - 1e-6));
-        assert!(clip_near([Vec3::NEG_Z; 3], 0.1).is_empty());
+        clip_near([Vec3::NEG_Z; 3], 0.1, |t| panic!("{t:?} lies behind the near plane"));
     }
 }
