@@ -160,10 +160,12 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         .into_iter()
         .filter(|s| args.filter.as_deref().is_none_or(|f| s.name.contains(f)))
         .collect();
+    let shadow_chart = args.chart.with_file_name("report-shadows.png");
     if scenes.is_empty() && args.filter.as_deref() == Some("shadows") {
-        let markdown = crate::report_shadows::section(args.frames)?;
+        let (markdown, points) = crate::report_shadows::section(args.frames)?;
         write(&args.out, markdown.as_bytes())?;
-        println!("wrote {}", args.out.display());
+        crate::chart::draw(&shadow_chart, &args.font, &points, &crate::report_shadows::CHART)?;
+        println!("wrote {} and {}", args.out.display(), shadow_chart.display());
         return Ok(());
     }
     if scenes.is_empty() {
@@ -211,11 +213,13 @@ pub(crate) fn run(args: &Args) -> Result<()> {
     let mut markdown = table(&scenes, &settings, &rows, &points, args);
     if args.filter.as_deref().is_none_or(|f| "shadows".contains(f)) {
         let start = Instant::now();
-        markdown += &crate::report_shadows::section(args.frames)?;
+        let (section, shadow_points) = crate::report_shadows::section(args.frames)?;
+        markdown += &section;
+        crate::chart::draw(&shadow_chart, &args.font, &shadow_points, &crate::report_shadows::CHART)?;
         eprintln!("shadows: {:.1} s", start.elapsed().as_secs_f64());
     }
     write(&args.out, markdown.as_bytes())?;
-    crate::chart::draw(&args.chart, &args.font, &points)?;
+    crate::chart::draw(&args.chart, &args.font, &points, &crate::chart::SETTINGS)?;
     for p in points.iter().filter(|p| p.name.contains("adaptive")) {
         println!("{}: {}", p.name, if p.pareto { "on the Pareto front" } else { "dominated" });
     }
@@ -313,7 +317,7 @@ fn chart_points(scenes: &[ReportScene], settings: &[Setting], rows: &[Row]) -> V
         .map(|(ki, s)| {
             let bench = rows.iter().filter(|r| r.setting == ki && scenes[r.scene].benchmark);
             let (ms, rmse) = bench.fold((0.0, 0.0), |(t, e), r| (t + r.ms, e + r.best.rmse / n));
-            Point { name: s.name, ms, rmse, pareto: false }
+            Point { name: s.name.to_string(), ms, rmse, pareto: false }
         })
         .collect();
     for i in 0..points.len() {

@@ -9,7 +9,10 @@
 //! - An area light (`tests/scenes/shadows_area.toml`) sampled as k × k
 //!   point lights, k = 1 … 5 (up to 25 lights: the shadow mask has 32 bits
 //!   per plane), against the truth of a dense 16 × 16 sampling: the error
-//!   of the sampling itself, with the time each k costs.
+//!   of the sampling itself, with the time each k costs; and the same
+//!   light with `samples = "auto"` at several tolerances: the k the
+//!   adaptive choice takes (`zline_scene::choose_area_samples`) and the
+//!   error it gives.
 //! - Shadow maps on the planar scene (every surface receives and casts) at
 //!   512², 1024², 2048², 4096², with and without PCF, against the truth of
 //!   map mode (a ray per sample and light against every triangle).
@@ -17,6 +20,10 @@
 //!   normal) with a thin slab lying on it, at bias scales 0 … 8: the share
 //!   of pixels the map darkens wrongly (acne, or a shadow bleeding past
 //!   its caster) and lights wrongly (a shadow detached from its caster).
+//!
+//! Every timed row is also a point on the shadow chart
+//! (`docs/images/report-shadows.png`): time against error, each against
+//! its own truth.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -25,7 +32,17 @@ use anyhow::{Context, Result};
 use zline::scene::{Scene, ShadowMode};
 use zline_truth::{render_truth, ErrorStats};
 
+use crate::chart::{Labels, Point};
 use crate::timing::time_interleaved;
+
+/// The shadow chart's words.
+pub(crate) const CHART: Labels = Labels {
+    title: "zline shadows: time against error (400×300)",
+    x: "frame time (fastest of N frames), ms",
+    y: "RMSE vs the f64 truth with shadows, 8-bit steps (log)",
+    legend: "rows of the report's Shadows tables",
+    log_time: true,
+};
 
 /// Image size of the shadow scenes (the truth lights 256 samples per pixel
 /// for the dense area light).
@@ -35,9 +52,10 @@ fn repo_file(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(name)
 }
 
-/// Loads a repository scene file, with its `samples = 4` replaced when
-/// `samples` is given, at [`SIZE`].
-fn load(name: &str, samples: Option<u32>) -> Result<Scene> {
+/// Loads a repository scene file, with its `samples = 4` replaced by
+/// `samples` when given (a count or `"auto"` with a tolerance), at
+/// [`SIZE`].
+fn load(name: &str, samples: Option<&str>) -> Result<Scene> {
     let path = repo_file(name);
     let text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
     let text = match samples {
@@ -53,9 +71,10 @@ fn load(name: &str, samples: Option<u32>) -> Result<Scene> {
     Ok(scene)
 }
 
-/// The markdown section.
-pub(crate) fn section(frames: usize) -> Result<String> {
+/// The markdown section and the chart's points.
+pub(crate) fn section(frames: usize) -> Result<(String, Vec<Point>)> {
     let mut md = String::new();
+    let mut points = Vec::new();
     let _ = writeln!(
         md,
         "## Shadows\n\n{}×{}, fastest and median of {frames} frames in interleaved rounds; errors in 8-bit \
@@ -76,11 +95,22 @@ pub(crate) fn section(frames: usize) -> Result<String> {
     for (name, (t, image)) in ["planar", "none"].iter().zip(times.iter().zip(&images)) {
         let e = ErrorStats::of_rgb8(&image.to_rgb(), &truth);
         row(&mut md, name, *t, &e);
+        points.push(point(&format!("{name} (planar scene)"), *t, &e));
     }
-    let dense = render_truth(&load("tests/scenes/shadows_area.toml", Some(16))?);
+    let dense = render_truth(&load("tests/scenes/shadows_area.toml", Some("16"))?);
     let ks = [1u32, 2, 3, 4, 5];
-    let scenes =
-        ks.iter().map(|&k| load("tests/scenes/shadows_area.toml", Some(k))).collect::<Result<Vec<_>>>()?;
+    let tolerances = [4.0f32, 2.0, 1.0, 0.5];
+    let mut names: Vec<String> = ks.iter().map(|k| format!("{k} × {k}")).collect();
+    let mut scenes = ks
+        .iter()
+        .map(|&k| load("tests/scenes/shadows_area.toml", Some(&k.to_string())))
+        .collect::<Result<Vec<_>>>()?;
+    for t in tolerances {
+        let scene = load("tests/scenes/shadows_area.toml", Some(&format!("\"auto\"\ntolerance = {t}")))?;
+        let k = (scene.lights.len() as f64).sqrt().round();
+        names.push(format!("auto, tolerance {t}: {k} × {k}"));
+        scenes.push(scene);
+    }
     let (times, images) = time_interleaved(&scenes, frames);
     let _ = writeln!(
         md,
@@ -88,18 +118,30 @@ pub(crate) fn section(frames: usize) -> Result<String> {
     );
     let _ = writeln!(md, "| k × k | ms (fastest) | ms (median) | RMSE | max | exact | > 1 |");
     let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|---:|");
-    for (k, (t, image)) in ks.iter().zip(times.iter().zip(&images)) {
+    for (name, (t, image)) in names.iter().zip(times.iter().zip(&images)) {
         let e = ErrorStats::of_rgb8(&image.to_rgb(), &dense);
-        row(&mut md, &format!("{k} × {k}"), *t, &e);
+        row(&mut md, name, *t, &e);
+        points.push(point(&format!("area {name}"), *t, &e));
     }
+    let _ = writeln!(
+        md,
+        "\n*auto*: `samples = \"auto\"` takes the fewest k whose diffuse light on a white surface differs from \
+         16 × 16 by at most the tolerance (RMSE in 8-bit steps over up to 512 visible surface points, with \
+         the shadows the scene models; `zline_scene::choose_area_samples`). With planar shadows it stops \
+         at 5 × 5: the shadow mask holds 32 (plane, light) pairs."
+    );
     md.push('\n');
-    maps(&mut md, frames)?;
+    maps(&mut md, &mut points, frames)?;
     acne(&mut md)?;
-    Ok(md)
+    Ok((md, points))
+}
+
+fn point(name: &str, (fastest, _): (f64, f64), e: &ErrorStats) -> Point {
+    Point { name: name.to_string(), ms: fastest, rmse: e.rmse, pareto: false }
 }
 
 /// Shadow maps at several sizes, with and without PCF.
-fn maps(md: &mut String, frames: usize) -> Result<()> {
+fn maps(md: &mut String, points: &mut Vec<Point>, frames: usize) -> Result<()> {
     let mut scene = load("tests/scenes/shadows_planar.toml", None)?;
     scene.shadows.mode = ShadowMode::Map;
     let truth = render_truth(&scene);
@@ -121,7 +163,9 @@ fn maps(md: &mut String, frames: usize) -> Result<()> {
     let _ = writeln!(md, "| map | ms (fastest) | ms (median) | RMSE | max | exact | > 1 |");
     let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|---:|");
     for ((name, _), (t, image)) in variants.iter().zip(times.iter().zip(&images)) {
-        row(md, name, *t, &ErrorStats::of_rgb8(&image.to_rgb(), &truth));
+        let e = ErrorStats::of_rgb8(&image.to_rgb(), &truth);
+        row(md, name, *t, &e);
+        points.push(point(&format!("map {name}"), *t, &e));
     }
     md.push('\n');
     Ok(())

@@ -10,17 +10,22 @@
 //! (validation and vertex normals; its errors in `error`), `limits` (the
 //! largest render settings a scene may ask for, and what one load may
 //! read and build), `primitives` (procedural
-//! meshes). The built-in scenes are in zline-scenes.
+//! meshes), `area` and `area_auto` (area lights and the adaptive choice
+//! of their samples), `occluders` (f64 ray tests against triangles in a
+//! bounding-volume hierarchy: light visibility). The built-in scenes are in zline-scenes.
 
 mod area;
+mod area_auto;
 mod error;
 mod limits;
 mod mesh;
 mod model;
+mod occluders;
 mod primitives;
 mod shadow;
 
 pub use area::{AreaLight, AreaShape};
+pub use area_auto::{choose_area_samples, AreaChoice, PROBES as AREA_PROBES};
 pub use error::MeshError;
 pub use limits::{
     MAX_ADAPTIVE_TOLERANCE, MAX_AREA_SAMPLES_PER_SIDE, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE,
@@ -33,6 +38,7 @@ pub use model::{
     Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, Object, Projection, RenderSettings,
     Scene, ShadowMode, ShadowPlane, Shadows, TextureMap, DEFAULT_SHADOW_MAP_SIZE,
 };
+pub use occluders::{Occluders, TriangleId};
 pub use primitives::{cube, plane, torus, uv_sphere};
 pub use shadow::{light_position, shadow_matrix, shadow_matrix_f64};
 pub use zline_shading::{

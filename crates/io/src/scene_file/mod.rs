@@ -27,7 +27,7 @@ use zline_scene::{
     MAX_PRIMITIVE_TRIANGLES,
 };
 
-use zline_shading::{Fog, FogCoordinate, FogMode, Light, Material, ShadingMode};
+use zline_shading::{Fog, FogCoordinate, FogMode, Material, ShadingMode};
 
 use crate::culling::default_culling;
 use crate::error::{line_column, SceneError};
@@ -42,7 +42,7 @@ mod models;
 mod render;
 
 use checks::{Checker, Result, S};
-use lights::LightDef;
+use lights::{LightDef, LightEntry};
 use models::{ModelCache, ModelPart};
 use render::{settings, shadows, RenderDef, ShadingDef};
 
@@ -96,7 +96,10 @@ use render::{settings, shadows, RenderDef, ShadingDef};
 /// position = [0, 3, 0]              # required: the centre
 /// u = [0.5, 0, 0]                   # required: half of one edge
 /// v = [0, 0, 0.5]                   # required: half of the other
-/// samples = 4                       # k, samples per side, 1..=16; default 4 (16 lights)
+/// samples = 4                       # k, samples per side, 1..=16, or "auto"; default 4 (16 lights)
+/// tolerance = 1.0                   # with "auto": the fewest k whose light differs from 16 × 16 by
+///                                   #   at most this RMSE in 8-bit steps on the visible surfaces
+///                                   #   (diffuse, white; shadows as the scene models them); default 1
 /// color = [1, 1, 1]                 # the whole light's Il; attenuation as for points
 /// [[lights]]
 /// type = "disc"                     # a disc: position, normal, radius; samples as rect
@@ -295,16 +298,13 @@ impl Builder<'_> {
             Some(c) => self.check.vec3_in(c, "ambient", 0.0, f32::INFINITY)?,
             None => DEFAULT_AMBIENT,
         };
-        let lights = match &file.lights {
+        let entries = match &file.lights {
             Some(lights) => lights
                 .iter()
                 .enumerate()
                 .map(|(i, l)| self.light(l, &format!("lights[{i}]")))
-                .collect::<Result<Vec<_>>>()?
-                .into_iter()
-                .flatten()
-                .collect(),
-            None => default_lights(),
+                .collect::<Result<Vec<_>>>()?,
+            None => vec![LightEntry::Lights(default_lights())],
         };
         if file.objects.is_empty() {
             return Err(self.check.file_error("no [[objects]]: a scene needs at least one object"));
@@ -332,7 +332,9 @@ impl Builder<'_> {
         };
         let fog = file.fog.as_ref().map(|f| self.fog(f)).transpose()?;
         shadows.planes = planes;
-        Ok(Scene { shadows, camera, background, ambient, lights, objects, settings, fog })
+        let scene =
+            Scene { shadows, camera, background, ambient, lights: Vec::new(), objects, settings, fog };
+        Ok(lights::resolve(scene, entries, self.check.path))
     }
 
     /// The receiving planes of an entry with `shadow_plane = true`: one per
@@ -470,7 +472,7 @@ impl Builder<'_> {
     }
 
     /// One `[[lights]]` entry (see [`lights::light`]).
-    fn light(&self, def: &S<LightDef>, key: &str) -> Result<Vec<Light>> {
+    fn light(&self, def: &S<LightDef>, key: &str) -> Result<LightEntry> {
         lights::light(&self.check, def, key)
     }
 

@@ -268,12 +268,12 @@ fn bad_area_lights_are_rejected() {
     check_scene_error(
         "samples0.toml",
         &light(&format!("{rect}\nsamples = 0")),
-        &["lights[0].samples: must be in 1..=16"],
+        &["lights[0].samples: must be \"auto\" or in 1..=16"],
     );
     check_scene_error(
         "samples17.toml",
         &light(&format!("{rect}\nsamples = 17")),
-        &["lights[0].samples: must be in 1..=16"],
+        &["lights[0].samples: must be \"auto\" or in 1..=16"],
     );
     check_scene_error(
         "noradius.toml",
@@ -290,6 +290,56 @@ fn bad_area_lights_are_rejected() {
         &light("type = \"directional\"\ndirection = [0, -1, 0]\nsamples = 3"),
         &["lights[0].samples: applies to rect and disc lights only"],
     );
+    check_scene_error(
+        "sampleword.toml",
+        &light(&format!("{rect}\nsamples = \"many\"")),
+        &["lights[0].samples: must be \"auto\" or in 1..=16", "\"many\""],
+    );
+    check_scene_error(
+        "tolfixed.toml",
+        &light(&format!("{rect}\nsamples = 3\ntolerance = 2")),
+        &["lights[0].tolerance: applies with samples = \"auto\" only"],
+    );
+    check_scene_error(
+        "tolneg.toml",
+        &light(&format!("{rect}\nsamples = \"auto\"\ntolerance = -1")),
+        &["lights[0].tolerance: must be in 0..=255"],
+    );
+    check_scene_error(
+        "tolpoint.toml",
+        &light("type = \"point\"\nposition = [0, 3, 0]\ntolerance = 1"),
+        &["lights[0].tolerance: applies to rect and disc lights only"],
+    );
+}
+
+/// The repository's area-light scene with `samples = "auto"` and a
+/// tolerance, its shadow mode replaced: the number of point lights it
+/// becomes.
+fn auto_samples(tolerance: f32, shadows: &str) -> usize {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/shadows_area.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let text = text
+        .replace("samples = 4", &format!("samples = \"auto\"\ntolerance = {tolerance}"))
+        .replace("shadows = \"planar\"", &format!("shadows = \"{shadows}\""));
+    let scene = load_scene(&temp_file(&format!("auto-{tolerance}-{shadows}.toml"), &text)).unwrap();
+    scene.lights.len()
+}
+
+#[test]
+fn automatic_area_samples_model_what_the_scene_shows() {
+    let count = |t, s| auto_samples(t, s);
+    // Without shadows the light's diffuse term varies smoothly over the
+    // floor, 2.4 units under a 1.2-unit square: one sample is within half
+    // a step of 16 × 16.
+    assert_eq!((count(4.0, "none"), count(0.5, "none")), (1, 1));
+    // Penumbrae need more: the tighter the tolerance, the more samples.
+    let (loose, tight) = (count(4.0, "planar"), count(0.5, "planar"));
+    assert!(loose > 1 && loose < tight, "{loose} {tight}");
+    // Half a step is out of reach of planar shadows' 32 bits: the choice
+    // stops at 5 × 5 (with a warning) and every sample keeps its shadow.
+    assert_eq!(tight, 25);
+    let (loose_map, tight_map) = (count(4.0, "map"), count(0.5, "map"));
+    assert!(loose_map > 1 && loose_map < tight_map && tight_map > 25, "{loose_map} {tight_map}");
 }
 
 fn settings_of(name: &str, render: &str) -> RenderSettings {
