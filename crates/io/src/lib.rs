@@ -1,15 +1,16 @@
 //! The zline loaders: files → the scene model of zline-scene.
 //!
 //! This is the one crate that reads files: OBJ+MTL (through tobj), glTF 2.0
-//! (through the `gltf` crate), PNG and JPEG textures (through `image`) and
-//! TOML scene files. Every loader error is a [`SceneError`] whose one-line
+//! (through the `gltf` crate), STL (`stl_io`), PLY (`ply-rs-bw`), PNG and
+//! JPEG textures (through `image`) and TOML scene files. Every loader error is a [`SceneError`] whose one-line
 //! message names the file, the place and what is wrong; what a loader can
 //! draw around (a missing MTL file or texture, an unsupported glTF feature)
 //! is a warning instead. It knows nothing of rasterization, screens or
 //! threads.
 //!
 //! Steps, one module each: `obj` (OBJ+MTL files and their textures), `gltf`
-//! (glTF and GLB files: nodes, materials, cameras, lights), `texture_file`
+//! (glTF and GLB files: nodes, materials, cameras, lights), `stl` and `ply`
+//! (single-mesh formats of CAD tools and scanners), `texture_file`
 //! (PNG/JPEG images → textures, shared by both loaders), `culling` (the
 //! default back-face culling rule), `framing` (camera and lights for a bare
 //! model or glTF file), `scene_file` (TOML scenes; the format is documented
@@ -25,7 +26,9 @@ mod files;
 mod framing;
 mod gltf;
 mod obj;
+mod ply;
 mod scene_file;
+mod stl;
 mod texture_file;
 
 pub use error::SceneError;
@@ -39,4 +42,6 @@ pub use crate::gltf::{
     load_gltf, load_gltf_with_options, load_gltf_with_warnings, GltfScene, MAX_GLTF_SHININESS,
 };
 pub use obj::{load_obj, load_obj_with_options, load_obj_with_warnings};
+pub use ply::load_ply;
 pub use scene_file::{load_scene, load_scene_with_options};
+pub use stl::load_stl;

@@ -24,10 +24,10 @@
 use glam::{DVec3, DVec4};
 use zline_shading::Light;
 
-use crate::occluders::{Occluders, TriangleId};
 use crate::area::AreaLight;
 use crate::limits::MAX_AREA_SAMPLES_PER_SIDE;
 use crate::model::{Projection, Scene, ShadowMode};
+use crate::occluders::{Occluders, TriangleId};
 
 /// The most probes the measure uses.
 pub const PROBES: usize = 512;

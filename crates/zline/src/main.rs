@@ -30,9 +30,9 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render an OBJ or glTF model, or a TOML scene file, to a PNG.
+    /// Render a model (OBJ, glTF, STL, PLY) or a TOML scene file to a PNG.
     Render {
-        /// An `.obj`, `.gltf` or `.glb` model (framed automatically unless a
+        /// An `.obj`, `.gltf`, `.glb`, `.stl` or `.ply` model (framed automatically unless a
         /// glTF file brings its own camera; a key and a fill light unless it
         /// brings lights) or a `.toml` scene file.
         input: PathBuf,
@@ -519,9 +519,11 @@ fn load_input(input: &Path, options: LoadOptions) -> Result<Scene> {
             warn(warnings);
             zline::io::scene_for_gltf(gltf, RenderSettings::default())
         }
+        Some("stl") => zline::io::scene_for_model(zline::io::load_stl(input)?, RenderSettings::default()),
+        Some("ply") => zline::io::scene_for_model(zline::io::load_ply(input)?, RenderSettings::default()),
         Some("toml") => zline::io::load_scene_with_options(input, options)?,
         _ => bail!(
-            "{}: unsupported input; expected an .obj, .gltf or .glb model or a .toml scene file",
+            "{}: unsupported input; expected an .obj, .gltf, .glb, .stl or .ply model or a .toml scene file",
             input.display()
         ),
     })

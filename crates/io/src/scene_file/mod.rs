@@ -116,7 +116,7 @@ use render::{settings, shadows, RenderDef, ShadingDef};
 /// coordinate = "eye-plane"          # eye-plane (−z_eye, default) | radial (|p_eye|)
 ///
 /// [[objects]]                       # at least one
-/// model = "models/suzanne.obj"      # an OBJ, glTF or GLB file (its nodes, not its camera or lights), or else:
+/// model = "models/suzanne.obj"      # an OBJ, glTF, GLB, STL or PLY file (glTF: its nodes, not its camera or lights), or else:
 /// # primitive = "sphere"            # rings (32), segments (64), radius (1)
 /// # primitive = "plane"             # size (10), subdivisions (8)
 /// # primitive = "cube"              # size (1)

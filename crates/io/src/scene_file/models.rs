@@ -1,5 +1,5 @@
-//! Model files named by a scene file's objects: OBJ (with its MTL files) or
-//! glTF/GLB, chosen by extension. Each distinct file is loaded once and its
+//! Model files named by a scene file's objects: OBJ (with its MTL files),
+//! glTF/GLB, STL or PLY, chosen by extension. Each distinct file is loaded once and its
 //! meshes shared by every object that names it.
 //!
 //! A glTF file brings its node hierarchy (each mesh keeps its node's
@@ -52,16 +52,21 @@ impl ModelCache {
         if let Some(parts) = self.loaded.get(path) {
             return Ok(parts.clone());
         }
-        let parts = if is_gltf(path) { gltf_parts(path, options)? } else { obj_parts(path, options)? };
+        let parts = match extension(path).as_deref() {
+            Some("gltf" | "glb") => gltf_parts(path, options)?,
+            Some("stl") => crate::stl::load_stl(path)?.into_iter().map(ModelPart::alone).collect(),
+            Some("ply") => crate::ply::load_ply(path)?.into_iter().map(ModelPart::alone).collect(),
+            _ => obj_parts(path, options)?,
+        };
         self.loaded.insert(path.to_path_buf(), parts.clone());
         Ok(parts)
     }
 }
 
-/// `.gltf` and `.glb` (any case) are glTF; anything else is read as OBJ.
-fn is_gltf(path: &Path) -> bool {
-    let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    matches!(extension.as_deref(), Some("gltf" | "glb"))
+/// The extension in lower case: `.gltf` and `.glb` are glTF, `.stl` STL,
+/// `.ply` PLY; anything else is read as OBJ.
+fn extension(path: &Path) -> Option<String> {
+    path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)
 }
 
 fn print(warnings: Vec<String>) {

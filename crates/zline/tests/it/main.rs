@@ -4,6 +4,7 @@
 mod bad_corpus;
 mod bad_input;
 mod cli;
+mod formats;
 mod hard_cases;
 mod hostile;
 

@@ -1,0 +1,63 @@
+//! STL and PLY input: the bunny PLY of `assets/` and an STL written from it
+//! render from the command line, and load as the same mesh.
+
+use std::io::Write as _;
+
+use crate::{check_png, repo, zline};
+
+/// Writes the triangles of `mesh` as a binary STL.
+fn write_stl(path: &std::path::Path, mesh: &zline::scene::Mesh) {
+    let mut bytes = vec![0u8; 80];
+    bytes.extend((mesh.triangles.len() as u32).to_le_bytes());
+    for t in &mesh.triangles {
+        bytes.extend([0u8; 12]);
+        for &i in t {
+            mesh.positions[i as usize].to_array().iter().for_each(|c| bytes.extend(c.to_le_bytes()));
+        }
+        bytes.extend([0u8; 2]);
+    }
+    std::fs::File::create(path).unwrap().write_all(&bytes).unwrap();
+}
+
+#[test]
+fn the_bunny_renders_from_ply_and_from_stl() {
+    let dir = tempfile::tempdir().unwrap();
+    let ply = repo().join("assets/ply/bunny_lowres.ply");
+    let meshes = zline::io::load_ply(&ply).unwrap();
+    assert_eq!(meshes.len(), 1);
+    assert_eq!((meshes[0].triangles.len(), meshes[0].positions.len()), (6598, 3301));
+    let stl = dir.path().join("bunny.stl");
+    write_stl(&stl, &meshes[0]);
+    let from_stl = zline::io::load_stl(&stl).unwrap();
+    assert_eq!(from_stl[0].triangles.len(), 6598);
+    // STL repeats corners per triangle; welding them gives the PLY's
+    // vertices back (the remesh has no duplicate positions).
+    assert_eq!(from_stl[0].positions.len(), 3301);
+    let mut images = Vec::new();
+    for input in [&ply, &stl] {
+        let png = dir.path().join(format!("{}.png", input.extension().unwrap().to_str().unwrap()));
+        let out = zline(&["render", input.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "96x72"]);
+        let img = check_png(&out, &png, (96, 72));
+        let background = *img.get_pixel(0, 0);
+        let covered = img.pixels().filter(|p| **p != background).count();
+        assert!(covered > 96 * 72 / 8, "{}: the bunny covers only {covered} pixels", input.display());
+        images.push(img);
+    }
+    // Same triangles, same framing: the same picture, up to the order in
+    // which each vertex's face normals are summed.
+    let far = images[0]
+        .pixels()
+        .zip(images[1].pixels())
+        .filter(|(a, b)| a.0.iter().zip(b.0.iter()).any(|(x, y)| x.abs_diff(*y) > 1));
+    assert_eq!(far.count(), 0, "PLY and STL images differ by more than one step");
+}
+
+#[test]
+fn a_broken_ply_is_a_clean_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.ply");
+    std::fs::write(&bad, "ply\nformat ascii 1.0\nelement vertex 99999999\nproperty float x\nend_header\n1\n")
+        .unwrap();
+    let out = zline(&["render", bad.to_str().unwrap(), "-o", dir.path().join("x.png").to_str().unwrap()]);
+    crate::check_clean_error(&out, &["bad.ply", "element 'vertex' claims 99999999 entries"]);
+}
