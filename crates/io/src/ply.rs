@@ -11,18 +11,20 @@
 //! material; its normals, when the file has none, are computed as for
 //! every mesh (SPEC §6).
 //!
-//! The header is checked before any payload is read: each element's count
-//! must fit in the bytes that follow the header and within the scene's
-//! limits (`zline_scene::MAX_VERTICES`, `MAX_TRIANGLES`), so that a hostile
-//! header cannot make the reader reserve memory the file does not back.
+//! The header and the payload are checked before `ply-rs-bw` reads them
+//! ([`check_payload`]): every element's count within the scene's limits
+//! (`zline_scene::MAX_VERTICES`, `MAX_TRIANGLES`), and every entry and
+//! every list length backed by bytes (binary) or numbers (ASCII) of the
+//! file — the reader reserves memory by those counts, so a hostile file
+//! could otherwise make it ask for more than any machine has.
 
 use std::io::Cursor;
 use std::path::Path;
 
 use glam::Vec3;
 use ply_rs_bw::parser::Parser;
-use ply_rs_bw::ply::{Property, PropertyAccess};
-use zline_scene::{Material, Mesh, MAX_TRIANGLES};
+use ply_rs_bw::ply::{Encoding, Header, Property, PropertyAccess, PropertyType, ScalarType};
+use zline_scene::{Material, Mesh, MAX_TRIANGLES, MAX_VERTICES};
 
 use crate::error::SceneError;
 use crate::files::{read_limited, FileKind};
@@ -133,15 +135,7 @@ fn parse_ply(path: &Path, bytes: &[u8]) -> Result<Vec<Mesh>, SceneError> {
     let mut reader = Cursor::new(bytes);
     let parser = Parser::<Entry>::new();
     let header = parser.read_header(&mut reader).map_err(|e| error(format!("bad PLY header: {e}")))?;
-    let after_header = bytes.len() - reader.position() as usize;
-    for (name, element) in &header.elements {
-        if element.count > after_header {
-            return Err(error(format!(
-                "element '{name}' claims {} entries, but only {after_header} bytes follow the header",
-                element.count
-            )));
-        }
-    }
+    check_payload(&header, &bytes[reader.position() as usize..]).map_err(error)?;
     let Some(vertex) = header.elements.get("vertex") else {
         return Err(error("no 'vertex' element".into()));
     };
@@ -160,6 +154,115 @@ fn parse_ply(path: &Path, bytes: &[u8]) -> Result<Vec<Mesh>, SceneError> {
         }
     }
     build(path, &vertices, &faces)
+}
+
+/// The size in bytes of a binary scalar.
+fn scalar_size(t: &ScalarType) -> usize {
+    match t {
+        ScalarType::Char | ScalarType::UChar => 1,
+        ScalarType::Short | ScalarType::UShort => 2,
+        ScalarType::Int | ScalarType::UInt | ScalarType::Float => 4,
+        ScalarType::Double => 8,
+    }
+}
+
+/// Walks the payload as the header describes it, without keeping
+/// anything: every element's count at most [`MAX_VERTICES`] (and at least
+/// one property when non-zero), every entry present, every list's length
+/// backed by the values that follow it.
+fn check_payload(header: &Header, payload: &[u8]) -> Result<(), String> {
+    let binary = match header.encoding {
+        Encoding::Ascii => None,
+        Encoding::BinaryLittleEndian => Some(true),
+        Encoding::BinaryBigEndian => Some(false),
+    };
+    let mut lines = std::str::from_utf8(payload).ok().map(str::lines).filter(|_| binary.is_none());
+    if binary.is_none() && lines.is_none() {
+        return Err("the ASCII payload is not UTF-8 text".into());
+    }
+    let mut at = 0usize;
+    for (name, element) in &header.elements {
+        if element.count > MAX_VERTICES.max(MAX_TRIANGLES) {
+            return Err(format!(
+                "element '{name}' claims {} entries, more than the limit of {MAX_VERTICES}",
+                element.count
+            ));
+        }
+        if element.count > 0 && element.properties.is_empty() {
+            return Err(format!("element '{name}' has {} entries and no properties", element.count));
+        }
+        for entry in 0..element.count {
+            let missing = || {
+                format!(
+                    "element '{name}': entry {entry} of {} is missing (the file ends early)",
+                    element.count
+                )
+            };
+            match binary {
+                Some(little) => {
+                    for (_, property) in &element.properties {
+                        match &property.data_type {
+                            PropertyType::Scalar(t) => at += scalar_size(t),
+                            PropertyType::List(count_type, item) => {
+                                let size = scalar_size(count_type);
+                                let raw = payload.get(at..at + size).ok_or_else(missing)?;
+                                let count = read_count(raw, count_type, little);
+                                at += size
+                                    + count
+                                        .checked_mul(scalar_size(item) as u64)
+                                        .map_or(usize::MAX / 2, |n| n.min(usize::MAX as u64 / 2) as usize);
+                            }
+                        }
+                        if at > payload.len() {
+                            return Err(missing());
+                        }
+                    }
+                }
+                None => {
+                    let line =
+                        lines.as_mut().and_then(|l| l.find(|l| !l.trim().is_empty())).ok_or_else(missing)?;
+                    let mut tokens = line.split_whitespace();
+                    for (_, property) in &element.properties {
+                        let short = || format!("element '{name}': entry {entry} has too few values");
+                        match &property.data_type {
+                            PropertyType::Scalar(_) => {
+                                tokens.next().ok_or_else(short)?;
+                            }
+                            PropertyType::List(..) => {
+                                let count: u64 = tokens.next().ok_or_else(short)?.parse().map_err(|_| {
+                                    format!("element '{name}': entry {entry}: a list length is not a whole number")
+                                })?;
+                                for _ in 0..count {
+                                    tokens.next().ok_or_else(short)?;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A binary list length (a negative signed length reads as 0).
+fn read_count(raw: &[u8], t: &ScalarType, little: bool) -> u64 {
+    let bytes = |n: usize| {
+        let mut b = [0u8; 8];
+        b[..n].copy_from_slice(&raw[..n]);
+        if !little {
+            b[..n].reverse();
+        }
+        u64::from_le_bytes(b)
+    };
+    match t {
+        ScalarType::Char => (raw[0] as i8).max(0) as u64,
+        ScalarType::Short => (bytes(2) as u16 as i16).max(0) as u64,
+        ScalarType::Int => (bytes(4) as u32 as i32).max(0) as u64,
+        ScalarType::UChar | ScalarType::UShort | ScalarType::UInt => bytes(scalar_size(t)),
+        // Floating-point list lengths are not valid PLY; ply-rs-bw refuses them.
+        ScalarType::Float | ScalarType::Double => 0,
+    }
 }
 
 /// The mesh from the vertex and face entries.
@@ -271,6 +374,23 @@ mod tests {
         parse(text).err().map(|e| e.to_string()).unwrap_or_default()
     }
 
+    /// A binary face whose list claims four billion indices is refused
+    /// before the reader reserves room for them.
+    #[test]
+    fn a_binary_list_longer_than_the_file_is_refused() {
+        let mut bytes =
+            b"ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+            property float z\nelement face 1\nproperty list uint double vertex_indices\nend_header\n"
+                .to_vec();
+        bytes.extend([0u8; 36]);
+        bytes.extend(4_000_000_000u32.to_be_bytes());
+        bytes.extend([0u8; 24]);
+        let m = parse_ply(Path::new("l.ply"), &bytes).err().map(|e| e.to_string()).unwrap_or_default();
+        assert_eq!(m, "l.ply: element 'face': entry 0 of 1 is missing (the file ends early)");
+        let m = message("ply\nformat ascii 1.0\nelement vertex 3\nelement face 0\nend_header\n");
+        assert!(m.contains("element 'vertex' has 3 entries and no properties"), "{m}");
+    }
+
     #[test]
     fn bad_files_name_the_file_and_the_problem() {
         let m =
@@ -290,5 +410,38 @@ mod tests {
         assert_eq!(m, "test.ply: no triangles");
         let m = message(&SQUARE.replace("property float z\n", "").replace(" 0 2", " 2"));
         assert!(m.contains("needs x, y and z") || m.contains("element 'vertex'"), "{m}");
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+
+        /// Any bytes changed anywhere in a valid file give a mesh or an
+        /// error naming the file, never a panic or an abort.
+        #[test]
+        fn corrupted_files_never_panic(
+            edits in proptest::collection::vec((0usize..400, proptest::prelude::any::<u8>()), 1..8),
+            binary in proptest::prelude::any::<bool>(),
+        ) {
+            let mut bytes = if binary {
+                let mut b = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n\
+                    property float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                    .to_vec();
+                b.extend([0u8; 36]);
+                for _ in 0..2 {
+                    b.push(3);
+                    [0i32, 1, 2].iter().for_each(|i| b.extend(i.to_le_bytes()));
+                }
+                b
+            } else {
+                SQUARE.as_bytes().to_vec()
+            };
+            for (at, value) in edits {
+                let n = bytes.len();
+                bytes[at % n] = value;
+            }
+            if let Err(e) = parse_ply(Path::new("fuzz.ply"), &bytes) {
+                proptest::prop_assert!(e.to_string().starts_with("fuzz.ply"), "{e}");
+            }
+        }
     }
 }

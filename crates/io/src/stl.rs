@@ -139,4 +139,26 @@ mod tests {
         .to_string();
         assert!(m.starts_with("a.stl: "), "{m}");
     }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+
+        /// Any bytes changed anywhere in a valid file give a mesh or an
+        /// error naming the file, never a panic.
+        #[test]
+        fn corrupted_files_never_panic(
+            edits in proptest::collection::vec((0usize..600, proptest::prelude::any::<u8>()), 1..8),
+            binary_file in proptest::prelude::any::<bool>(),
+        ) {
+            let t = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+            let mut bytes = if binary_file { binary(&[t, t]) } else { TETRA.as_bytes().to_vec() };
+            for (at, value) in edits {
+                let n = bytes.len();
+                bytes[at % n] = value;
+            }
+            if let Err(e) = parse_stl(Path::new("fuzz.stl"), &bytes) {
+                proptest::prop_assert!(e.to_string().starts_with("fuzz.stl"), "{e}");
+            }
+        }
+    }
 }
