@@ -427,9 +427,9 @@ mod tests {
                     property float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
                     .to_vec();
                 b.extend([0u8; 36]);
-                for _ in 0..2 {
-                    b.push(3);
-                    [0i32, 1, 2].iter().for_each(|i| b.extend(i.to_le_bytes()));
+                for face in [[0i32, 1, 2], [2, 1, 0]] {
+                    b.extend([3u8]);
+                    face.iter().for_each(|i| b.extend(i.to_le_bytes()));
                 }
                 b
             } else {
