@@ -14,6 +14,8 @@
 use std::io::{Error, ErrorKind, Write};
 use std::path::Path;
 
+pub mod info;
+
 pub use zline_io as io;
 pub use zline_pipeline as pipeline;
 pub use zline_raster as raster;

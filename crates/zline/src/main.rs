@@ -54,6 +54,19 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
+    /// Describe a model or scene file: triangles, vertices, bounds,
+    /// materials, textures, lights, camera and warnings.
+    Info {
+        /// An `.obj`, `.gltf`, `.glb`, `.stl` or `.ply` model or a `.toml`
+        /// scene file.
+        input: PathBuf,
+        /// Print JSON (one object) for scripts instead of text.
+        #[arg(long)]
+        json: bool,
+        /// As for `render`: read files the input names outside its folder.
+        #[arg(long)]
+        allow_paths_outside: bool,
+    },
 }
 
 #[derive(Args)]
@@ -358,6 +371,9 @@ fn one_line(e: &anyhow::Error) -> String {
 
 fn run(cli: Cli) -> Result<()> {
     let (input, built_in, allow_paths_outside, common) = match cli.command {
+        Command::Info { input, json, allow_paths_outside } => {
+            return info(&input, json, LoadOptions { allow_outside: allow_paths_outside })
+        }
         Command::Render { input, allow_paths_outside, common } => {
             (Some(input), BuiltIn::Demo, allow_paths_outside, common)
         }
@@ -503,6 +519,52 @@ fn short(v: Vec3) -> String {
     let num =
         |x: f32| if x == 0.0 || (1e-3..1e6).contains(&x.abs()) { format!("{x}") } else { format!("{x:e}") };
     format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
+}
+
+/// `zline info`: the input described on stdout.
+fn info(input: &Path, json: bool, options: LoadOptions) -> Result<()> {
+    let ext = input.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let settings = RenderSettings::default();
+    let (format, scene, own_lights, own_camera, warnings) = match ext.as_deref() {
+        Some("obj") => {
+            let (meshes, warnings) = zline::io::load_obj_with_options(input, options)?;
+            ("OBJ", zline::io::scene_for_model(meshes, settings), false, false, warnings)
+        }
+        Some(e @ ("gltf" | "glb")) => {
+            let (gltf, warnings) = zline::io::load_gltf_with_options(input, options)?;
+            let (lights, camera) = (!gltf.lights.is_empty(), gltf.camera.is_some());
+            let format = if e == "glb" { "GLB" } else { "glTF" };
+            (format, zline::io::scene_for_gltf(gltf, settings), lights, camera, warnings)
+        }
+        Some("stl") => {
+            ("STL", zline::io::scene_for_model(zline::io::load_stl(input)?, settings), false, false, vec![])
+        }
+        Some("ply") => {
+            ("PLY", zline::io::scene_for_model(zline::io::load_ply(input)?, settings), false, false, vec![])
+        }
+        // A scene file's own warnings (its models') go to stderr as it loads.
+        Some("toml") => {
+            ("scene file", zline::io::load_scene_with_options(input, options)?, true, true, vec![])
+        }
+        _ => bail!(
+            "{}: unsupported input; expected an .obj, .gltf, .glb, .stl or .ply model or a .toml scene file",
+            input.display()
+        ),
+    };
+    let info = zline::info::ModelInfo::of_scene(
+        &input.display().to_string(),
+        format,
+        &scene,
+        own_lights,
+        own_camera,
+        warnings,
+    );
+    if json {
+        println!("{}", serde_json::to_string_pretty(&info)?);
+    } else {
+        print!("{}", info.text());
+    }
+    Ok(())
 }
 
 fn load_input(input: &Path, options: LoadOptions) -> Result<Scene> {

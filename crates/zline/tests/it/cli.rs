@@ -66,8 +66,8 @@ fn example_scene_renders() {
 fn bad_arguments_are_reported() {
     let out = zline(&["render", "x.obj", "-o", "y.png", "--size", "0x10"]);
     assert_eq!(out.status.code(), Some(2), "clap rejects bad values with exit code 2");
-    let out = zline(&["render", "model.stl", "-o", "y.png"]);
-    check_clean_error(&out, &["model.stl", "unsupported"]);
+    let out = zline(&["render", "model.3ds", "-o", "y.png"]);
+    check_clean_error(&out, &["model.3ds", "unsupported"]);
     let out = zline(&["demo", "-o", "y.png", "--threads", "0"]);
     check_clean_error(&out, &["--threads"]);
 }

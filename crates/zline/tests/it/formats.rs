@@ -61,3 +61,41 @@ fn a_broken_ply_is_a_clean_error() {
     let out = zline(&["render", bad.to_str().unwrap(), "-o", dir.path().join("x.png").to_str().unwrap()]);
     crate::check_clean_error(&out, &["bad.ply", "element 'vertex' claims 99999999 entries"]);
 }
+
+/// `zline info` reads every model of `assets/` and the scene files of
+/// `tests/scenes/`, as text and as JSON that parses and agrees with the
+/// text.
+#[test]
+fn info_describes_every_repository_asset() {
+    let mut inputs = vec![
+        "assets/obj/suzanne/suzanne.obj",
+        "assets/obj/spot/spot.obj",
+        "assets/ply/bunny_lowres.ply",
+        "assets/gltf/Box/glTF-Binary/Box.glb",
+        "assets/gltf/BoxTextured/glTF/BoxTextured.gltf",
+        "assets/gltf/TextureCoordinateTest/glTF/TextureCoordinateTest.gltf",
+        "assets/gltf/VertexColorTest/glTF-Binary/VertexColorTest.glb",
+    ];
+    inputs.push("tests/scenes/shadows_area.toml");
+    for input in inputs {
+        let path = repo().join(input);
+        let text = zline(&["info", path.to_str().unwrap()]);
+        assert!(text.status.success(), "{input}: {}", String::from_utf8_lossy(&text.stderr));
+        let text = String::from_utf8(text.stdout).unwrap();
+        let json = zline(&["info", "--json", path.to_str().unwrap()]);
+        assert!(json.status.success(), "{input}");
+        let json: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+        let triangles = json["triangles"].as_u64().unwrap();
+        assert!(triangles > 0, "{input}");
+        assert!(text.contains(&format!("  triangles  {triangles}\n")), "{input}: {text}");
+    }
+    let spot = zline(&["info", repo().join("assets/obj/spot/spot.obj").to_str().unwrap()]);
+    let spot = String::from_utf8(spot.stdout).unwrap();
+    assert!(spot.contains("triangles  5856") && spot.contains("1024 × 1024"), "{spot}");
+}
+
+#[test]
+fn info_on_a_missing_file_is_a_clean_error() {
+    let out = zline(&["info", "no/such/model.ply"]);
+    crate::check_clean_error(&out, &["no/such/model.ply"]);
+}
