@@ -13,8 +13,14 @@
 //! the camera yields is finite; if even f64 cannot frame the box (sizes
 //! near f32::MAX), the camera frames the unit sphere at the origin instead.
 //!
-//! [`scene_for_gltf`] does the same for a glTF file, keeping the file's own
-//! camera and lights when it has them.
+//! A model's own scene ([`scene_for_model`], [`scene_for_gltf`] without a
+//! camera, and scene files without `[camera]`) is framed tighter by
+//! [`model_camera`]: the same view direction and field of view, the
+//! closest eye that shows every vertex with a 5 % margin
+//! ([`crate::fit_camera`]), and [`framing_camera`] only when that fails.
+//!
+//! [`scene_for_gltf`] keeps the file's own camera and lights when it has
+//! them.
 
 use std::sync::Arc;
 
@@ -43,9 +49,7 @@ pub const DEFAULT_AMBIENT: Vec3 = Vec3::splat(0.15);
 /// lit by [`default_lights`]. Back faces are culled on closed opaque meshes
 /// only ([`Mesh::is_closed`]): culling an open mesh would show holes.
 pub fn scene_for_model(meshes: Vec<Mesh>, settings: RenderSettings) -> Scene {
-    let (min, max) = bounds_of(meshes.iter().flat_map(|m| m.positions.iter().copied()))
-        .unwrap_or((Vec3::ZERO, Vec3::ZERO));
-    let objects = meshes
+    let objects: Vec<Object> = meshes
         .into_iter()
         .map(|mesh| {
             let cull_back_faces = default_culling(&mesh, mesh.material.opacity);
@@ -60,7 +64,7 @@ pub fn scene_for_model(meshes: Vec<Mesh>, settings: RenderSettings) -> Scene {
         .collect();
     Scene {
         shadows: Default::default(),
-        camera: framing_camera(min, max, aspect(&settings)),
+        camera: model_camera(&objects, aspect(&settings)),
         background: DEFAULT_BACKGROUND,
         ambient: DEFAULT_AMBIENT,
         lights: default_lights(),
@@ -77,10 +81,10 @@ pub fn scene_for_model(meshes: Vec<Mesh>, settings: RenderSettings) -> Scene {
 /// background and ambient light (glTF has neither).
 pub fn scene_for_gltf(gltf: GltfScene, settings: RenderSettings) -> Scene {
     let aspect = aspect(&settings);
-    let camera = gltf.camera.filter(|c| camera_is_finite(c, aspect)).unwrap_or_else(|| {
-        let (min, max) = world_bounds(&gltf.objects).unwrap_or((Vec3::ZERO, Vec3::ZERO));
-        framing_camera(min, max, aspect)
-    });
+    let camera = gltf
+        .camera
+        .filter(|c| camera_is_finite(c, aspect))
+        .unwrap_or_else(|| model_camera(&gltf.objects, aspect));
     let lights = if gltf.lights.is_empty() { default_lights() } else { gltf.lights };
     Scene {
         shadows: Default::default(),
@@ -92,6 +96,16 @@ pub fn scene_for_gltf(gltf: GltfScene, settings: RenderSettings) -> Scene {
         settings,
         fog: None,
     }
+}
+
+/// The camera of a model or scene that brings none: [`crate::fit_camera`]
+/// along [`VIEW_DIRECTION`] with fovy [`FRAMING_FOVY_DEGREES`], else
+/// [`framing_camera`] over the world bounding box.
+pub fn model_camera(objects: &[Object], aspect: f32) -> Camera {
+    crate::fit_camera(objects, VIEW_DIRECTION, Vec3::Y, FRAMING_FOVY_DEGREES, aspect).unwrap_or_else(|| {
+        let (min, max) = world_bounds(objects).unwrap_or((Vec3::ZERO, Vec3::ZERO));
+        framing_camera(min, max, aspect)
+    })
 }
 
 /// The bounding box of some points, `None` when there are none.

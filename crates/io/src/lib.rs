@@ -23,6 +23,7 @@
 mod culling;
 mod error;
 mod files;
+mod fit;
 mod framing;
 mod gltf;
 mod obj;
@@ -33,9 +34,10 @@ mod texture_file;
 
 pub use error::SceneError;
 pub use files::LoadOptions;
+pub use fit::{fit_camera, FIT_MARGIN};
 pub use framing::{
-    default_lights, framing_camera, scene_for_gltf, scene_for_model, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
-    FRAMING_FOVY_DEGREES, VIEW_DIRECTION,
+    default_lights, framing_camera, model_camera, scene_for_gltf, scene_for_model, DEFAULT_AMBIENT,
+    DEFAULT_BACKGROUND, FRAMING_FOVY_DEGREES, VIEW_DIRECTION,
 };
 // `crate::` because `gltf` also names the glTF parsing crate.
 pub use crate::gltf::{

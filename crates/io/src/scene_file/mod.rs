@@ -33,7 +33,7 @@ use crate::culling::default_culling;
 use crate::error::{line_column, SceneError};
 use crate::files::{read_text, resolve, FileKind, LoadOptions};
 use crate::framing::{
-    aspect, bounds_of, camera_is_finite, default_lights, framing_camera, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
+    aspect, bounds_of, camera_is_finite, default_lights, model_camera, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
 };
 
 mod checks;
@@ -328,7 +328,7 @@ impl Builder<'_> {
         let (min, max) = world_bounds(&objects);
         let camera = match &file.camera {
             Some(def) => self.camera(def, (min, max), aspect(&settings))?,
-            None => framing_camera(min, max, aspect(&settings)),
+            None => model_camera(&objects, aspect(&settings)),
         };
         let fog = file.fog.as_ref().map(|f| self.fog(f)).transpose()?;
         shadows.planes = planes;

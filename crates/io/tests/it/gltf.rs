@@ -99,7 +99,11 @@ fn bare_gltf_gets_a_framing_camera_and_default_lights() {
     assert_eq!(scene.lights, zline_io::default_lights());
     let Projection::Perspective { fovy_degrees, .. } = scene.camera.projection else { panic!() };
     assert_eq!(fovy_degrees, FRAMING_FOVY_DEGREES);
-    check_close(scene.camera.target, Vec3::ZERO);
+    // The tight framing looks along the framing direction at a point
+    // inside the unit box (the middle of its projection, not its centre).
+    let view = (scene.camera.eye - scene.camera.target).normalize();
+    check_close(view, zline_io::VIEW_DIRECTION.normalize());
+    assert!(scene.camera.target.abs().max_element() < 0.5, "{}", scene.camera.target);
 }
 
 // ---- generated files ------------------------------------------------------

@@ -142,7 +142,15 @@ fn gltf_models_keep_their_node_transforms_and_double_sided_materials() {
 fn without_camera_and_lights_the_scene_is_framed_and_lit() {
     let text = format!("{OBJECT}translate = [10, 0, 0]\n");
     let scene = load_scene(&temp_file("framed.toml", &text)).unwrap();
-    assert_eq!(scene.camera.target, Vec3::new(10.0, 0.0, 0.0));
+    // Framed tightly along the framing direction, looking into the
+    // object's box around (10, 0, 0).
+    let view = (scene.camera.eye - scene.camera.target).normalize();
+    assert!((view - zline_io::VIEW_DIRECTION.normalize()).length() < 1e-5, "{view}");
+    assert!(
+        (scene.camera.target - Vec3::new(10.0, 0.0, 0.0)).abs().max_element() < 1.0,
+        "{}",
+        scene.camera.target
+    );
     assert!(matches!(scene.camera.projection, Projection::Perspective { .. }));
     assert_eq!(scene.lights, default_lights());
     assert_eq!(scene.ambient, DEFAULT_AMBIENT);
