@@ -69,7 +69,8 @@ pub fn fit_camera(
             extent = extent.max((w - origin).abs().max_element());
         }
     }
-    if !(z_min <= z_max) {
+    // No finite vertex: the depth range stayed empty.
+    if z_min > z_max || first.is_none() {
         return None;
     }
     let ez_x = (hi[0] - lo[0]) / (2.0 * tx);
