@@ -15,6 +15,7 @@ use std::io::{Error, ErrorKind, Write};
 use std::path::Path;
 
 pub mod info;
+pub mod view;
 
 pub use zline_io as io;
 pub use zline_pipeline as pipeline;

@@ -138,6 +138,30 @@ struct Common {
     /// How shadow maps are sampled (replaces `[render] shadow_filter`).
     #[arg(long, value_enum)]
     shadow_filter: Option<ShadowFilter>,
+    /// Turn the camera about its target by this many degrees about the up
+    /// vector (positive: the camera moves to its right).
+    #[arg(long, value_name = "DEG", value_parser = parse_angle, allow_hyphen_values = true, help_heading = "Camera")]
+    azimuth: Option<f32>,
+    /// Raise the camera by this many degrees towards up (stops 1° short
+    /// of straight above or below).
+    #[arg(long, value_name = "DEG", value_parser = parse_angle, allow_hyphen_values = true, help_heading = "Camera")]
+    elevation: Option<f32>,
+    /// The camera's distance from its target, in world units.
+    #[arg(long, value_name = "D", value_parser = parse_positive, help_heading = "Camera")]
+    distance: Option<f32>,
+    /// Magnify by this factor (2: twice as close, or half the view height
+    /// of an orthographic camera).
+    #[arg(long, value_name = "F", value_parser = parse_positive, help_heading = "Camera")]
+    zoom: Option<f32>,
+    /// Vertical field of view in degrees (1..=179), perspective cameras.
+    #[arg(long, value_name = "DEG", value_parser = parse_fov, help_heading = "Camera")]
+    fov: Option<f32>,
+    /// The world's up direction (default: the scene's, +y for models).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_direction, allow_hyphen_values = true, help_heading = "Camera")]
+    up: Option<Vec3>,
+    /// Background colour, each channel in [0, 1].
+    #[arg(long, value_name = "R,G,B", value_parser = parse_color)]
+    background: Option<Vec3>,
     /// Tile edge in pixels, 8..=1024; the image does not depend on it.
     #[arg(
         long,
@@ -309,6 +333,37 @@ fn parse_color(s: &str) -> Result<Vec3, String> {
     }
 }
 
+fn parse_angle(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("expected an angle in degrees, got '{s}'")),
+    }
+}
+
+fn parse_positive(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("expected a number > 0, got '{s}'")),
+    }
+}
+
+fn parse_fov(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if (1.0..=179.0).contains(&v) => Ok(v),
+        _ => Err(format!("expected degrees in 1..=179, got '{s}'")),
+    }
+}
+
+fn parse_direction(s: &str) -> Result<Vec3, String> {
+    let c: Vec<f32> = s.split(',').filter_map(|v| v.trim().parse().ok()).collect();
+    match c.as_slice() {
+        [x, y, z] if c.iter().all(|v| v.is_finite()) && c.iter().any(|v| *v != 0.0) => {
+            Ok(Vec3::new(*x, *y, *z))
+        }
+        _ => Err(format!("expected X,Y,Z, finite and not all zero, got '{s}'")),
+    }
+}
+
 fn main() -> ExitCode {
     ExitCode::from(exit_code(|| run(Cli::parse())))
 }
@@ -392,7 +447,11 @@ fn run(cli: Cli) -> Result<()> {
         Some(input) => load_input(input, LoadOptions { allow_outside: allow_paths_outside })?,
         None => built_in.scene(),
     };
+    // Judged before the size changes: a camera that is zline's framing of a
+    // model is framed again for the final image's shape.
+    let framed = input.is_some() && zline::view::is_framed(&scene);
     apply_overrides(&mut scene.settings, &common);
+    apply_camera(&mut scene, &common, framed);
     apply_fog(&mut scene, &common);
     apply_shadows(&mut scene, &common);
     check_samples(scene.settings.width, scene.settings.height, scene.settings.ssaa)?;
@@ -589,6 +648,27 @@ fn load_input(input: &Path, options: LoadOptions) -> Result<Scene> {
             input.display()
         ),
     })
+}
+
+/// The camera flags and `--background`; a framed model is framed again
+/// for the final aspect ratio first.
+fn apply_camera(scene: &mut Scene, common: &Common, framed: bool) {
+    let aspect = zline::view::aspect_of(scene);
+    if framed {
+        scene.camera = zline::io::model_camera(&scene.objects, aspect);
+    }
+    let change = zline::view::ViewChange {
+        azimuth: common.azimuth,
+        elevation: common.elevation,
+        distance: common.distance,
+        zoom: common.zoom,
+        fov: common.fov,
+        up: common.up,
+    };
+    change.apply(scene, aspect, framed);
+    if let Some(c) = common.background {
+        scene.background = c;
+    }
 }
 
 /// The CLI's fog flags over the scene's fog: `--fog` sets the mode (keeping

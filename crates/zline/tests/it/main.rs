@@ -3,6 +3,7 @@
 #[cfg(unix)]
 mod bad_corpus;
 mod bad_input;
+mod camera;
 mod cli;
 mod formats;
 mod hard_cases;
