@@ -13,7 +13,8 @@
 //! (PNG/JPEG images → textures, shared by both loaders), `culling` (the
 //! default back-face culling rule), `framing` (camera and lights for a bare
 //! model or glTF file), `scene_file` (TOML scenes; the format is documented
-//! on [`load_scene`], and `examples/scene.toml` shows every key), `error`
+//! on [`load_scene`], and `examples/scene.toml` shows every key), `heightfield` (elevation files: greyscale PNG and ESRI ASCII grids → a
+//! `HeightField`), `error`
 //! (the error type), `files` (reading within the size limits and resolving
 //! referenced files inside the folder of the file that names them; see
 //! [`LoadOptions`]). The limits are constants of zline-scene
@@ -24,6 +25,7 @@ mod error;
 mod files;
 mod framing;
 mod gltf;
+mod heightfield;
 mod obj;
 mod scene_file;
 mod texture_file;
@@ -38,5 +40,6 @@ pub use framing::{
 pub use crate::gltf::{
     load_gltf, load_gltf_with_options, load_gltf_with_warnings, GltfScene, MAX_GLTF_SHININESS,
 };
+pub use heightfield::{load_heightfield, load_texture};
 pub use obj::{load_obj, load_obj_with_options, load_obj_with_warnings};
 pub use scene_file::{load_scene, load_scene_with_options};

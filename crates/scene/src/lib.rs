@@ -14,6 +14,7 @@
 
 mod area;
 mod error;
+mod heightfield;
 mod limits;
 mod mesh;
 mod model;
@@ -22,6 +23,7 @@ mod shadow;
 
 pub use area::{AreaLight, AreaShape};
 pub use error::MeshError;
+pub use heightfield::{HeightField, HeightFieldError, MAX_HEIGHTFIELD_SAMPLES};
 pub use limits::{
     MAX_ADAPTIVE_TOLERANCE, MAX_AREA_SAMPLES_PER_SIDE, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE,
     MAX_MATERIAL_LIBRARIES, MAX_MODEL_FILE_BYTES, MAX_PRIMITIVE_DIVISIONS, MAX_PRIMITIVE_TRIANGLES,

@@ -1,0 +1,497 @@
+//! Terrain: a [`HeightField`] made into a lit, fogged landscape scene, its
+//! grid simplified to the triangles the view needs.
+//!
+//! **Simplification** is the right-triangle bintree (longest-edge
+//! bisection) over the grid padded to (2^n + 1)² samples, with the
+//! restricted-quadtree rule of Lindström and Pascucci: every grid point
+//! but the four corners is the midpoint of the hypotenuse of one or two
+//! bintree triangles (its *diamond*), and a triangle is split exactly when
+//! its midpoint vertex is *active*. Activity is monotone (a vertex active ⇒
+//! the vertices it depends on are active), so the mesh has no cracks and
+//! no T-junctions. Per vertex v, bottom-up ([`ErrorPyramid::new`]):
+//! - `δ(v) = e(v) + max δ(c)` over v's children c (the midpoints of its
+//!   diamond's legs), with e(v) the vertical distance from the height at v
+//!   to the midpoint of its hypotenuse. δ(v) bounds the vertical distance
+//!   between the full grid's surface and either unsplit triangle of v's
+//!   diamond (the surface deviates from a child's plane by at most δ(c),
+//!   and a child's plane from the parent's by e(v), at the midpoint);
+//! - `r(v) = max (r(c) + |p(v) − p(c)|)` (and at least the distance to its
+//!   diamond's corners): a sphere around p(v) holding the whole diamond.
+//!
+//! A vertex is active when its error may project to more than τ pixels
+//! (`--terrain-error`) from the fitted camera: when
+//! `|eye − p(v)| < r(v) + λ·K·δ(v)/τ`, with λ = H / (2·tan(fovy/2)) pixels
+//! per unit at unit depth and K = 1 + tan²(fovx/2) + tan²(fovy/2). A
+//! vertical segment of length δ at eye distance d and depth z projects to
+//! at most λ·δ·d/z² ≤ λ·K·δ/d pixels inside the view frustum, and every
+//! point of the diamond is at least |eye − p(v)| − r(v) from the eye: so an
+//! inactive vertex's triangles stay within τ pixels of the full surface at
+//! every grid sample. A vertex with δ = 0 (a planar region) is never
+//! active, whatever τ; τ = 0 activates every other vertex (the full grid).
+//!
+//! **Padding**: a grid that is not (2^n + 1)² is embedded in the next one
+//! (heights clamped to the border); the diamond of a vertex that straddles
+//! the grid's border gets δ = ∞, so bintree triangles are split until each
+//! lies inside or outside the grid, and the outside ones are dropped.
+//!
+//! **The mesh** ([`terrain_mesh`]): positions x = column·cell (east), z =
+//! row·cell (south), y = height, centred on the grid; vertex normals from
+//! the height field's central differences ([`HeightField::normal`]), not
+//! from the simplified triangles; a height colour ramp as vertex colours,
+//! or texture coordinates spanning the grid for a draped texture (s east,
+//! t north: the image's top row lies on the north edge).
+//!
+//! **The scene** ([`terrain_scene`]): a camera fitted to the terrain's
+//! bounding box ([`fit_camera`]), a sun and a sky fill light, and fog (on
+//! by default: linear from the nearest corner of the bounding box to 2.5
+//! times its depth range beyond the farthest, in the sky's colour).
+
+use std::sync::Arc;
+
+use glam::{Vec2, Vec3};
+use zline_scene::{
+    Camera, Fog, FogCoordinate, FogMode, HeightField, Light, Material, Mesh, Object, Projection,
+    RenderSettings, Scene, Shadows, TextureMap,
+};
+
+/// The vertical field of view of the fitted camera, in degrees.
+pub const TERRAIN_FOVY_DEGREES: f32 = 40.0;
+/// The default screen-space error bound, in pixels.
+pub const DEFAULT_TERRAIN_ERROR: f32 = 1.0;
+/// The sky: background and fog colour.
+pub const SKY: Vec3 = Vec3::new(0.66, 0.76, 0.88);
+
+/// The view-independent part of the simplification: per grid point of the
+/// padded (2^n + 1)² grid, the saturated error δ and the bounding radius r
+/// (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct ErrorPyramid {
+    /// Samples per side of the padded grid, 2^n + 1.
+    side: usize,
+    columns: usize,
+    rows: usize,
+    cell: f32,
+    /// World offset of grid point (0, 0): the grid is centred.
+    origin: Vec2,
+    heights: Vec<f32>,
+    delta: Vec<f32>,
+    radius: Vec<f32>,
+}
+
+/// A simplified grid: the vertices it keeps (as grid points) and its
+/// triangles (indices into them), counter-clockwise seen from above.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SimplifiedGrid {
+    /// (column, row) of each vertex, all inside the height field.
+    pub vertices: Vec<[u32; 2]>,
+    /// Triangles as indices into `vertices`.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// How far from the surface a simplified mesh may stray, in pixels, seen
+/// from one eye (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewError {
+    /// The eye, in the terrain's world frame.
+    pub eye: Vec3,
+    /// λ·K: a bound on the pixels that a unit vertical segment at unit
+    /// distance from the eye covers anywhere in the view.
+    pub pixels_per_unit: f32,
+    /// The bound τ in pixels (0: the full grid).
+    pub tolerance: f32,
+}
+
+impl ViewError {
+    /// The bound for `camera` (perspective; an orthographic camera is taken
+    /// at its height as if at unit distance) drawing a `width × height`
+    /// image.
+    pub fn new(camera: &Camera, width: u32, height: u32, tolerance: f32) -> ViewError {
+        let (tan_y, scale) = match camera.projection {
+            Projection::Perspective { fovy_degrees, .. } => {
+                let t = (fovy_degrees.to_radians() / 2.0).tan();
+                (t, height as f32 / (2.0 * t))
+            }
+            Projection::Orthographic { height: h, .. } => (0.0, height as f32 / h),
+        };
+        let tan_x = tan_y * width as f32 / height as f32;
+        let k = 1.0 + tan_x * tan_x + tan_y * tan_y;
+        ViewError { eye: camera.eye, pixels_per_unit: scale * k, tolerance: tolerance.max(0.0) }
+    }
+}
+
+impl ErrorPyramid {
+    /// The errors and radii of every grid point of `field`, bottom-up.
+    pub fn new(field: &HeightField) -> ErrorPyramid {
+        let (columns, rows) = (field.columns(), field.rows());
+        let side = (columns.max(rows) - 1).next_power_of_two() + 1;
+        let cell = field.cell_size();
+        let origin = -Vec2::new((columns - 1) as f32, (rows - 1) as f32) * cell / 2.0;
+        let mut heights = vec![0.0; side * side];
+        for y in 0..side {
+            for x in 0..side {
+                heights[y * side + x] = field.at(x.min(columns - 1), y.min(rows - 1));
+            }
+        }
+        let mut pyramid = ErrorPyramid {
+            side,
+            columns,
+            rows,
+            cell,
+            origin,
+            heights,
+            delta: vec![0.0; side * side],
+            radius: vec![0.0; side * side],
+        };
+        pyramid.build();
+        pyramid
+    }
+
+    /// Samples per side of the padded grid.
+    pub fn side(&self) -> usize {
+        self.side
+    }
+
+    /// The saturated vertical error δ of grid point (x, y).
+    pub fn delta(&self, x: usize, y: usize) -> f32 {
+        self.delta[y * self.side + x]
+    }
+
+    /// The world position of grid point (x, y) (heights clamped to the
+    /// field outside it).
+    #[inline]
+    pub fn position(&self, x: usize, y: usize) -> Vec3 {
+        let h = self.heights[y * self.side + x];
+        Vec3::new(self.origin.x + x as f32 * self.cell, h, self.origin.y + y as f32 * self.cell)
+    }
+
+    fn build(&mut self) {
+        let n = self.side - 1;
+        let mut h = 1;
+        while h < n {
+            // The diamonds of half-size h: one coordinate an odd multiple
+            // of h, the other an even one.
+            for y in (0..=n).step_by(h) {
+                let x0 = if (y / h) % 2 == 0 { h } else { 0 };
+                for x in (x0..=n).step_by(2 * h) {
+                    let (a, b) =
+                        if (x / h) % 2 == 1 { ((x - h, y), (x + h, y)) } else { ((x, y - h), (x, y + h)) };
+                    let half = h / 2;
+                    let children = [(-1, -1), (1, -1), (-1, 1), (1, 1)]
+                        .map(|(dx, dy)| offset(x, y, dx * half as isize, dy * half as isize, n));
+                    let children = if h == 1 { [None; 4] } else { children };
+                    self.settle(x, y, h, a, b, &children);
+                }
+            }
+            // The squares of half-size h: both coordinates odd multiples.
+            for y in (h..n).step_by(2 * h) {
+                for x in (h..n).step_by(2 * h) {
+                    let (i, j) = ((x - h) / (2 * h), (y - h) / (2 * h));
+                    let (a, b) = if (i + j) % 2 == 0 {
+                        ((x - h, y - h), (x + h, y + h))
+                    } else {
+                        ((x - h, y + h), (x + h, y - h))
+                    };
+                    let s = h as isize;
+                    let children = [(-s, 0), (s, 0), (0, -s), (0, s)].map(|(dx, dy)| offset(x, y, dx, dy, n));
+                    self.settle(x, y, h, a, b, &children);
+                }
+            }
+            h *= 2;
+        }
+    }
+
+    /// δ and r of vertex (x, y) of half-size h, hypotenuse a–b.
+    fn settle(
+        &mut self,
+        x: usize,
+        y: usize,
+        h: usize,
+        a: (usize, usize),
+        b: (usize, usize),
+        children: &[Option<(usize, usize)>; 4],
+    ) {
+        let side = self.side;
+        let at = |(x, y): (usize, usize)| y * side + x;
+        let p = self.position(x, y);
+        let mut delta = 0.0f32;
+        let mut radius = 0.0f32;
+        for &c in children.iter().flatten() {
+            delta = delta.max(self.delta[at(c)]);
+            radius = radius.max(self.radius[at(c)] + p.distance(self.position(c.0, c.1)));
+        }
+        if h == 1 {
+            // The finest diamonds have no children: their corners.
+            for (dx, dy) in [(-1, 0), (1, 0), (0, -1), (0, 1)] {
+                if let Some(c) = offset(x, y, dx, dy, side - 1) {
+                    radius = radius.max(p.distance(self.position(c.0, c.1)));
+                }
+            }
+        }
+        // The bounding boxes of the diamond's two triangles.
+        let (x, y, s) = (x as isize, y as isize, h as isize);
+        let boxes = if a.1 == b.1 {
+            [[x - s, x + s, y - s, y], [x - s, x + s, y, y + s]]
+        } else if a.0 == b.0 {
+            [[x - s, x, y - s, y + s], [x, x + s, y - s, y + s]]
+        } else {
+            [[x - s, x + s, y - s, y + s]; 2]
+        };
+        let (w, r) = ((self.columns - 1) as isize, (self.rows - 1) as isize);
+        let overlaps = |[x0, _, y0, _]: [isize; 4]| x0 < w && y0 < r;
+        let straddles = |[x0, x1, y0, y1]: [isize; 4]| overlaps([x0, x1, y0, y1]) && (x1 > w || y1 > r);
+        let e = if boxes.iter().any(|&b| straddles(b)) {
+            f32::INFINITY
+        } else if !boxes.iter().any(|&b| overlaps(b)) {
+            0.0
+        } else {
+            let mid = (self.heights[at(a)] + self.heights[at(b)]) / 2.0;
+            (self.heights[at(((x as usize), (y as usize)))] - mid).abs()
+        };
+        let (x, y) = (x as usize, y as usize);
+        self.delta[at((x, y))] = delta + e;
+        self.radius[at((x, y))] = radius;
+    }
+
+    /// The simplified grid for `view` (see the module documentation).
+    pub fn simplify(&self, view: &ViewError) -> SimplifiedGrid {
+        let n = self.side - 1;
+        let k = if view.tolerance > 0.0 { view.pixels_per_unit / view.tolerance } else { f32::INFINITY };
+        let active = |x: usize, y: usize| {
+            let i = y * self.side + x;
+            let delta = self.delta[i];
+            if delta <= 0.0 {
+                return false;
+            }
+            let reach = self.radius[i] + k * delta;
+            !(reach.is_finite()) || view.eye.distance_squared(self.position(x, y)) < reach * reach
+        };
+        let mut out = Vec::new();
+        let roots = [((0, n), (n, n), (0, 0)), ((n, 0), (0, 0), (n, n))];
+        for (apex, left, right) in roots {
+            self.refine(apex, left, right, &active, &mut out);
+        }
+        self.compact(&out)
+    }
+
+    fn refine(
+        &self,
+        apex: (usize, usize),
+        left: (usize, usize),
+        right: (usize, usize),
+        active: &impl Fn(usize, usize) -> bool,
+        out: &mut Vec<[(usize, usize); 3]>,
+    ) {
+        let mid = ((left.0 + right.0) / 2, (left.1 + right.1) / 2);
+        let split = left.0.abs_diff(right.0).max(left.1.abs_diff(right.1)) > 1 && active(mid.0, mid.1);
+        if split {
+            self.refine(mid, apex, left, active, out);
+            self.refine(mid, right, apex, active, out);
+            return;
+        }
+        // Dropped when outside the field (only in the padding).
+        let (w, r) = ((self.columns - 1) * 3, (self.rows - 1) * 3);
+        if apex.0 + left.0 + right.0 <= w && apex.1 + left.1 + right.1 <= r {
+            out.push([apex, left, right]);
+        }
+    }
+
+    fn compact(&self, triangles: &[[(usize, usize); 3]]) -> SimplifiedGrid {
+        let mut index = vec![u32::MAX; self.side * self.side];
+        let mut vertices = Vec::new();
+        let triangles = triangles
+            .iter()
+            .map(|t| {
+                t.map(|(x, y)| {
+                    let slot = &mut index[y * self.side + x];
+                    if *slot == u32::MAX {
+                        *slot = vertices.len() as u32;
+                        vertices.push([x as u32, y as u32]);
+                    }
+                    *slot
+                })
+            })
+            .collect();
+        SimplifiedGrid { vertices, triangles }
+    }
+}
+
+/// (x + dx, y + dy) when inside [0, n]².
+fn offset(x: usize, y: usize, dx: isize, dy: isize, n: usize) -> Option<(usize, usize)> {
+    let (x, y) = (x.checked_add_signed(dx)?, y.checked_add_signed(dy)?);
+    (x <= n && y <= n).then_some((x, y))
+}
+
+/// The number of triangles of the full grid: 2·(columns − 1)·(rows − 1).
+pub fn full_grid_triangles(field: &HeightField) -> usize {
+    2 * (field.columns() - 1) * (field.rows() - 1)
+}
+
+/// How the terrain is coloured.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Surface {
+    /// A colour ramp over the height range (vertex colours): green lowland,
+    /// brown slopes, grey rock, snow on the highest tenth.
+    HeightRamp,
+    /// A texture draped over the whole grid.
+    Texture(TextureMap),
+}
+
+/// The height ramp's colour at t ∈ [0, 1] (lowest to highest).
+pub fn ramp_color(t: f32) -> Vec3 {
+    const STOPS: [(f32, Vec3); 6] = [
+        (0.0, Vec3::new(0.18, 0.38, 0.20)),
+        (0.3, Vec3::new(0.40, 0.58, 0.28)),
+        (0.55, Vec3::new(0.60, 0.52, 0.34)),
+        (0.75, Vec3::new(0.50, 0.47, 0.44)),
+        (0.88, Vec3::new(0.62, 0.62, 0.62)),
+        (0.92, Vec3::new(0.95, 0.95, 0.97)),
+    ];
+    let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+    let upper = STOPS.iter().position(|(s, _)| *s >= t).unwrap_or(STOPS.len() - 1);
+    if upper == 0 {
+        return STOPS[0].1;
+    }
+    let ((s0, c0), (s1, c1)) = (STOPS[upper - 1], STOPS[upper]);
+    c0.lerp(c1, (t - s0) / (s1 - s0))
+}
+
+/// The mesh of a simplified grid of `field` (see the module documentation).
+pub fn terrain_mesh(field: &HeightField, grid: &SimplifiedGrid, surface: &Surface) -> Mesh {
+    let cell = field.cell_size();
+    let (c, r) = (field.columns(), field.rows());
+    let origin = -Vec2::new((c - 1) as f32, (r - 1) as f32) * cell / 2.0;
+    let position = |&[x, y]: &[u32; 2]| {
+        let (x, y) = (x as usize, y as usize);
+        Vec3::new(origin.x + x as f32 * cell, field.at(x, y), origin.y + y as f32 * cell)
+    };
+    let positions: Vec<Vec3> = grid.vertices.iter().map(position).collect();
+    let normals = grid.vertices.iter().map(|&[x, y]| field.normal(x as usize, y as usize)).collect();
+    let white = Material { ks: Vec3::splat(0.04), ns: 12.0, ..Material::plastic(Vec3::ONE, 0.04, 12.0) };
+    let mesh = Mesh::new("terrain", positions, Some(normals), grid.triangles.clone(), white)
+        .expect("a simplified grid indexes its own finite vertices");
+    match surface {
+        Surface::HeightRamp => {
+            let (lo, hi) = field.range();
+            let span = if hi > lo { hi - lo } else { 1.0 };
+            let colors = grid
+                .vertices
+                .iter()
+                .map(|&[x, y]| ramp_color((field.at(x as usize, y as usize) - lo) / span))
+                .collect();
+            mesh.with_colors(colors).expect("one finite colour per vertex")
+        }
+        Surface::Texture(map) => {
+            let uvs = grid
+                .vertices
+                .iter()
+                .map(|&[x, y]| Vec2::new(x as f32 / (c - 1) as f32, 1.0 - y as f32 / (r - 1) as f32))
+                .collect();
+            mesh.with_uvs(uvs).expect("one finite uv per vertex").with_diffuse_map(map.clone())
+        }
+    }
+}
+
+/// The terrain's bounding box (min, max) in its world frame.
+pub fn terrain_bounds(field: &HeightField) -> (Vec3, Vec3) {
+    let (lo, hi) = field.range();
+    let half = Vec2::new((field.columns() - 1) as f32, (field.rows() - 1) as f32) * field.cell_size() / 2.0;
+    (Vec3::new(-half.x, lo, -half.y), Vec3::new(half.x, hi, half.y))
+}
+
+/// A perspective camera (fovy [`TERRAIN_FOVY_DEGREES`]) looking at the
+/// centre of the terrain's bounding box from the south-south-east, 35°
+/// above the horizon, at the least distance that keeps all eight corners
+/// of the box within 95 % of the view for this aspect ratio; near and far
+/// planes at 0.9 and 1.1 times the corners' least and greatest depth.
+pub fn fit_camera(field: &HeightField, aspect: f32) -> Camera {
+    let (lo, hi) = terrain_bounds(field);
+    let target = (lo + hi) / 2.0;
+    let (azimuth, elevation) = (25f32.to_radians(), 35f32.to_radians());
+    let back = Vec3::new(azimuth.sin() * elevation.cos(), elevation.sin(), azimuth.cos() * elevation.cos());
+    let right = Vec3::Y.cross(back).normalize();
+    let up = back.cross(right);
+    let tan_y = (TERRAIN_FOVY_DEGREES.to_radians() / 2.0).tan() * 0.95;
+    let tan_x = tan_y * aspect;
+    let corners = (0..8)
+        .map(|i| Vec3::new([lo.x, hi.x][i & 1], [lo.y, hi.y][i >> 1 & 1], [lo.z, hi.z][i >> 2]) - target);
+    let distance = corners
+        .clone()
+        .map(|p| p.dot(back) + (p.dot(right).abs() / tan_x).max(p.dot(up).abs() / tan_y))
+        .fold(f32::MIN_POSITIVE, f32::max);
+    let depths = corners.map(|p| distance - p.dot(back));
+    let (near, far) = depths.fold((f32::INFINITY, 0.0f32), |(n, f), d| (n.min(d), f.max(d)));
+    let near = (near * 0.9).max(distance * 1e-4);
+    Camera {
+        eye: target + back * distance,
+        target,
+        up: Vec3::Y,
+        projection: Projection::Perspective { fovy_degrees: TERRAIN_FOVY_DEGREES, near, far: far * 1.1 },
+    }
+}
+
+/// What [`terrain_scene`] drew.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TerrainStats {
+    /// Triangles of the simplified mesh.
+    pub triangles: usize,
+    /// Triangles of the full grid, 2·(columns − 1)·(rows − 1).
+    pub full_grid_triangles: usize,
+}
+
+/// A terrain scene of `width × height` pixels: the field simplified to
+/// `error_pixels` from the fitted camera, coloured by `surface`, lit by a
+/// sun and a fill light, with fog when `fog` is set (see the module
+/// documentation). The pyramid is `ErrorPyramid::new(field)`, passed in
+/// so that a caller can time it or reuse it.
+pub fn terrain_scene(
+    field: &HeightField,
+    pyramid: &ErrorPyramid,
+    surface: &Surface,
+    (width, height): (u32, u32),
+    error_pixels: f32,
+    fog: bool,
+) -> (Scene, TerrainStats) {
+    let camera = fit_camera(field, width as f32 / height as f32);
+    let grid = pyramid.simplify(&ViewError::new(&camera, width, height, error_pixels));
+    let mesh = terrain_mesh(field, &grid, surface);
+    let stats =
+        TerrainStats { triangles: grid.triangles.len(), full_grid_triangles: full_grid_triangles(field) };
+    let (lo, hi) = terrain_bounds(field);
+    let fog = fog.then(|| {
+        let forward = (camera.target - camera.eye).normalize();
+        let depths = (0..8).map(|i| {
+            let p = Vec3::new([lo.x, hi.x][i & 1], [lo.y, hi.y][i >> 1 & 1], [lo.z, hi.z][i >> 2]);
+            (p - camera.eye).dot(forward)
+        });
+        let (near, far) = depths.fold((f32::INFINITY, 0.0f32), |(n, f), d| (n.min(d), f.max(d)));
+        let near = near.max(0.0);
+        Fog {
+            mode: FogMode::Linear { start: near, end: far + 1.5 * (far - near) },
+            color: SKY,
+            coordinate: FogCoordinate::EyePlane,
+        }
+    });
+    let scene = Scene {
+        camera,
+        background: SKY,
+        ambient: Vec3::new(0.30, 0.32, 0.36),
+        lights: vec![
+            Light::Directional {
+                direction: Vec3::new(-0.55, -0.6, -0.35),
+                color: Vec3::new(1.0, 0.95, 0.85),
+            },
+            Light::Directional { direction: Vec3::new(0.4, -0.5, 0.6), color: Vec3::new(0.12, 0.14, 0.18) },
+        ],
+        objects: vec![Object {
+            mesh: Arc::new(mesh),
+            world_from_object: glam::Mat4::IDENTITY,
+            material: None,
+            shading: None,
+            cull_back_faces: false,
+        }],
+        settings: RenderSettings { width, height, ..RenderSettings::default() },
+        fog,
+        shadows: Shadows::default(),
+    };
+    (scene, stats)
+}
