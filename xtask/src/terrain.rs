@@ -9,7 +9,12 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use zline::pipeline::{RenderOptions, Renderer};
 use zline::scene::HeightField;
-use zline::scenes::terrain::{terrain_scene, ErrorPyramid, Surface};
+use zline::scenes::terrain::{fit_camera, terrain_mesh, terrain_scene, ErrorPyramid, Surface, ViewError};
+
+/// The benchmark terrain's cell size and relief: a 10 m elevation model of
+/// 41 km with 1500 m from the lowest to the highest point.
+const CELL: f32 = 10.0;
+const RELIEF: f32 = 1500.0;
 
 /// The seed of the asset's and the benchmark's height fields.
 const SEED: u64 = 0x7E44_A1E5;
@@ -107,23 +112,32 @@ pub(crate) fn write_assets(folder: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Times a 4096 × 4096 fractal terrain (the 4097² fractal cropped, 1 unit
-/// cells, 1000 units of relief) at `size`: error pyramid, simplified mesh,
+/// Times a 4096 × 4096 fractal terrain (the 4097² fractal cropped, [`CELL`]
+/// and [`RELIEF`]) at `size`: error pyramid, simplified mesh,
 /// and the median of `frames` renders.
 pub(crate) fn bench(size: (u32, u32), error: f32, frames: usize) -> Result<()> {
     let side = 4097;
     let start = Instant::now();
     let full = fractal(12, SEED, 0.55);
     let heights: Vec<f32> =
-        (0..4096).flat_map(|y| full[y * side..y * side + 4096].iter().map(|h| h * 1000.0)).collect();
-    let field = HeightField::new(4096, 4096, heights, 1.0).context("height field")?;
+        (0..4096).flat_map(|y| full[y * side..y * side + 4096].iter().map(|h| h * RELIEF)).collect();
+    let field = HeightField::new(4096, 4096, heights, CELL).context("height field")?;
     let generated = start.elapsed();
     let start = Instant::now();
     let pyramid = ErrorPyramid::new(&field);
     let pyramid_time = start.elapsed();
     let start = Instant::now();
-    let (scene, stats) = terrain_scene(&field, &pyramid, &Surface::HeightRamp, size, error, true);
+    let camera = fit_camera(&field, size.0 as f32 / size.1 as f32);
+    let fit_time = start.elapsed();
+    let start = Instant::now();
+    let grid = pyramid.simplify(&ViewError::new(&camera, size.0, size.1, error));
+    let simplify_time = start.elapsed();
+    let start = Instant::now();
+    let _mesh = terrain_mesh(&field, &grid, &Surface::HeightRamp);
     let mesh_time = start.elapsed();
+    let start = Instant::now();
+    let (scene, stats) = terrain_scene(&field, &pyramid, &Surface::HeightRamp, size, error, true);
+    let scene_time = start.elapsed();
     let mut renderer = Renderer::default();
     let options = RenderOptions::default();
     let mut times = Vec::new();
@@ -147,10 +161,14 @@ pub(crate) fn bench(size: (u32, u32), error: f32, frames: usize) -> Result<()> {
         100.0 * stats.triangles as f64 / stats.full_grid_triangles as f64
     );
     println!(
-        "generate {:.0} ms; error pyramid {:.0} ms; simplify + mesh {:.1} ms; render {:.1} ms (median of {})",
+        "generate {:.0} ms; error pyramid {:.0} ms; view-dependent: camera fit {:.1} ms, simplify {:.1} ms, \
+         mesh {:.1} ms, all three (terrain_scene) {:.1} ms; render {:.1} ms (median of {})",
         ms(generated),
         ms(pyramid_time),
+        ms(fit_time),
+        ms(simplify_time),
         ms(mesh_time),
+        ms(scene_time),
         ms(times[times.len() / 2]),
         times.len()
     );

@@ -20,14 +20,17 @@
 //!
 //! A vertex is active when its error may project to more than τ pixels
 //! (`--terrain-error`) from the fitted camera: when
-//! `|eye − p(v)| < r(v) + λ·K·δ(v)/τ`, with λ = H / (2·tan(fovy/2)) pixels
-//! per unit at unit depth and K = 1 + tan²(fovx/2) + tan²(fovy/2). A
-//! vertical segment of length δ at eye distance d and depth z projects to
-//! at most λ·δ·d/z² ≤ λ·K·δ/d pixels inside the view frustum, and every
-//! point of the diamond is at least |eye − p(v)| − r(v) from the eye: so an
-//! inactive vertex's triangles stay within τ pixels of the full surface at
-//! every grid sample. A vertex with δ = 0 (a planar region) is never
-//! active, whatever τ; τ = 0 activates every other vertex (the full grid).
+//! `λ·δ(v)·(d + r(v)) > τ·(z − r(v))²`, with d = |eye − p(v)|, z the depth
+//! of p(v) along the view direction, and λ = H / (2·tan(fovy/2)) pixels per
+//! unit at unit depth (H the image height; an orthographic camera: λ·δ > τ).
+//! A segment of length δ at distance d and depth z projects to at most
+//! λ·δ·d/z² pixels (the largest singular value of the perspective map's
+//! Jacobian is d/z²), and every point of the diamond lies within r(v) of
+//! p(v); so an inactive vertex's triangles stay within τ pixels of the full
+//! surface at every grid sample. The test is monotone: a parent's sphere
+//! holds its children's and its δ is at least theirs. A vertex with δ = 0
+//! (a planar region) is never active, whatever τ; τ = 0 activates every
+//! other vertex (the full grid).
 //!
 //! **Padding**: a grid that is not (2^n + 1)² is embedded in the next one
 //! (heights clamped to the border); the diamond of a vertex that straddles
@@ -43,12 +46,13 @@
 //!
 //! **The scene** ([`terrain_scene`]): a camera fitted to the terrain's
 //! bounding box ([`fit_camera`]), a sun and a sky fill light, and fog (on
-//! by default: linear from the nearest corner of the bounding box to 2.5
-//! times its depth range beyond the farthest, in the sky's colour).
+//! by default: linear from the nearest corner of the bounding box to as far
+//! again beyond the farthest as the box is deep (half fog there), in the sky's colour).
 
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
+use rayon::prelude::*;
 use zline_scene::{
     Camera, Fog, FogCoordinate, FogMode, HeightField, Light, Material, Mesh, Object, Projection,
     RenderSettings, Scene, Shadows, TextureMap,
@@ -89,33 +93,58 @@ pub struct SimplifiedGrid {
 }
 
 /// How far from the surface a simplified mesh may stray, in pixels, seen
-/// from one eye (see the module documentation).
+/// from one camera (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ViewError {
     /// The eye, in the terrain's world frame.
     pub eye: Vec3,
-    /// λ·K: a bound on the pixels that a unit vertical segment at unit
-    /// distance from the eye covers anywhere in the view.
+    /// The unit view direction (from the eye towards the target).
+    pub forward: Vec3,
+    /// λ: pixels per world unit at unit depth (perspective), or per world
+    /// unit anywhere (orthographic).
     pub pixels_per_unit: f32,
+    /// True for an orthographic camera: errors project without depth.
+    pub orthographic: bool,
     /// The bound τ in pixels (0: the full grid).
     pub tolerance: f32,
 }
 
 impl ViewError {
-    /// The bound for `camera` (perspective; an orthographic camera is taken
-    /// at its height as if at unit distance) drawing a `width × height`
-    /// image.
-    pub fn new(camera: &Camera, width: u32, height: u32, tolerance: f32) -> ViewError {
-        let (tan_y, scale) = match camera.projection {
+    /// The bound for `camera` drawing a `width × height` image.
+    pub fn new(camera: &Camera, _width: u32, height: u32, tolerance: f32) -> ViewError {
+        let (scale, orthographic) = match camera.projection {
             Projection::Perspective { fovy_degrees, .. } => {
-                let t = (fovy_degrees.to_radians() / 2.0).tan();
-                (t, height as f32 / (2.0 * t))
+                (height as f32 / (2.0 * (fovy_degrees.to_radians() / 2.0).tan()), false)
             }
-            Projection::Orthographic { height: h, .. } => (0.0, height as f32 / h),
+            Projection::Orthographic { height: h, .. } => (height as f32 / h, true),
         };
-        let tan_x = tan_y * width as f32 / height as f32;
-        let k = 1.0 + tan_x * tan_x + tan_y * tan_y;
-        ViewError { eye: camera.eye, pixels_per_unit: scale * k, tolerance: tolerance.max(0.0) }
+        ViewError {
+            eye: camera.eye,
+            forward: (camera.target - camera.eye).normalize_or(Vec3::NEG_Z),
+            pixels_per_unit: scale,
+            orthographic,
+            tolerance: tolerance.max(0.0),
+        }
+    }
+
+    /// True when an error `delta` anywhere in the sphere of `radius`
+    /// around `p` may project to more than the tolerance:
+    /// λ·δ·(d + r)/(z − r)² > τ, with d the distance from the eye to `p`
+    /// and z its depth (a sphere reaching behind the eye plane always is).
+    #[inline]
+    fn exceeds(&self, p: Vec3, delta: f32, radius: f32) -> bool {
+        if delta <= 0.0 {
+            return false;
+        }
+        if self.tolerance == 0.0 || !delta.is_finite() {
+            return true;
+        }
+        if self.orthographic {
+            return self.pixels_per_unit * delta > self.tolerance;
+        }
+        let to = p - self.eye;
+        let z = to.dot(self.forward) - radius;
+        z <= 0.0 || self.pixels_per_unit * delta * (to.length() + radius) > self.tolerance * z * z
     }
 }
 
@@ -170,46 +199,85 @@ impl ErrorPyramid {
         while h < n {
             // The diamonds of half-size h: one coordinate an odd multiple
             // of h, the other an even one.
-            for y in (0..=n).step_by(h) {
-                let x0 = if (y / h) % 2 == 0 { h } else { 0 };
-                for x in (x0..=n).step_by(2 * h) {
+            let rows: Vec<usize> = (0..=n).step_by(h).collect();
+            self.level(
+                &rows,
+                |y| (if (y / h).is_multiple_of(2) { h } else { 0 }, 2 * h),
+                |x, y| {
                     let (a, b) =
                         if (x / h) % 2 == 1 { ((x - h, y), (x + h, y)) } else { ((x, y - h), (x, y + h)) };
-                    let half = h / 2;
+                    let half = (h / 2) as isize;
                     let children = [(-1, -1), (1, -1), (-1, 1), (1, 1)]
-                        .map(|(dx, dy)| offset(x, y, dx * half as isize, dy * half as isize, n));
-                    let children = if h == 1 { [None; 4] } else { children };
-                    self.settle(x, y, h, a, b, &children);
-                }
-            }
+                        .map(|(dx, dy)| offset(x, y, dx * half, dy * half, n));
+                    (a, b, if h == 1 { [None; 4] } else { children })
+                },
+                h,
+            );
             // The squares of half-size h: both coordinates odd multiples.
-            for y in (h..n).step_by(2 * h) {
-                for x in (h..n).step_by(2 * h) {
+            let rows: Vec<usize> = (h..n).step_by(2 * h).collect();
+            self.level(
+                &rows,
+                |_| (h, 2 * h),
+                |x, y| {
                     let (i, j) = ((x - h) / (2 * h), (y - h) / (2 * h));
-                    let (a, b) = if (i + j) % 2 == 0 {
+                    let (a, b) = if (i + j).is_multiple_of(2) {
                         ((x - h, y - h), (x + h, y + h))
                     } else {
                         ((x - h, y + h), (x + h, y - h))
                     };
                     let s = h as isize;
-                    let children = [(-s, 0), (s, 0), (0, -s), (0, s)].map(|(dx, dy)| offset(x, y, dx, dy, n));
-                    self.settle(x, y, h, a, b, &children);
-                }
-            }
+                    (a, b, [(-s, 0), (s, 0), (0, -s), (0, s)].map(|(dx, dy)| offset(x, y, dx, dy, n)))
+                },
+                h,
+            );
             h *= 2;
+        }
+    }
+
+    /// Settles one level: on each of `rows` (in parallel), the vertices
+    /// from `first(y).0` in steps of `first(y).1`, each with its hypotenuse
+    /// and children from `shape`; then writes them.
+    fn level(
+        &mut self,
+        rows: &[usize],
+        first: impl Fn(usize) -> (usize, usize) + Sync,
+        shape: impl Fn(usize, usize) -> ((usize, usize), (usize, usize), [Option<(usize, usize)>; 4]) + Sync,
+        h: usize,
+    ) {
+        let n = self.side - 1;
+        let this = &*self;
+        let settled: Vec<Vec<(f32, f32)>> = rows
+            .par_iter()
+            .map(|&y| {
+                let (x0, step) = first(y);
+                (x0..=n)
+                    .step_by(step)
+                    .map(|x| {
+                        let (a, b, children) = shape(x, y);
+                        this.settle(x, y, h, a, b, &children)
+                    })
+                    .collect()
+            })
+            .collect();
+        for (&y, values) in rows.iter().zip(settled) {
+            let (x0, step) = first(y);
+            for (x, (delta, radius)) in (x0..=n).step_by(step).zip(values) {
+                self.delta[y * self.side + x] = delta;
+                self.radius[y * self.side + x] = radius;
+            }
         }
     }
 
     /// δ and r of vertex (x, y) of half-size h, hypotenuse a–b.
     fn settle(
-        &mut self,
+        &self,
         x: usize,
         y: usize,
         h: usize,
         a: (usize, usize),
         b: (usize, usize),
         children: &[Option<(usize, usize)>; 4],
-    ) {
+    ) -> (f32, f32) {
         let side = self.side;
         let at = |(x, y): (usize, usize)| y * side + x;
         let p = self.position(x, y);
@@ -247,73 +315,85 @@ impl ErrorPyramid {
             let mid = (self.heights[at(a)] + self.heights[at(b)]) / 2.0;
             (self.heights[at(((x as usize), (y as usize)))] - mid).abs()
         };
-        let (x, y) = (x as usize, y as usize);
-        self.delta[at((x, y))] = delta + e;
-        self.radius[at((x, y))] = radius;
+        (delta + e, radius)
     }
 
     /// The simplified grid for `view` (see the module documentation).
+    /// The bintree's top levels are walked here; below them the subtrees
+    /// are refined in parallel and joined in order, so the result does not
+    /// depend on the thread count.
     pub fn simplify(&self, view: &ViewError) -> SimplifiedGrid {
         let n = self.side - 1;
-        let k = if view.tolerance > 0.0 { view.pixels_per_unit / view.tolerance } else { f32::INFINITY };
         let active = |x: usize, y: usize| {
             let i = y * self.side + x;
-            let delta = self.delta[i];
-            if delta <= 0.0 {
-                return false;
-            }
-            let reach = self.radius[i] + k * delta;
-            !(reach.is_finite()) || view.eye.distance_squared(self.position(x, y)) < reach * reach
+            view.exceeds(self.position(x, y), self.delta[i], self.radius[i])
         };
-        let mut out = Vec::new();
-        let roots = [((0, n), (n, n), (0, 0)), ((n, 0), (0, 0), (n, n))];
-        for (apex, left, right) in roots {
-            self.refine(apex, left, right, &active, &mut out);
+        let roots = [[(0, n), (n, n), (0, 0)], [(n, 0), (0, 0), (n, n)]];
+        let mut subtrees = Vec::new();
+        for root in roots {
+            self.walk(root, &active, &mut |t| subtrees.push(t), 10);
         }
-        self.compact(&out)
-    }
-
-    fn refine(
-        &self,
-        apex: (usize, usize),
-        left: (usize, usize),
-        right: (usize, usize),
-        active: &impl Fn(usize, usize) -> bool,
-        out: &mut Vec<[(usize, usize); 3]>,
-    ) {
-        let mid = ((left.0 + right.0) / 2, (left.1 + right.1) / 2);
-        let split = left.0.abs_diff(right.0).max(left.1.abs_diff(right.1)) > 1 && active(mid.0, mid.1);
-        if split {
-            self.refine(mid, apex, left, active, out);
-            self.refine(mid, right, apex, active, out);
-            return;
-        }
-        // Dropped when outside the field (only in the padding).
-        let (w, r) = ((self.columns - 1) * 3, (self.rows - 1) * 3);
-        if apex.0 + left.0 + right.0 <= w && apex.1 + left.1 + right.1 <= r {
-            out.push([apex, left, right]);
-        }
-    }
-
-    fn compact(&self, triangles: &[[(usize, usize); 3]]) -> SimplifiedGrid {
-        let mut index = vec![u32::MAX; self.side * self.side];
-        let mut vertices = Vec::new();
-        let triangles = triangles
-            .iter()
-            .map(|t| {
-                t.map(|(x, y)| {
-                    let slot = &mut index[y * self.side + x];
-                    if *slot == u32::MAX {
-                        *slot = vertices.len() as u32;
-                        vertices.push([x as u32, y as u32]);
-                    }
-                    *slot
-                })
+        let parts: Vec<Vec<[u32; 3]>> = subtrees
+            .par_iter()
+            .map(|&t| {
+                let mut out = Vec::new();
+                self.walk(t, &active, &mut |leaf| self.emit(leaf, &mut out), usize::MAX);
+                out
             })
             .collect();
+        self.compact(&parts)
+    }
+
+    /// Walks the bintree below triangle `[apex, left, right]`, splitting
+    /// where the midpoint vertex is active, down to `depth` levels; hands
+    /// each triangle reached unsplit (or at that depth) to `visit`.
+    fn walk(
+        &self,
+        [apex, left, right]: Tri,
+        active: &impl Fn(usize, usize) -> bool,
+        visit: &mut impl FnMut(Tri),
+        depth: usize,
+    ) {
+        let mid = ((left.0 + right.0) / 2, (left.1 + right.1) / 2);
+        let splits = left.0.abs_diff(right.0).max(left.1.abs_diff(right.1)) > 1;
+        if depth == 0 || !(splits && active(mid.0, mid.1)) {
+            visit([apex, left, right]);
+            return;
+        }
+        self.walk([mid, apex, left], active, visit, depth - 1);
+        self.walk([mid, right, apex], active, visit, depth - 1);
+    }
+
+    /// Keeps a leaf triangle inside the field (padding's are dropped) as
+    /// padded-grid indices.
+    fn emit(&self, [apex, left, right]: Tri, out: &mut Vec<[u32; 3]>) {
+        let (w, r) = ((self.columns - 1) * 3, (self.rows - 1) * 3);
+        if apex.0 + left.0 + right.0 <= w && apex.1 + left.1 + right.1 <= r {
+            out.push([apex, left, right].map(|(x, y)| (y * self.side + x) as u32));
+        }
+    }
+
+    fn compact(&self, parts: &[Vec<[u32; 3]>]) -> SimplifiedGrid {
+        let mut index = vec![u32::MAX; self.side * self.side];
+        let mut vertices = Vec::new();
+        let mut triangles = Vec::with_capacity(parts.iter().map(Vec::len).sum());
+        for t in parts.iter().flatten() {
+            triangles.push(t.map(|i| {
+                let slot = &mut index[i as usize];
+                if *slot == u32::MAX {
+                    *slot = vertices.len() as u32;
+                    let i = i as usize;
+                    vertices.push([(i % self.side) as u32, (i / self.side) as u32]);
+                }
+                *slot
+            }));
+        }
         SimplifiedGrid { vertices, triangles }
     }
 }
+
+/// A bintree triangle: apex, then the hypotenuse's ends, as grid points.
+type Tri = [(usize, usize); 3];
 
 /// (x + dx, y + dy) when inside [0, n]².
 fn offset(x: usize, y: usize, dx: isize, dy: isize, n: usize) -> Option<(usize, usize)> {
@@ -364,8 +444,8 @@ pub fn terrain_mesh(field: &HeightField, grid: &SimplifiedGrid, surface: &Surfac
         let (x, y) = (x as usize, y as usize);
         Vec3::new(origin.x + x as f32 * cell, field.at(x, y), origin.y + y as f32 * cell)
     };
-    let positions: Vec<Vec3> = grid.vertices.iter().map(position).collect();
-    let normals = grid.vertices.iter().map(|&[x, y]| field.normal(x as usize, y as usize)).collect();
+    let positions: Vec<Vec3> = grid.vertices.par_iter().map(position).collect();
+    let normals = grid.vertices.par_iter().map(|&[x, y]| field.normal(x as usize, y as usize)).collect();
     let white = Material { ks: Vec3::splat(0.04), ns: 12.0, ..Material::plastic(Vec3::ONE, 0.04, 12.0) };
     let mesh = Mesh::new("terrain", positions, Some(normals), grid.triangles.clone(), white)
         .expect("a simplified grid indexes its own finite vertices");
@@ -375,7 +455,7 @@ pub fn terrain_mesh(field: &HeightField, grid: &SimplifiedGrid, surface: &Surfac
             let span = if hi > lo { hi - lo } else { 1.0 };
             let colors = grid
                 .vertices
-                .iter()
+                .par_iter()
                 .map(|&[x, y]| ramp_color((field.at(x as usize, y as usize) - lo) / span))
                 .collect();
             mesh.with_colors(colors).expect("one finite colour per vertex")
@@ -383,7 +463,7 @@ pub fn terrain_mesh(field: &HeightField, grid: &SimplifiedGrid, surface: &Surfac
         Surface::Texture(map) => {
             let uvs = grid
                 .vertices
-                .iter()
+                .par_iter()
                 .map(|&[x, y]| Vec2::new(x as f32 / (c - 1) as f32, 1.0 - y as f32 / (r - 1) as f32))
                 .collect();
             mesh.with_uvs(uvs).expect("one finite uv per vertex").with_diffuse_map(map.clone())
@@ -398,31 +478,90 @@ pub fn terrain_bounds(field: &HeightField) -> (Vec3, Vec3) {
     (Vec3::new(-half.x, lo, -half.y), Vec3::new(half.x, hi, half.y))
 }
 
+/// Points whose convex hull holds every sample of the terrain: the eight
+/// corners of the box of each of about 32 × 32 blocks of the grid (the
+/// block's extent, its lowest and highest sample).
+fn hull_points(field: &HeightField) -> Vec<Vec3> {
+    let (c, r) = (field.columns(), field.rows());
+    let block = (c.max(r) - 1).div_ceil(32).max(1);
+    let cell = field.cell_size();
+    let origin = -Vec2::new((c - 1) as f32, (r - 1) as f32) * cell / 2.0;
+    let starts = |n: usize| (0..n - 1).step_by(block).map(move |s| (s, (s + block).min(n - 1)));
+    let mut points = Vec::new();
+    for (y0, y1) in starts(r) {
+        for (x0, x1) in starts(c) {
+            let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let h = field.at(x, y);
+                    (lo, hi) = (lo.min(h), hi.max(h));
+                }
+            }
+            for i in 0..8 {
+                let (x, y) = ([x0, x1][i & 1], [y0, y1][i >> 2]);
+                let h = [lo, hi][i >> 1 & 1];
+                points.push(Vec3::new(origin.x + x as f32 * cell, h, origin.y + y as f32 * cell));
+            }
+        }
+    }
+    points
+}
+
 /// A perspective camera (fovy [`TERRAIN_FOVY_DEGREES`]) looking at the
-/// centre of the terrain's bounding box from the south-south-east, 35°
-/// above the horizon, at the least distance that keeps all eight corners
-/// of the box within 95 % of the view for this aspect ratio; near and far
-/// planes at 0.9 and 1.1 times the corners' least and greatest depth.
+/// terrain from the south-south-east, 35° above the horizon, at the least
+/// distance that keeps every sample within 95 % of the view for this
+/// aspect ratio, centred on the terrain's extent in the image; near and far
+/// planes at 0.9 and 1.1 times the least and greatest depth of the terrain.
 pub fn fit_camera(field: &HeightField, aspect: f32) -> Camera {
     let (lo, hi) = terrain_bounds(field);
-    let target = (lo + hi) / 2.0;
+    let centre = (lo + hi) / 2.0;
     let (azimuth, elevation) = (25f32.to_radians(), 35f32.to_radians());
     let back = Vec3::new(azimuth.sin() * elevation.cos(), elevation.sin(), azimuth.cos() * elevation.cos());
     let right = Vec3::Y.cross(back).normalize();
     let up = back.cross(right);
     let tan_y = (TERRAIN_FOVY_DEGREES.to_radians() / 2.0).tan() * 0.95;
     let tan_x = tan_y * aspect;
-    let corners = (0..8)
-        .map(|i| Vec3::new([lo.x, hi.x][i & 1], [lo.y, hi.y][i >> 1 & 1], [lo.z, hi.z][i >> 2]) - target);
-    let distance = corners
-        .clone()
-        .map(|p| p.dot(back) + (p.dot(right).abs() / tan_x).max(p.dot(up).abs() / tan_y))
-        .fold(f32::MIN_POSITIVE, f32::max);
-    let depths = corners.map(|p| distance - p.dot(back));
-    let (near, far) = depths.fold((f32::INFINITY, 0.0f32), |(n, f), d| (n.min(d), f.max(d)));
-    let near = (near * 0.9).max(distance * 1e-4);
+    // Camera coordinates of the hull points around the centre: right, up,
+    // and towards the eye. With the eye at centre + right·sx + up·sy +
+    // back·d, a point is in view when |a − sx| ≤ tan_x·(d − c) and
+    // |b − sy| ≤ tan_y·(d − c).
+    let points: Vec<(f32, f32, f32)> = hull_points(field)
+        .iter()
+        .map(|p| {
+            let p = *p - centre;
+            (p.dot(right), p.dot(up), p.dot(back))
+        })
+        .collect();
+    // The interval of sx (or sy) that keeps every point in view at d.
+    let window = |d: f32, side: fn(&(f32, f32, f32)) -> f32, tan: f32| {
+        points.iter().fold((f32::NEG_INFINITY, f32::INFINITY), |(lo, hi), p| {
+            let reach = tan * (d - p.2);
+            (lo.max(side(p) - reach), hi.min(side(p) + reach))
+        })
+    };
+    let fits = |d: f32| {
+        let (x, y) = (window(d, |p| p.0, tan_x), window(d, |p| p.1, tan_y));
+        x.0 <= x.1 && y.0 <= y.1 && points.iter().all(|p| d > p.2)
+    };
+    let mut far_enough =
+        points.iter().map(|p| p.2 + p.0.abs() / tan_x + p.1.abs() / tan_y).fold(f32::MIN_POSITIVE, f32::max);
+    let mut too_near = points.iter().map(|p| p.2).fold(0.0f32, f32::max);
+    for _ in 0..48 {
+        let mid = (far_enough + too_near) / 2.0;
+        if fits(mid) {
+            far_enough = mid;
+        } else {
+            too_near = mid;
+        }
+    }
+    let d = far_enough;
+    let (x, y) = (window(d, |p| p.0, tan_x), window(d, |p| p.1, tan_y));
+    let target = centre + right * ((x.0 + x.1) / 2.0) + up * ((y.0 + y.1) / 2.0);
+    let (near, far) =
+        points.iter().fold((f32::INFINITY, 0.0f32), |(n, f), p| (n.min(d - p.2), f.max(d - p.2)));
+    let near = (near * 0.9).max(d * 1e-4);
     Camera {
-        eye: target + back * distance,
+        eye: target + back * d,
         target,
         up: Vec3::Y,
         projection: Projection::Perspective { fovy_degrees: TERRAIN_FOVY_DEGREES, near, far: far * 1.1 },
@@ -466,7 +605,7 @@ pub fn terrain_scene(
         let (near, far) = depths.fold((f32::INFINITY, 0.0f32), |(n, f), d| (n.min(d), f.max(d)));
         let near = near.max(0.0);
         Fog {
-            mode: FogMode::Linear { start: near, end: far + 1.5 * (far - near) },
+            mode: FogMode::Linear { start: near, end: far + (far - near) },
             color: SKY,
             coordinate: FogCoordinate::EyePlane,
         }
