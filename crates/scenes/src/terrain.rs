@@ -19,18 +19,22 @@
 //!   diamond's corners): a sphere around p(v) holding the whole diamond.
 //!
 //! A vertex is active when its error may project to more than τ pixels
-//! (`--terrain-error`) from the fitted camera: when
-//! `λ·δ(v)·(d + r(v)) > τ·(z − r(v))²`, with d = |eye − p(v)|, z the depth
-//! of p(v) along the view direction, and λ = H / (2·tan(fovy/2)) pixels per
-//! unit at unit depth (H the image height; an orthographic camera: λ·δ > τ).
-//! A segment of length δ at distance d and depth z projects to at most
-//! λ·δ·d/z² pixels (the largest singular value of the perspective map's
-//! Jacobian is d/z²), and every point of the diamond lies within r(v) of
-//! p(v); so an inactive vertex's triangles stay within τ pixels of the full
-//! surface at every grid sample. The test is monotone: a parent's sphere
-//! holds its children's and its δ is at least theirs. A vertex with δ = 0
-//! (a planar region) is never active, whatever τ; τ = 0 activates every
-//! other vertex (the full grid).
+//! (`--terrain-error`) from the fitted camera: when both
+//! `λ·δ(v)·(d + r(v)) / (z − r(v))²` and `λ·K·δ(v) / (d − r(v))` exceed τ,
+//! with d = |eye − p(v)|, z the depth of p(v) along the view direction,
+//! λ = H / (2·tan(fovy/2)) pixels per unit at unit depth (H the image
+//! height) and K = 1 + tan²(fovx/2) + tan²(fovy/2) (a bound whose
+//! denominator is not positive counts as infinite; an orthographic camera:
+//! λ·δ > τ). A segment of length δ at distance d and depth z projects to
+//! at most λ·δ·d/z² pixels (the largest singular value of the perspective
+//! map's Jacobian is d/z²), which inside the view frustum is at most
+//! λ·K·δ/d; every point of the diamond lies within r(v) of p(v). So an
+//! inactive vertex's triangles stay within τ pixels of the full surface at
+//! every grid sample in view (the fitted camera has the whole terrain in
+//! view). Both bounds grow from child to parent (a parent's sphere holds
+//! its children's and its δ is at least theirs), so activity is monotone.
+//! A vertex with δ = 0 (a planar region) is never active, whatever τ;
+//! τ = 0 activates every other vertex (the full grid).
 //!
 //! **Padding**: a grid that is not (2^n + 1)² is embedded in the next one
 //! (heights clamped to the border); the diamond of a vertex that straddles
@@ -103,6 +107,9 @@ pub struct ViewError {
     /// λ: pixels per world unit at unit depth (perspective), or per world
     /// unit anywhere (orthographic).
     pub pixels_per_unit: f32,
+    /// K = 1 + tan²(fovx/2) + tan²(fovy/2): d/z² ≤ K/d inside the view
+    /// frustum.
+    pub frustum_factor: f32,
     /// True for an orthographic camera: errors project without depth.
     pub orthographic: bool,
     /// The bound τ in pixels (0: the full grid).
@@ -111,26 +118,30 @@ pub struct ViewError {
 
 impl ViewError {
     /// The bound for `camera` drawing a `width × height` image.
-    pub fn new(camera: &Camera, _width: u32, height: u32, tolerance: f32) -> ViewError {
-        let (scale, orthographic) = match camera.projection {
+    pub fn new(camera: &Camera, width: u32, height: u32, tolerance: f32) -> ViewError {
+        let (scale, tan_y, orthographic) = match camera.projection {
             Projection::Perspective { fovy_degrees, .. } => {
-                (height as f32 / (2.0 * (fovy_degrees.to_radians() / 2.0).tan()), false)
+                let tan_y = (fovy_degrees.to_radians() / 2.0).tan();
+                (height as f32 / (2.0 * tan_y), tan_y, false)
             }
-            Projection::Orthographic { height: h, .. } => (height as f32 / h, true),
+            Projection::Orthographic { height: h, .. } => (height as f32 / h, 0.0, true),
         };
+        let tan_x = tan_y * width as f32 / height as f32;
         ViewError {
             eye: camera.eye,
             forward: (camera.target - camera.eye).normalize_or(Vec3::NEG_Z),
             pixels_per_unit: scale,
+            frustum_factor: 1.0 + tan_x * tan_x + tan_y * tan_y,
             orthographic,
             tolerance: tolerance.max(0.0),
         }
     }
 
     /// True when an error `delta` anywhere in the sphere of `radius`
-    /// around `p` may project to more than the tolerance:
-    /// λ·δ·(d + r)/(z − r)² > τ, with d the distance from the eye to `p`
-    /// and z its depth (a sphere reaching behind the eye plane always is).
+    /// around `p` may project to more than the tolerance: when both
+    /// λ·δ·(d + r)/(z − r)² and λ·K·δ/(d − r) exceed τ, with d the
+    /// distance from the eye to `p` and z its depth (a bound whose
+    /// denominator is not positive is infinite).
     #[inline]
     fn exceeds(&self, p: Vec3, delta: f32, radius: f32) -> bool {
         if delta <= 0.0 {
@@ -143,8 +154,11 @@ impl ViewError {
             return self.pixels_per_unit * delta > self.tolerance;
         }
         let to = p - self.eye;
-        let z = to.dot(self.forward) - radius;
-        z <= 0.0 || self.pixels_per_unit * delta * (to.length() + radius) > self.tolerance * z * z
+        let (z, d) = (to.dot(self.forward) - radius, to.length());
+        let near = d - radius;
+        let lambda = self.pixels_per_unit * delta;
+        (z <= 0.0 || lambda * (d + radius) > self.tolerance * z * z)
+            && (near <= 0.0 || lambda * self.frustum_factor > self.tolerance * near)
     }
 }
 
