@@ -170,11 +170,11 @@ impl ErrorPyramid {
         let cell = field.cell_size();
         let origin = -Vec2::new((columns - 1) as f32, (rows - 1) as f32) * cell / 2.0;
         let mut heights = vec![0.0; side * side];
-        for y in 0..side {
-            for x in 0..side {
-                heights[y * side + x] = field.at(x.min(columns - 1), y.min(rows - 1));
-            }
-        }
+        heights.par_chunks_mut(side).enumerate().for_each(|(y, row)| {
+            let source = &field.heights()[y.min(rows - 1) * columns..][..columns];
+            row[..columns].copy_from_slice(source);
+            row[columns..].fill(source[columns - 1]);
+        });
         let mut pyramid = ErrorPyramid {
             side,
             columns,
@@ -387,21 +387,17 @@ impl ErrorPyramid {
         }
     }
 
+    /// The triangles of every part, in order, over their vertices in grid
+    /// order (sorted padded-grid indices, found by binary search: no
+    /// array over the whole grid).
     fn compact(&self, parts: &[Vec<[u32; 3]>]) -> SimplifiedGrid {
-        let mut index = vec![u32::MAX; self.side * self.side];
-        let mut vertices = Vec::new();
-        let mut triangles = Vec::with_capacity(parts.iter().map(Vec::len).sum());
-        for t in parts.iter().flatten() {
-            triangles.push(t.map(|i| {
-                let slot = &mut index[i as usize];
-                if *slot == u32::MAX {
-                    *slot = vertices.len() as u32;
-                    let i = i as usize;
-                    vertices.push([(i % self.side) as u32, (i / self.side) as u32]);
-                }
-                *slot
-            }));
-        }
+        let mut used: Vec<u32> = parts.iter().flatten().flatten().copied().collect();
+        used.par_sort_unstable();
+        used.dedup();
+        let find = |i: u32| used.binary_search(&i).expect("every corner is a used vertex") as u32;
+        let triangles = parts.par_iter().flat_map_iter(|part| part.iter().map(|t| t.map(find))).collect();
+        let side = self.side as u32;
+        let vertices = used.iter().map(|&i| [i % side, i / side]).collect();
         SimplifiedGrid { vertices, triangles }
     }
 }
@@ -501,24 +497,24 @@ fn hull_points(field: &HeightField) -> Vec<Vec3> {
     let cell = field.cell_size();
     let origin = -Vec2::new((c - 1) as f32, (r - 1) as f32) * cell / 2.0;
     let starts = |n: usize| (0..n - 1).step_by(block).map(move |s| (s, (s + block).min(n - 1)));
-    let mut points = Vec::new();
-    for (y0, y1) in starts(r) {
-        for (x0, x1) in starts(c) {
-            let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    let h = field.at(x, y);
-                    (lo, hi) = (lo.min(h), hi.max(h));
-                }
-            }
-            for i in 0..8 {
-                let (x, y) = ([x0, x1][i & 1], [y0, y1][i >> 2]);
-                let h = [lo, hi][i >> 1 & 1];
-                points.push(Vec3::new(origin.x + x as f32 * cell, h, origin.y + y as f32 * cell));
-            }
-        }
-    }
-    points
+    let block_rows: Vec<(usize, usize)> = starts(r).collect();
+    block_rows
+        .par_iter()
+        .flat_map_iter(|&(y0, y1)| {
+            starts(c).flat_map(move |(x0, x1)| {
+                let (lo, hi) = (y0..=y1).fold((f32::INFINITY, f32::NEG_INFINITY), |acc, y| {
+                    field.heights()[y * c + x0..=y * c + x1]
+                        .iter()
+                        .fold(acc, |(l, h), &v| (l.min(v), h.max(v)))
+                });
+                (0..8).map(move |i| {
+                    let (x, y) = ([x0, x1][i & 1], [y0, y1][i >> 2]);
+                    let h = [lo, hi][i >> 1 & 1];
+                    Vec3::new(origin.x + x as f32 * cell, h, origin.y + y as f32 * cell)
+                })
+            })
+        })
+        .collect()
 }
 
 /// A perspective camera (fovy [`TERRAIN_FOVY_DEGREES`]) looking at the
