@@ -623,13 +623,13 @@ pub fn terrain_scene(
     let scene = Scene {
         camera,
         background: SKY,
-        ambient: Vec3::new(0.30, 0.32, 0.36),
+        ambient: Vec3::new(0.34, 0.36, 0.40),
         lights: vec![
-            Light::Directional {
-                direction: Vec3::new(-0.55, -0.6, -0.35),
-                color: Vec3::new(1.0, 0.95, 0.85),
-            },
-            Light::Directional { direction: Vec3::new(0.4, -0.5, 0.6), color: Vec3::new(0.12, 0.14, 0.18) },
+            // The sun from the west, a little south, across the view:
+            // slopes facing it light up, the others fall into shade.
+            Light::Directional { direction: Vec3::new(0.8, -0.6, -0.15), color: Vec3::new(1.0, 0.94, 0.82) },
+            // Sky light from the other side.
+            Light::Directional { direction: Vec3::new(-0.5, -0.6, -0.4), color: Vec3::new(0.16, 0.18, 0.22) },
         ],
         objects: vec![Object {
             mesh: Arc::new(mesh),
