@@ -151,7 +151,7 @@ pub(crate) fn bench(size: (u32, u32), error: f32, frames: usize) -> Result<()> {
     let scene_time = median(&mut || {
         drop(std::hint::black_box(terrain_scene(&field, &pyramid, &Surface::HeightRamp, size, error, true)))
     });
-    let (scene, stats) = terrain_scene(&field, &pyramid, &Surface::HeightRamp, size, error, true);
+    let (scene, stats) = terrain_scene(&field, &pyramid, &Surface::HeightRamp, size, error, true)?;
     let mut renderer = Renderer::default();
     let options = RenderOptions::default();
     let mut times = Vec::new();

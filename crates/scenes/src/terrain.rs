@@ -58,7 +58,7 @@ use std::sync::Arc;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use zline_scene::{
-    Camera, Fog, FogCoordinate, FogMode, HeightField, Light, Material, Mesh, Object, Projection,
+    Camera, Fog, FogCoordinate, FogMode, HeightField, Light, Material, Mesh, MeshError, Object, Projection,
     RenderSettings, Scene, Shadows, TextureMap,
 };
 
@@ -446,7 +446,13 @@ pub fn ramp_color(t: f32) -> Vec3 {
 }
 
 /// The mesh of a simplified grid of `field` (see the module documentation).
-pub fn terrain_mesh(field: &HeightField, grid: &SimplifiedGrid, surface: &Surface) -> Mesh {
+/// Errors when a position is not finite in f32 (a cell size or heights
+/// near f32's limits).
+pub fn terrain_mesh(
+    field: &HeightField,
+    grid: &SimplifiedGrid,
+    surface: &Surface,
+) -> Result<Mesh, MeshError> {
     let cell = field.cell_size();
     let (c, r) = (field.columns(), field.rows());
     let origin = -Vec2::new((c - 1) as f32, (r - 1) as f32) * cell / 2.0;
@@ -457,8 +463,7 @@ pub fn terrain_mesh(field: &HeightField, grid: &SimplifiedGrid, surface: &Surfac
     let positions: Vec<Vec3> = grid.vertices.par_iter().map(position).collect();
     let normals = grid.vertices.par_iter().map(|&[x, y]| field.normal(x as usize, y as usize)).collect();
     let white = Material { ks: Vec3::splat(0.04), ns: 12.0, ..Material::plastic(Vec3::ONE, 0.04, 12.0) };
-    let mesh = Mesh::new("terrain", positions, Some(normals), grid.triangles.clone(), white)
-        .expect("a simplified grid indexes its own finite vertices");
+    let mesh = Mesh::new("terrain", positions, Some(normals), grid.triangles.clone(), white)?;
     match surface {
         Surface::HeightRamp => {
             let (lo, hi) = field.range();
@@ -468,7 +473,7 @@ pub fn terrain_mesh(field: &HeightField, grid: &SimplifiedGrid, surface: &Surfac
                 .par_iter()
                 .map(|&[x, y]| ramp_color((field.at(x as usize, y as usize) - lo) / span))
                 .collect();
-            mesh.with_colors(colors).expect("one finite colour per vertex")
+            mesh.with_colors(colors)
         }
         Surface::Texture(map) => {
             let uvs = grid
@@ -476,7 +481,7 @@ pub fn terrain_mesh(field: &HeightField, grid: &SimplifiedGrid, surface: &Surfac
                 .par_iter()
                 .map(|&[x, y]| Vec2::new(x as f32 / (c - 1) as f32, 1.0 - y as f32 / (r - 1) as f32))
                 .collect();
-            mesh.with_uvs(uvs).expect("one finite uv per vertex").with_diffuse_map(map.clone())
+            Ok(mesh.with_uvs(uvs)?.with_diffuse_map(map.clone()))
         }
     }
 }
@@ -591,7 +596,7 @@ pub struct TerrainStats {
 /// `error_pixels` from the fitted camera, coloured by `surface`, lit by a
 /// sun and a fill light, with fog when `fog` is set (see the module
 /// documentation). The pyramid is `ErrorPyramid::new(field)`, passed in
-/// so that a caller can time it or reuse it.
+/// so that a caller can time it or reuse it. Errors as [`terrain_mesh`].
 pub fn terrain_scene(
     field: &HeightField,
     pyramid: &ErrorPyramid,
@@ -599,10 +604,10 @@ pub fn terrain_scene(
     (width, height): (u32, u32),
     error_pixels: f32,
     fog: bool,
-) -> (Scene, TerrainStats) {
+) -> Result<(Scene, TerrainStats), MeshError> {
     let camera = fit_camera(field, width as f32 / height as f32);
     let grid = pyramid.simplify(&ViewError::new(&camera, width, height, error_pixels));
-    let mesh = terrain_mesh(field, &grid, surface);
+    let mesh = terrain_mesh(field, &grid, surface)?;
     let stats =
         TerrainStats { triangles: grid.triangles.len(), full_grid_triangles: full_grid_triangles(field) };
     let (lo, hi) = terrain_bounds(field);
@@ -642,5 +647,5 @@ pub fn terrain_scene(
         fog,
         shadows: Shadows::default(),
     };
-    (scene, stats)
+    Ok((scene, stats))
 }

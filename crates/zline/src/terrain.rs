@@ -73,6 +73,17 @@ pub(crate) fn scene(heights: &Path, args: &TerrainArgs, size: Option<(u32, u32)>
     let width = (field.columns().max(field.rows()) - 1) as f32 * field.cell_size();
     let scale = args.height_scale.unwrap_or(if is_png { width / 4.0 } else { 1.0 });
     let field = if scale == 1.0 { field } else { field.scaled(scale).map_err(named)? };
+    // The camera stands a few widths away and squares distances: keep
+    // every coordinate far inside f32.
+    let (lo, hi) = field.range();
+    let extent = width.max(hi.abs()).max(lo.abs());
+    if !(extent <= 1e15) {
+        return Err(anyhow!(
+            "{}: the terrain spans {extent:e} units (cell size × samples, or heights × --height-scale); \
+             keep it below 1e15",
+            heights.display()
+        ));
+    }
     let surface = match &args.texture {
         Some(path) => Surface::Texture(TextureMap {
             texture: Arc::new(zline::io::load_texture(path)?),
@@ -88,7 +99,8 @@ pub(crate) fn scene(heights: &Path, args: &TerrainArgs, size: Option<(u32, u32)>
     let pyramid_time = pyramid_start.elapsed();
     let mesh_start = Instant::now();
     let size = size.unwrap_or(DEFAULT_TERRAIN_SIZE);
-    let (scene, stats) = terrain_scene(&field, &pyramid, &surface, size, args.terrain_error, !args.no_fog);
+    let (scene, stats) = terrain_scene(&field, &pyramid, &surface, size, args.terrain_error, !args.no_fog)
+        .map_err(|e| anyhow!("{}: {e}", heights.display()))?;
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
     eprintln!(
         "terrain: {}x{} samples; {} triangles drawn of the full grid's {} ({:.2} %) at {} px error; \

@@ -90,5 +90,12 @@ fn bad_elevation_files_name_the_file_and_line() {
     let missing = dir.path().join("missing.png");
     let out = zline(&["terrain", missing.to_str().unwrap(), "-o", png.to_str().unwrap()]);
     check_clean_error(&out, &["missing.png: cannot read file"]);
+    let hills = repo().join("assets/terrain/hills-65.asc");
+    let out =
+        zline(&["terrain", hills.to_str().unwrap(), "--cell-size", "1e30", "-o", png.to_str().unwrap()]);
+    check_clean_error(&out, &["hills-65.asc: the terrain spans", "keep it below 1e15"]);
+    let out =
+        zline(&["terrain", hills.to_str().unwrap(), "--height-scale", "1e38", "-o", png.to_str().unwrap()]);
+    check_clean_error(&out, &["hills-65.asc: "]);
     assert!(!png.exists());
 }
