@@ -77,7 +77,7 @@ pub(crate) fn scene(heights: &Path, args: &TerrainArgs, size: Option<(u32, u32)>
     // every coordinate far inside f32.
     let (lo, hi) = field.range();
     let extent = width.max(hi.abs()).max(lo.abs());
-    if !(extent <= 1e15) {
+    if extent.is_nan() || extent > 1e15 {
         return Err(anyhow!(
             "{}: the terrain spans {extent:e} units (cell size × samples, or heights × --height-scale); \
              keep it below 1e15",
