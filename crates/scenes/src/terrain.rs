@@ -250,7 +250,9 @@ impl ErrorPyramid {
 
     /// Settles one level: on each of `rows` (in parallel), the vertices
     /// from `first(y).0` in steps of `first(y).1`, each with its hypotenuse
-    /// and children from `shape`; then writes them.
+    /// and children from `shape`, written in place. A level's children lie
+    /// in rows it does not write, or in the vertex's own row (a square's
+    /// left and right children, settled on the level before).
     fn level(
         &mut self,
         rows: &[usize],
@@ -258,31 +260,67 @@ impl ErrorPyramid {
         shape: impl Fn(usize, usize) -> ((usize, usize), (usize, usize), [Option<(usize, usize)>; 4]) + Sync,
         h: usize,
     ) {
-        let n = self.side - 1;
-        let this = &*self;
-        let settled: Vec<Vec<(f32, f32)>> = rows
-            .par_iter()
-            .map(|&y| {
-                let (x0, step) = first(y);
-                (x0..=n)
-                    .step_by(step)
-                    .map(|x| {
-                        let (a, b, children) = shape(x, y);
-                        this.settle(x, y, h, a, b, &children)
-                    })
-                    .collect()
-            })
-            .collect();
-        for (&y, values) in rows.iter().zip(settled) {
-            let (x0, step) = first(y);
-            for (x, (delta, radius)) in (x0..=n).step_by(step).zip(values) {
-                self.delta[y * self.side + x] = delta;
-                self.radius[y * self.side + x] = radius;
+        let (side, n) = (self.side, self.side - 1);
+        let geometry = Geometry {
+            side,
+            columns: self.columns,
+            rows: self.rows,
+            cell: self.cell,
+            origin: self.origin,
+            heights: &self.heights,
+        };
+        let mut written = vec![false; side];
+        rows.iter().for_each(|&y| written[y] = true);
+        let mut writes = Vec::with_capacity(rows.len());
+        let mut reads: Vec<Option<(&[f32], &[f32])>> = vec![None; side];
+        for (y, (d, r)) in self.delta.chunks_mut(side).zip(self.radius.chunks_mut(side)).enumerate() {
+            if written[y] {
+                writes.push((y, d, r));
+            } else {
+                reads[y] = Some((&*d, &*r));
             }
         }
+        writes.par_iter_mut().for_each(|(y, deltas, radii)| {
+            let y = *y;
+            let (x0, step) = first(y);
+            for x in (x0..=n).step_by(step) {
+                let (a, b, children) = shape(x, y);
+                let value = |(cx, cy): (usize, usize)| {
+                    if cy == y {
+                        (deltas[cx], radii[cx])
+                    } else {
+                        let (d, r) = reads[cy].expect("a level's children lie in rows it does not write");
+                        (d[cx], r[cx])
+                    }
+                };
+                let (delta, radius) = geometry.settle(x, y, h, a, b, &children, value);
+                deltas[x] = delta;
+                radii[x] = radius;
+            }
+        });
+    }
+}
+
+/// The padded grid's geometry, read while its values are written.
+struct Geometry<'a> {
+    side: usize,
+    columns: usize,
+    rows: usize,
+    cell: f32,
+    origin: Vec2,
+    heights: &'a [f32],
+}
+
+impl Geometry<'_> {
+    #[inline]
+    fn position(&self, x: usize, y: usize) -> Vec3 {
+        let h = self.heights[y * self.side + x];
+        Vec3::new(self.origin.x + x as f32 * self.cell, h, self.origin.y + y as f32 * self.cell)
     }
 
-    /// δ and r of vertex (x, y) of half-size h, hypotenuse a–b.
+    /// δ and r of vertex (x, y) of half-size h, hypotenuse a–b, from its
+    /// children's (δ, r) by `value`.
+    #[expect(clippy::too_many_arguments, reason = "a vertex, its level, hypotenuse and children")]
     fn settle(
         &self,
         x: usize,
@@ -291,6 +329,7 @@ impl ErrorPyramid {
         a: (usize, usize),
         b: (usize, usize),
         children: &[Option<(usize, usize)>; 4],
+        value: impl Fn((usize, usize)) -> (f32, f32),
     ) -> (f32, f32) {
         let side = self.side;
         let at = |(x, y): (usize, usize)| y * side + x;
@@ -298,8 +337,9 @@ impl ErrorPyramid {
         let mut delta = 0.0f32;
         let mut radius = 0.0f32;
         for &c in children.iter().flatten() {
-            delta = delta.max(self.delta[at(c)]);
-            radius = radius.max(self.radius[at(c)] + p.distance(self.position(c.0, c.1)));
+            let (d, r) = value(c);
+            delta = delta.max(d);
+            radius = radius.max(r + p.distance(self.position(c.0, c.1)));
         }
         if h == 1 {
             // The finest diamonds have no children: their corners.
@@ -331,7 +371,9 @@ impl ErrorPyramid {
         };
         (delta + e, radius)
     }
+}
 
+impl ErrorPyramid {
     /// The simplified grid for `view` (see the module documentation).
     /// The bintree's top levels are walked here; below them the subtrees
     /// are refined in parallel and joined in order, so the result does not
