@@ -7,7 +7,10 @@ use std::collections::HashMap;
 use glam::{Vec3, Vec4Swizzles};
 use proptest::prelude::*;
 use zline_scene::{Camera, HeightField};
-use zline_scenes::terrain::{fit_camera, full_grid_triangles, ErrorPyramid, SimplifiedGrid, ViewError};
+use zline_scenes::terrain::{
+    fit_camera, full_grid_triangles, ramp_color, terrain_mesh, ErrorPyramid, SimplifiedGrid, Surface,
+    ViewError,
+};
 
 fn field(columns: usize, rows: usize, f: impl Fn(usize, usize) -> f32) -> HeightField {
     let heights = (0..rows).flat_map(|j| (0..columns).map(move |i| (i, j))).map(|(i, j)| f(i, j)).collect();
@@ -145,6 +148,9 @@ fn check_error_bound(
                 let mesh = (l0 * hs[0] + l1 * hs[1] + l2 * hs[2]) as f32;
                 let a = project(camera, size, world(px, py, field.at(x, y)));
                 let b = project(camera, size, world(px, py, mesh));
+                let inside =
+                    |p: glam::Vec2| p.x >= 0.0 && p.y >= 0.0 && p.x <= size.0 as f32 && p.y <= size.1 as f32;
+                prop_assert!(inside(a), "sample ({x}, {y}) projects outside the image, to {a}");
                 worst = worst.max(a.distance(b));
             }
         }
@@ -152,6 +158,33 @@ fn check_error_bound(
     prop_assert!(covered.iter().all(|&c| c), "a grid sample lies in no triangle");
     prop_assert!(worst <= tolerance * 1.001 + 1e-3, "projected error {worst} px > {tolerance} px");
     Ok(())
+}
+
+#[test]
+fn the_mesh_takes_grid_normals_ramp_colours_or_draped_uvs() {
+    // h = 2·column: a slope rising east, 3 columns × 2 rows, 0.5 m cells.
+    let slope = HeightField::new(3, 2, vec![0.0, 2.0, 4.0, 0.0, 2.0, 4.0], 0.5).unwrap();
+    let (grid, _) = simplify(&slope, 1.0, (64, 48));
+    let mesh = terrain_mesh(&slope, &grid, &Surface::HeightRamp).unwrap();
+    for (v, &[x, y]) in grid.vertices.iter().enumerate() {
+        let expect = Vec3::new(-0.5 + 0.5 * x as f32, 2.0 * x as f32, -0.25 + 0.5 * y as f32);
+        assert_eq!(mesh.positions[v], expect);
+        // ∂h/∂x = 2 / 0.5 = 4: the normal (−4, 1, 0), normalized.
+        assert!(mesh.normals[v].abs_diff_eq(Vec3::new(-4.0, 1.0, 0.0).normalize(), 1e-6));
+        assert_eq!(mesh.colors[v], ramp_color(x as f32 / 2.0));
+    }
+    let texture = zline_scene::TextureMap {
+        texture: std::sync::Arc::new(zline_shading::Texture::solid(glam::Vec4::ONE)),
+        sampler: Default::default(),
+        alpha_blend: false,
+        alpha_cutoff: None,
+    };
+    let draped = terrain_mesh(&slope, &grid, &Surface::Texture(texture)).unwrap();
+    for (v, &[x, y]) in grid.vertices.iter().enumerate() {
+        // s east, t north: the image's top row on the north edge (row 0).
+        assert_eq!(draped.uvs[v], glam::Vec2::new(x as f32 / 2.0, 1.0 - y as f32));
+    }
+    assert!(draped.colors.is_empty() && draped.diffuse_map.is_some());
 }
 
 proptest! {
