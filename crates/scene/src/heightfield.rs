@@ -63,6 +63,8 @@ pub struct HeightField {
     rows: usize,
     heights: Vec<f32>,
     cell_size: f32,
+    /// The lowest and highest height, found once.
+    range: (f32, f32),
 }
 
 impl HeightField {
@@ -91,7 +93,9 @@ impl HeightField {
         if !(cell_size.is_finite() && cell_size > 0.0) {
             return Err(HeightFieldError::CellSize(cell_size));
         }
-        Ok(HeightField { columns, rows, heights, cell_size })
+        let range =
+            heights.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| (lo.min(h), hi.max(h)));
+        Ok(HeightField { columns, rows, heights, cell_size, range })
     }
 
     /// Number of samples per row (west to east).
@@ -122,7 +126,7 @@ impl HeightField {
 
     /// The lowest and highest height.
     pub fn range(&self) -> (f32, f32) {
-        self.heights.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &h| (lo.min(h), hi.max(h)))
+        self.range
     }
 
     /// The same grid with every height multiplied by `factor` (a vertical

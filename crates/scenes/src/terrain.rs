@@ -430,16 +430,28 @@ impl ErrorPyramid {
     }
 
     /// The triangles of every part, in order, over their vertices in grid
-    /// order (sorted padded-grid indices, found by binary search: no
-    /// array over the whole grid).
+    /// order: every corner's key (padded-grid index, then the corner's
+    /// place) sorted once, numbered in one pass (no array over the whole
+    /// grid).
     fn compact(&self, parts: &[Vec<[u32; 3]>]) -> SimplifiedGrid {
-        let mut used: Vec<u32> = parts.iter().flatten().flatten().copied().collect();
-        used.par_sort_unstable();
-        used.dedup();
-        let find = |i: u32| used.binary_search(&i).expect("every corner is a used vertex") as u32;
-        let triangles = parts.par_iter().flat_map_iter(|part| part.iter().map(|t| t.map(find))).collect();
-        let side = self.side as u32;
-        let vertices = used.iter().map(|&i| [i % side, i / side]).collect();
+        let mut keys: Vec<u64> = Vec::with_capacity(3 * parts.iter().map(Vec::len).sum::<usize>());
+        for &i in parts.iter().flatten().flatten() {
+            keys.push(u64::from(i) << 32 | keys.len() as u64);
+        }
+        keys.par_sort_unstable();
+        let mut corners = vec![0u32; keys.len()];
+        let mut vertices: Vec<[u32; 2]> = Vec::new();
+        let side = self.side as u64;
+        let mut last = u64::MAX;
+        for key in keys {
+            let i = key >> 32;
+            if i != last {
+                vertices.push([(i % side) as u32, (i / side) as u32]);
+                last = i;
+            }
+            corners[(key & 0xFFFF_FFFF) as usize] = (vertices.len() - 1) as u32;
+        }
+        let triangles = corners.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
         SimplifiedGrid { vertices, triangles }
     }
 }
