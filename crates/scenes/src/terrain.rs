@@ -15,8 +15,9 @@
 //!   between the full grid's surface and either unsplit triangle of v's
 //!   diamond (the surface deviates from a child's plane by at most δ(c),
 //!   and a child's plane from the parent's by e(v), at the midpoint);
-//! - `r(v) = max (r(c) + |p(v) − p(c)|)` (and at least the distance to its
-//!   diamond's corners): a sphere around p(v) holding the whole diamond.
+//! - `r(v) = max (r(c) + |p(v) − p(c)|)` (for the finest diamonds, which
+//!   have no children, the largest distance to their corners): a sphere
+//!   around p(v) holding the whole diamond.
 //!
 //! A vertex is active when its error may project to more than τ pixels
 //! (`--terrain-error`) from the fitted camera: when both
@@ -37,9 +38,11 @@
 //! τ = 0 activates every other vertex (the full grid).
 //!
 //! **Padding**: a grid that is not (2^n + 1)² is embedded in the next one
-//! (heights clamped to the border); the diamond of a vertex that straddles
-//! the grid's border gets δ = ∞, so bintree triangles are split until each
-//! lies inside or outside the grid, and the outside ones are dropped.
+//! (heights clamped to the border); a vertex one of whose diamond's
+//! triangles crosses the grid's border (by its bounding box) gets δ = ∞,
+//! so bintree triangles are split until each lies inside or outside the
+//! grid, and the outside ones are dropped; a vertex whose diamond lies
+//! wholly outside has e = 0.
 //!
 //! **The mesh** ([`terrain_mesh`]): positions x = column·cell (east), z =
 //! row·cell (south), y = height, centred on the grid; vertex normals from
@@ -48,10 +51,11 @@
 //! or texture coordinates spanning the grid for a draped texture (s east,
 //! t north: the image's top row lies on the north edge).
 //!
-//! **The scene** ([`terrain_scene`]): a camera fitted to the terrain's
-//! bounding box ([`fit_camera`]), a sun and a sky fill light, and fog (on
-//! by default: linear from the nearest corner of the bounding box to as far
-//! again beyond the farthest as the box is deep (half fog there), in the sky's colour).
+//! **The scene** ([`terrain_scene`]): a camera fitted to the terrain
+//! ([`fit_camera`]: every sample in view), a sun from the west and a sky
+//! fill light, and fog when asked (linear, in the sky's colour, from the
+//! depth of the bounding box's nearest corner to as far again beyond its
+//! farthest corner as the box is deep: half fog at the far edge).
 
 use std::sync::Arc;
 
