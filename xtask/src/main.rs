@@ -15,6 +15,7 @@ mod modules;
 mod regress;
 mod report;
 mod report_shadows;
+mod terrain;
 mod timing;
 mod versus;
 
@@ -141,6 +142,28 @@ enum Task {
         #[arg(long)]
         stages: bool,
     },
+    /// Write the elevation files of assets/terrain/ (deterministic
+    /// diamond-square hills): hills.png, 257x257 16-bit greyscale, and
+    /// hills-65.asc, an ESRI ASCII grid of every fourth sample.
+    TerrainAsset {
+        /// Output folder.
+        #[arg(long, default_value = "assets/terrain")]
+        out: PathBuf,
+    },
+    /// Time a 4096x4096 fractal terrain: error pyramid, simplified mesh
+    /// and render (median), and the triangles drawn against the full
+    /// grid's 2·4095².
+    TerrainBench {
+        /// Image size, WxH.
+        #[arg(long, default_value = "1920x1080", value_parser = contact::parse_cell)]
+        size: (u32, u32),
+        /// The screen-space error bound in pixels.
+        #[arg(long, default_value_t = zline::scenes::terrain::DEFAULT_TERRAIN_ERROR)]
+        terrain_error: f32,
+        /// Frames rendered after a warm-up frame; the median is reported.
+        #[arg(long, default_value_t = 5)]
+        frames: usize,
+    },
     /// The module import graph of every crate (crates/*/src, xtask/src):
     /// module, edge and cycle counts; fails if a module imports one that
     /// imports it back.
@@ -177,5 +200,7 @@ fn main() -> Result<()> {
             })
         }
         Task::Modules { verbose } => modules::run(verbose),
+        Task::TerrainAsset { out } => terrain::write_assets(&out),
+        Task::TerrainBench { size, terrain_error, frames } => terrain::bench(size, terrain_error, frames),
     }
 }

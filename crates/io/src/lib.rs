@@ -14,7 +14,8 @@
 //! (PNG/JPEG images → textures, shared by both loaders), `culling` (the
 //! default back-face culling rule), `framing` (camera and lights for a bare
 //! model or glTF file), `scene_file` (TOML scenes; the format is documented
-//! on [`load_scene`], and `examples/scene.toml` shows every key), `error`
+//! on [`load_scene`], and `examples/scene.toml` shows every key), `heightfield` (elevation files: greyscale PNG and ESRI ASCII grids → a
+//! `HeightField`), `error`
 //! (the error type), `files` (reading within the size limits and resolving
 //! referenced files inside the folder of the file that names them; see
 //! [`LoadOptions`]). The limits are constants of zline-scene
@@ -26,6 +27,7 @@ mod files;
 mod fit;
 mod framing;
 mod gltf;
+mod heightfield;
 mod obj;
 mod ply;
 mod scene_file;
@@ -43,6 +45,7 @@ pub use framing::{
 pub use crate::gltf::{
     load_gltf, load_gltf_with_options, load_gltf_with_warnings, GltfScene, MAX_GLTF_SHININESS,
 };
+pub use heightfield::{load_heightfield, load_texture};
 pub use obj::{load_obj, load_obj_with_options, load_obj_with_warnings};
 pub use ply::load_ply;
 pub use scene_file::{load_scene, load_scene_with_options};

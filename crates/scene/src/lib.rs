@@ -17,6 +17,7 @@
 mod area;
 mod area_auto;
 mod error;
+mod heightfield;
 mod limits;
 mod mesh;
 mod model;
@@ -27,6 +28,7 @@ mod shadow;
 pub use area::{AreaLight, AreaShape};
 pub use area_auto::{choose_area_samples, AreaChoice, PROBES as AREA_PROBES};
 pub use error::MeshError;
+pub use heightfield::{HeightField, HeightFieldError, MAX_HEIGHTFIELD_SAMPLES};
 pub use limits::{
     MAX_ADAPTIVE_TOLERANCE, MAX_AREA_SAMPLES_PER_SIDE, MAX_IMAGE_FILE_BYTES, MAX_IMAGE_SIDE,
     MAX_MATERIAL_LIBRARIES, MAX_MODEL_FILE_BYTES, MAX_PRIMITIVE_DIVISIONS, MAX_PRIMITIVE_TRIANGLES,

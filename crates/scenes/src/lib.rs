@@ -6,10 +6,13 @@
 //! globe on a table under a pendant lamp, textured floor and walls, planar
 //! shadows on the floor) and [`hard_cases`](mod@hard_cases) (scenes that stress
 //! numerical stability, each with the outcome a correct render shows).
+//! [`terrain`] makes a height field into a landscape scene, its grid
+//! simplified to a screen-space error bound.
 
 mod demo;
 pub mod hard_cases;
 mod room;
+pub mod terrain;
 
 pub use demo::demo_scene;
 pub use hard_cases::{hard_cases, HardCase};

@@ -1,4 +1,5 @@
-//! The `zline` command line: render a model or scene file, or the demo.
+//! The `zline` command line: render a model or scene file, the demo, or a
+//! terrain from elevation data (`terrain`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -16,6 +17,8 @@ use zline::scene::{
     MAX_TILE_SIZE, MIN_TILE_SIZE,
 };
 use zline::shading::Filter;
+
+mod terrain;
 
 /// The smallest `--shadow-map-size`, as the scene file's.
 const MIN_SHADOW_MAP_SIZE: u32 = 16;
@@ -66,6 +69,18 @@ enum Command {
         /// As for `render`: read files the input names outside its folder.
         #[arg(long)]
         allow_paths_outside: bool,
+    },
+    /// Render an elevation file (a greyscale PNG, 8 or 16 bits, or an ESRI
+    /// ASCII grid .asc) as a lit, fogged landscape seen from above at an
+    /// angle; the grid is simplified to the triangles the view needs
+    /// (default size 1280x720).
+    Terrain {
+        /// The elevation file: .png or .asc.
+        heights: PathBuf,
+        #[command(flatten)]
+        terrain: terrain::TerrainArgs,
+        #[command(flatten)]
+        common: Common,
     },
 }
 
@@ -425,14 +440,17 @@ fn one_line(e: &anyhow::Error) -> String {
 }
 
 fn run(cli: Cli) -> Result<()> {
-    let (input, built_in, allow_paths_outside, common) = match cli.command {
+    let (input, built_in, allow_paths_outside, common, terrain) = match cli.command {
         Command::Info { input, json, allow_paths_outside } => {
             return info(&input, json, LoadOptions { allow_outside: allow_paths_outside })
         }
         Command::Render { input, allow_paths_outside, common } => {
-            (Some(input), BuiltIn::Demo, allow_paths_outside, common)
+            (Some(input), BuiltIn::Demo, allow_paths_outside, common, None)
         }
-        Command::Demo { scene, common } => (None, scene, false, common),
+        Command::Demo { scene, common } => (None, scene, false, common, None),
+        Command::Terrain { heights, terrain, common } => {
+            (Some(heights), BuiltIn::Demo, false, common, Some(terrain))
+        }
     };
     // Everything that can be checked without the scene is checked before
     // loading it: a bad output path or thread count fails at once.
@@ -443,9 +461,10 @@ fn run(cli: Cli) -> Result<()> {
         check_samples(w, h, n)?;
     }
     let loading = Instant::now();
-    let mut scene = match &input {
-        Some(input) => load_input(input, LoadOptions { allow_outside: allow_paths_outside })?,
-        None => built_in.scene(),
+    let mut scene = match (&input, &terrain) {
+        (Some(heights), Some(terrain)) => terrain::scene(heights, terrain, common.size)?,
+        (Some(input), None) => load_input(input, LoadOptions { allow_outside: allow_paths_outside })?,
+        (None, _) => built_in.scene(),
     };
     // Judged before the size changes: a camera that is zline's framing of a
     // model is framed again for the final image's shape.

@@ -8,6 +8,7 @@ mod cli;
 mod formats;
 mod hard_cases;
 mod hostile;
+mod terrain;
 
 use std::path::Path;
 use std::process::{Command, Output};
