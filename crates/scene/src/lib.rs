@@ -17,6 +17,7 @@ mod error;
 mod limits;
 mod mesh;
 mod model;
+mod normal_map;
 mod primitives;
 mod shadow;
 
@@ -33,6 +34,7 @@ pub use model::{
     Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, Object, Projection, RenderSettings,
     Scene, ShadowMode, ShadowPlane, Shadows, TextureMap, DEFAULT_SHADOW_MAP_SIZE,
 };
+pub use normal_map::{NormalEncoding, NormalMap};
 pub use primitives::{cube, plane, torus, uv_sphere};
 pub use shadow::{light_position, shadow_matrix, shadow_matrix_f64};
 pub use zline_shading::{

@@ -51,6 +51,12 @@ pub struct Mesh {
     pub colors: Vec<Vec3>,
     /// The diffuse texture, if any; used only when `uvs` is not empty.
     pub diffuse_map: Option<TextureMap>,
+    /// Tangents (xyz, w = ±1 the bitangent's handedness: B = w·(N × T)),
+    /// one per position, or empty (`crate::normal_map`).
+    pub tangents: Vec<Vec4>,
+    /// A bump or normal map perturbing the normal per sample (Phong only);
+    /// used only when `uvs` and `tangents` are not empty.
+    pub normal_map: Option<crate::NormalMap>,
 }
 
 /// How values are interpolated across a triangle in window space (SPEC §6).

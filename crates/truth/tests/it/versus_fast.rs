@@ -190,6 +190,8 @@ fn opaque_object() -> impl Strategy<Value = Object> {
                 uvs,
                 diffuse_map,
                 colors,
+                tangents: Vec::new(),
+                normal_map: None,
             };
             object(mesh, shading, cull, world_from_object)
         })
@@ -222,6 +224,8 @@ fn transparent_quad() -> impl Strategy<Value = Object> {
                 material: Material { opacity, ..material },
                 uvs: vec![],
                 diffuse_map: None,
+                tangents: Vec::new(),
+                normal_map: None,
                 colors,
             };
             object(mesh, shading, false, Mat4::IDENTITY)
@@ -389,6 +393,8 @@ fn floor() -> impl Strategy<Value = Object> {
             material,
             uvs: Vec::new(),
             diffuse_map: None,
+            tangents: Vec::new(),
+            normal_map: None,
             colors: Vec::new(),
         };
         let to_world = Mat4::from_translation(Vec3::new(0.0, 0.0, -8.0))
