@@ -31,10 +31,9 @@ pub use limits::{
 };
 pub use mesh::{face_normal, FALLBACK_NORMAL};
 pub use model::{
-    Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, Object, Projection, RenderSettings,
-    Scene, ShadowMode, ShadowPlane, Shadows, TextureMap, DEFAULT_SHADOW_MAP_SIZE,
+    Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, NormalEncoding, NormalMap, Object,
+    Projection, RenderSettings, Scene, ShadowMode, ShadowPlane, Shadows, TextureMap, DEFAULT_SHADOW_MAP_SIZE,
 };
-pub use normal_map::{NormalEncoding, NormalMap};
 pub use primitives::{cube, plane, torus, uv_sphere};
 pub use shadow::{light_position, shadow_matrix, shadow_matrix_f64};
 pub use zline_shading::{

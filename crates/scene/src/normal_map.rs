@@ -2,7 +2,7 @@
 //! sample in the tangent frame of the surface, and the tangents that span
 //! that frame.
 //!
-//! Contract: a mesh draws its [`NormalMap`] when it has texture
+//! Contract: a mesh draws its [`NormalMap`](crate::NormalMap) when it has texture
 //! coordinates and tangents ([`Mesh::with_tangents`] from a file, or
 //! [`Mesh::with_generated_tangents`], MikkTSpace), and only with Phong
 //! shading. Flat and Gouraud shading ignore it: the perturbation is a
@@ -23,7 +23,7 @@
 //! level 0 bilinearly: a level of detail for a derivative is not defined
 //! here, so a minified map aliases).
 //!
-//! - [`NormalEncoding::Height`] (OBJ `bump`/`map_bump`, scene files'
+//! - [`NormalEncoding::Height`](crate::NormalEncoding::Height) (OBJ `bump`/`map_bump`, scene files'
 //!   `bump`): the red channel is a height h ∈ [0, 1]; its gradient by
 //!   central differences one texel apart,
 //!   ∂h/∂s ≈ (h(s + 1/W, t) − h(s − 1/W, t))·W/2 and
@@ -34,7 +34,7 @@
 //!   in s moved one unit along T. So k is the height of a white texel over
 //!   a black one in texture-coordinate units: a ramp from 0 to 1 across
 //!   the whole texture along s tilts the normal by atan(k) towards −T.
-//! - [`NormalEncoding::Tangent`] (glTF `normalTexture`): the texel's
+//! - [`NormalEncoding::Tangent`](crate::NormalEncoding::Tangent) (glTF `normalTexture`): the texel's
 //!   r, g, b ∈ [0, 1] (byte/255) decode as m = ((2r − 1)·k, (2g − 1)·k,
 //!   2b − 1), glTF's rule with k its `scale`; +y is up in the image
 //!   (towards +t), the OpenGL convention glTF uses. A byte of 128 is
@@ -46,40 +46,7 @@ use std::collections::HashMap;
 use glam::Vec4;
 
 use crate::error::MeshError;
-use crate::model::{Mesh, TextureMap};
-
-/// What a [`NormalMap`]'s texels hold.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum NormalEncoding {
-    /// A height in the red channel (a bump map); the normal follows its
-    /// gradient.
-    Height,
-    /// A tangent-space normal in r, g, b (a normal map).
-    Tangent,
-}
-
-impl NormalEncoding {
-    /// A lower-case name for messages.
-    pub fn name(self) -> &'static str {
-        match self {
-            NormalEncoding::Height => "bump",
-            NormalEncoding::Tangent => "normal",
-        }
-    }
-}
-
-/// A bump or normal map (see the module documentation for the formulas).
-#[derive(Clone, Debug, PartialEq)]
-pub struct NormalMap {
-    /// The texels and the sampler (its alpha settings are ignored).
-    pub map: TextureMap,
-    /// What the texels hold.
-    pub encoding: NormalEncoding,
-    /// k: the bump height of a white texel in texture-coordinate units
-    /// ([`NormalEncoding::Height`]), or the factor on the x and y of a
-    /// normal map ([`NormalEncoding::Tangent`]).
-    pub scale: f32,
-}
+use crate::model::Mesh;
 
 impl Mesh {
     /// The same mesh with tangents from a file, one per position (xyz and
@@ -100,7 +67,7 @@ impl Mesh {
     }
 
     /// The same mesh with a bump or normal map.
-    pub fn with_normal_map(mut self, map: NormalMap) -> Mesh {
+    pub fn with_normal_map(mut self, map: crate::model::NormalMap) -> Mesh {
         self.normal_map = Some(map);
         self
     }
