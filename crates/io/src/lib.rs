@@ -19,6 +19,7 @@
 //! [`LoadOptions`]). The limits are constants of zline-scene
 //! (`zline_scene::MAX_TRIANGLES` and the others).
 
+mod bump;
 mod culling;
 mod error;
 mod files;
@@ -28,6 +29,7 @@ mod obj;
 mod scene_file;
 mod texture_file;
 
+pub use bump::apply_bump_map;
 pub use error::SceneError;
 pub use files::LoadOptions;
 pub use framing::{

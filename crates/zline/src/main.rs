@@ -125,6 +125,15 @@ struct Common {
     /// How shadow maps are sampled (replaces `[render] shadow_filter`).
     #[arg(long, value_enum)]
     shadow_filter: Option<ShadowFilter>,
+    /// A height map (PNG or JPEG, red channel) on every mesh with texture
+    /// coordinates: bump mapping in Phong shading (flat and Gouraud ignore
+    /// it), with MikkTSpace tangents.
+    #[arg(long, value_name = "FILE")]
+    bump: Option<PathBuf>,
+    /// The bump map's scale k: a white texel's height in texture
+    /// coordinate units (the normal tilts by atan(k·∂h/∂s) along s).
+    #[arg(long, value_name = "K", default_value_t = 1.0, requires = "bump")]
+    bump_scale: f32,
     /// Tile edge in pixels, 8..=1024; the image does not depend on it.
     #[arg(
         long,
@@ -376,6 +385,11 @@ fn run(cli: Cli) -> Result<()> {
         Some(input) => load_input(input, LoadOptions { allow_outside: allow_paths_outside })?,
         None => built_in.scene(),
     };
+    if let Some(file) = &common.bump {
+        if zline::io::apply_bump_map(&mut scene, file, common.bump_scale)? == 0 {
+            eprintln!("warning: --bump: no mesh has texture coordinates; nothing is bump-mapped");
+        }
+    }
     apply_overrides(&mut scene.settings, &common);
     apply_fog(&mut scene, &common);
     apply_shadows(&mut scene, &common);

@@ -15,6 +15,7 @@ use zline_shading::Sampler;
 
 use super::checks::{Checker, Result, S};
 use super::models::ModelPart;
+use crate::bump::bumped;
 use crate::files::{resolve, LoadOptions};
 use crate::texture_file::TextureCache;
 
@@ -56,15 +57,9 @@ pub(super) fn apply(
     let normal_map = NormalMap { map, encoding: NormalEncoding::Height, scale };
     Ok(parts
         .into_iter()
-        .map(|part| {
-            if part.mesh.uvs.is_empty() {
-                return part;
-            }
-            let mut mesh = (*part.mesh).clone();
-            if mesh.tangents.len() != mesh.positions.len() {
-                mesh = mesh.with_generated_tangents();
-            }
-            ModelPart { mesh: Arc::new(mesh.with_normal_map(normal_map.clone())), ..part }
+        .map(|part| match bumped(&part.mesh, &normal_map) {
+            Some(mesh) => ModelPart { mesh: Arc::new(mesh), ..part },
+            None => part,
         })
         .collect())
 }
