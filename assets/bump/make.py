@@ -21,7 +21,7 @@ for i in range(RINGS):
     for j in range(SEGMENTS):
         a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
         for tri in ((a, b, c), (a, c, d)):
-            if i == 0 and tri == (a, b, c) or i == RINGS - 1 and tri == (a, c, d):
+            if i == 0 and tri == (a, c, d) or i == RINGS - 1 and tri == (a, b, c):
                 continue  # the poles' degenerate halves
             lines.append("f " + " ".join(f"{v}/{v}/{v}" for v in tri))
 open("sphere.obj", "w").write("\n".join(lines) + "\n")

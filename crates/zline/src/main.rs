@@ -134,6 +134,10 @@ struct Common {
     /// coordinate units (the normal tilts by atan(k·∂h/∂s) along s).
     #[arg(long, value_name = "K", default_value_t = 1.0, requires = "bump")]
     bump_scale: f32,
+    /// Draw without bump and normal maps (the files' and --bump's): the
+    /// interpolated normal alone, as before they existed.
+    #[arg(long, conflicts_with = "bump")]
+    no_normal_maps: bool,
     /// Tile edge in pixels, 8..=1024; the image does not depend on it.
     #[arg(
         long,
@@ -385,6 +389,14 @@ fn run(cli: Cli) -> Result<()> {
         Some(input) => load_input(input, LoadOptions { allow_outside: allow_paths_outside })?,
         None => built_in.scene(),
     };
+    if common.no_normal_maps {
+        for object in &mut scene.objects {
+            if object.mesh.normal_map.is_some() {
+                object.mesh =
+                    std::sync::Arc::new(zline::scene::Mesh { normal_map: None, ..(*object.mesh).clone() });
+            }
+        }
+    }
     if let Some(file) = &common.bump {
         if zline::io::apply_bump_map(&mut scene, file, common.bump_scale)? == 0 {
             eprintln!("warning: --bump: no mesh has texture coordinates; nothing is bump-mapped");
