@@ -15,7 +15,7 @@
 
 use wide::f32x8;
 use zline_scene::{Interpolation, NormalEncoding};
-use zline_shading::{Sampler, Texture, Vec3x8};
+use zline_shading::{Filter, Sampler, Texture, Vec3x8};
 
 use super::kernel::{
     triple, Alpha, BaseLod, DerivativeLod, IgnoreAlpha, Interp, Linear, Lod, MaskAlpha, Pass, Perspective,
@@ -28,7 +28,10 @@ use crate::setup::{AlphaUse, LevelOfDetail, Perturbed, Primitive};
 /// A map as the kernel reads it.
 pub(crate) struct MapReader<'a> {
     texture: &'a Texture,
-    sampler: &'a Sampler,
+    /// The map's sampler, trilinear read as bilinear: at level 0 they are
+    /// the same filter (`Texture::sample` with a level of detail ≤ 0), and
+    /// the bilinear path skips the per-lane level choice.
+    sampler: Sampler,
     /// k.
     scale: f32x8,
     /// One texel in s and t: 1/W, 1/H.
@@ -42,7 +45,10 @@ impl<'a> MapReader<'a> {
         let (w, h) = (map.texture.width() as f32, map.texture.height() as f32);
         MapReader {
             texture: &map.texture,
-            sampler: &map.sampler,
+            sampler: match map.sampler.filter {
+                Filter::Trilinear => Sampler { filter: Filter::Bilinear, ..map.sampler },
+                Filter::Nearest | Filter::Bilinear => map.sampler,
+            },
             scale: f32x8::splat(scale),
             step: (f32x8::splat(1.0 / w), f32x8::splat(1.0 / h)),
             half: (f32x8::splat(w * 0.5), f32x8::splat(h * 0.5)),
@@ -52,7 +58,7 @@ impl<'a> MapReader<'a> {
     /// The map's texel at (s, t), level 0.
     #[inline(always)]
     fn read(&self, s: f32x8, t: f32x8) -> [f32x8; 4] {
-        self.texture.sample_x8(self.sampler, s, t, f32x8::ZERO)
+        self.texture.sample_x8(&self.sampler, s, t, f32x8::ZERO)
     }
 }
 
