@@ -58,7 +58,7 @@ impl FrameNormalMap {
         uv: DVec2,
     ) -> DVec3 {
         let frame = |k: usize| {
-            let t = self.tangents[vertices[k]];
+            let t = self.tangents.get(vertices[k]).copied().unwrap_or_default();
             // normals[k] is side·N: B = side·w·(N × T) = w·(normals[k] × T).
             let tangent = t.truncate() * side;
             (tangent, normals[k].cross(t.truncate()) * t.w)

@@ -190,7 +190,9 @@ impl Frame<'_> {
                 let n = match &s.object.normal_map {
                     None => blend3(&s.attr, normal).normalize_or_zero(),
                     Some(map) => {
-                        let uv = |k: usize| s.object.mesh.uvs[s.vertices[k]].as_dvec2();
+                        let uv = |k: usize| {
+                            s.object.mesh.uvs.get(s.vertices[k]).map_or(DVec2::ZERO, |t| t.as_dvec2())
+                        };
                         let normals = [0, 1, 2].map(normal);
                         map.normal((s.vertices, &s.attr), normals, side, blend3(&s.attr, uv))
                     }
