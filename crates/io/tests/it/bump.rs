@@ -75,3 +75,43 @@ fn gltf_normal_textures_get_mikktspace_tangents() {
         assert!((t.truncate() - glam::Vec3::X).length() < 1e-6 && t.w == -1.0, "{t}");
     }
 }
+
+#[test]
+fn gltf_tangents_from_the_file_are_kept() {
+    let path = quad_gltf(
+        "file-tangents",
+        r#""materials": [{"name": "bumpy", "normalTexture": {"index": 0}}],
+        "textures": [{"source": 0}], "images": [{"uri": "n.png"}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]"#,
+    );
+    image::RgbaImage::from_raw(1, 1, vec![128, 128, 255, 255])
+        .unwrap()
+        .save(path.with_file_name("n.png"))
+        .unwrap();
+    // A second buffer (a data: URI) with TANGENT = (0, 1, 0, −1) at every
+    // vertex: kept as given, not replaced by MikkTSpace's (+x, −1).
+    let tangents = "AAAAAAAAgD8AAAAAAACAvwAAAAAAAIA/AAAAAAAAgL8AAAAAAACAPwAAAAAAAIC/AAAAAAAAgD8AAAAAAACAvw==";
+    crate::gltf::edit(
+        &path,
+        r#"{"uri": "quad.bin", "byteLength": 92}"#,
+        &format!(
+            r#"{{"uri": "quad.bin", "byteLength": 92}}, {{"uri": "data:application/octet-stream;base64,{tangents}", "byteLength": 64}}"#
+        ),
+    );
+    crate::gltf::edit(
+        &path,
+        r#"{"buffer": 0, "byteOffset": 80, "byteLength": 12}"#,
+        r#"{"buffer": 0, "byteOffset": 80, "byteLength": 12}, {"buffer": 1, "byteOffset": 0, "byteLength": 64}"#,
+    );
+    crate::gltf::edit(
+        &path,
+        r#"{"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}"#,
+        r#"{"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}, {"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC4"}"#,
+    );
+    crate::gltf::edit(&path, r#""TEXCOORD_0": 1}"#, r#""TEXCOORD_0": 1, "TANGENT": 3}"#);
+    let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
+    assert!(warnings.iter().all(|w| !w.contains("normal")), "{warnings:?}");
+    let mesh = &scene.objects[0].mesh;
+    check_map(mesh, NormalEncoding::Tangent, 1.0);
+    assert_eq!(mesh.tangents, vec![glam::Vec4::new(0.0, 1.0, 0.0, -1.0); 4]);
+}
