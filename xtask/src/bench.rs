@@ -118,6 +118,31 @@ pub(crate) fn sphere_scene(rings: u32, segments: u32, distance: f32, shading: Sh
     }
 }
 
+/// `assets/bump/sphere.obj` framed at 1920×1080 with Phong shading:
+/// without its bump map (`None`), with it (`Some(false)`), or with its
+/// image read as a tangent-space normal map (`Some(true)`).
+fn bump_sphere(normal: Option<bool>) -> Result<Scene> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/bump/sphere.obj");
+    let mut meshes = load_obj(&path)?;
+    for mesh in &mut meshes {
+        match normal {
+            None => mesh.normal_map = None,
+            Some(false) => {}
+            Some(true) => {
+                if let Some(map) = &mut mesh.normal_map {
+                    map.encoding = zline::scene::NormalEncoding::Tangent;
+                    map.scale = 1.0;
+                }
+            }
+        }
+    }
+    let mut scene = scene_for_model(meshes, settings(ShadingMode::Phong));
+    if let zline::scene::Projection::Perspective { fovy_degrees, .. } = &mut scene.camera.projection {
+        *fovy_degrees *= 0.6;
+    }
+    Ok(scene)
+}
+
 /// The checkerboard floor at 1920×1080 with fog, optionally with two
 /// overlapping 2k spheres (the front one transparent) standing on it.
 pub(crate) fn textured_plane(spheres: bool) -> Result<Scene> {
@@ -210,6 +235,15 @@ fn cases(assets: &Path) -> Result<Vec<Case>> {
             Ok(scene)
         }),
     });
+    // Bump and normal maps: the repository's 16 × 32 OBJ sphere (960
+    // triangles) filling the frame, without its map, with its height map
+    // (four reads per sample) and with that image read as a normal map (one).
+    for (label, map) in [("no map", None), ("bump map", Some(false)), ("normal map", Some(true))] {
+        out.push(Case {
+            name: format!("obj sphere phong, {label}"),
+            build: Box::new(move || bump_sphere(map)),
+        });
+    }
     // 500 × 1000 ≈ 1M triangles.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
         out.push(Case {

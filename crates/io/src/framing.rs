@@ -102,10 +102,12 @@ pub fn scene_for_gltf(gltf: GltfScene, settings: RenderSettings) -> Scene {
 /// along [`VIEW_DIRECTION`] with fovy [`FRAMING_FOVY_DEGREES`], else
 /// [`framing_camera`] over the world bounding box.
 pub fn model_camera(objects: &[Object], aspect: f32) -> Camera {
-    crate::fit::fit_camera(objects, VIEW_DIRECTION, Vec3::Y, FRAMING_FOVY_DEGREES, aspect).unwrap_or_else(|| {
-        let (min, max) = world_bounds(objects).unwrap_or((Vec3::ZERO, Vec3::ZERO));
-        framing_camera(min, max, aspect)
-    })
+    crate::fit::fit_camera(objects, VIEW_DIRECTION, Vec3::Y, FRAMING_FOVY_DEGREES, aspect).unwrap_or_else(
+        || {
+            let (min, max) = world_bounds(objects).unwrap_or((Vec3::ZERO, Vec3::ZERO));
+            framing_camera(min, max, aspect)
+        },
+    )
 }
 
 /// The bounding box of some points, `None` when there are none.

@@ -21,6 +21,7 @@
 //! [`LoadOptions`]). The limits are constants of zline-scene
 //! (`zline_scene::MAX_TRIANGLES` and the others).
 
+mod bump;
 mod culling;
 mod error;
 mod files;
@@ -34,6 +35,7 @@ mod scene_file;
 mod stl;
 mod texture_file;
 
+pub use bump::apply_bump_map;
 pub use error::SceneError;
 pub use files::LoadOptions;
 pub use fit::{fit_camera, FIT_MARGIN};

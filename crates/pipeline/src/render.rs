@@ -18,8 +18,8 @@ use crate::bin::{bin_primitives, Bins, PrimitiveRef, TileGrid};
 use crate::fog::FogPass;
 use crate::image::{quantize_rgba, Image};
 use crate::setup::{
-    setup_triangle, AlphaUse, DepthEncoding, Faces, LevelOfDetail, PassKind, PrimitiveChunk, SetupContext,
-    TextureUse, VertexColors, Viewer,
+    setup_triangle, AlphaUse, DepthEncoding, Faces, LevelOfDetail, NormalMapUse, PassKind, PrimitiveChunk,
+    SetupContext, TextureUse, VertexColors, Viewer,
 };
 use crate::shadow;
 use crate::shadow_map::ShadowMaps;
@@ -112,6 +112,9 @@ struct FrameTables {
     /// Per object: its texture's use and whether its alpha blends (the
     /// object is then transparent even at opacity 1).
     object_textures: Vec<Option<(TextureUse, bool)>>,
+    /// Per object: its bump or normal map, when it has one with texture
+    /// coordinates and tangents.
+    object_maps: Vec<Option<NormalMapUse>>,
 }
 
 /// A thread's tile buffers and the transparency pass's sort scratch,
@@ -264,6 +267,7 @@ impl Renderer {
             let cutoff = map.alpha_cutoff.unwrap_or(0.0);
             t.textures.push(FrameTexture { texture: map.texture.clone(), sampler, cutoff });
         }
+        crate::normal_map::prepare(scene, &mut t.textures, &mut t.object_maps);
     }
 
     /// The vertex stage and setup of one object, appending its primitives
@@ -282,6 +286,8 @@ impl Renderer {
         let vertex_colors = if mesh.colors.is_empty() { VertexColors::Absent } else { VertexColors::Present };
         let vertex_lighting =
             VertexLighting::choose(shading, texture.is_some(), vertex_colors == VertexColors::Present);
+        let normal_map = self.tables.object_maps[index]
+            .filter(|_| shading == ShadingMode::Phong && vertex_colors == VertexColors::Absent);
         let t = &self.tables;
         let material = &t.materials[index];
         let diffuse_only = if frame.adaptive.is_some() { scene.objects.len() + index } else { index };
@@ -298,10 +304,12 @@ impl Renderer {
             viewer: frame.viewer,
             material: (material, index as u32),
             lighting: &t.lighting,
-            adaptive: frame.adaptive.as_ref().filter(|_| !receives),
+            // The adaptive mode's bounds know nothing of a normal map.
+            adaptive: frame.adaptive.as_ref().filter(|_| !receives && normal_map.is_none()),
             diffuse_only: (&t.materials[diffuse_only], diffuse_only as u32),
             texture,
             vertex_colors,
+            normal_map,
         };
         let opacity = material.material.opacity;
         let pass = if opacity < 1.0 || blends {
@@ -362,6 +370,7 @@ impl Renderer {
                 diffuse_only: material,
                 texture: None,
                 vertex_colors: VertexColors::Absent,
+                normal_map: None,
             };
             let transforms = ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, Mat4::IDENTITY);
             let out = (&mut self.vertices, &mut self.chunks, &mut self.used);

@@ -169,6 +169,8 @@ pub(crate) fn empty_mesh() -> Mesh {
         uvs: Vec::new(),
         colors: Vec::new(),
         diffuse_map: None,
+        tangents: Vec::new(),
+        normal_map: None,
     }
 }
 

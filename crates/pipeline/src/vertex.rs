@@ -110,6 +110,9 @@ pub struct ClipVertex {
     pub color: Vec3,
     /// Texture coordinates (zero for meshes without them).
     pub uv: glam::Vec2,
+    /// Eye-space tangent (xyz, not normalized) and handedness w = ±1, for
+    /// meshes with a normal map (`zline_scene::NormalMap`); zero otherwise.
+    pub tangent: Vec4,
     /// Window position, NC depth and 1/w; meaningful when `clip_code` is 0.
     pub projected: Projected,
     /// Outcode against the view volume (see [`view_code`]).
@@ -134,6 +137,7 @@ impl ClipVertex {
             normal: self.normal.lerp(other.normal, t),
             color: self.color.lerp(other.color, t),
             uv: self.uv.lerp(other.uv, t),
+            tangent: self.tangent.lerp(other.tangent, t),
             projected: Projected::default(),
             view_code: 0,
             clip_code: NEEDS_SETUP,
@@ -208,6 +212,9 @@ pub fn transform_mesh(
                 v.uv = uv;
             }
         }
+        if let Some(tangents) = mesh.normal_map.as_ref().and(mesh.tangents.get(start..start + out.len())) {
+            transform_tangents(out, tangents, t);
+        }
         if let Some(colors) = mesh.colors.get(start..start + out.len()) {
             for (v, &c) in out.iter_mut().zip(colors) {
                 v.color = c;
@@ -217,6 +224,18 @@ pub fn transform_mesh(
             light_vertices(out, lights, material, clamp);
         }
     });
+}
+
+/// Tangents go to eye space by eye_from_object's linear part (they are
+/// directions in the surface, not normals); a mirroring transform
+/// (negative determinant) flips the handedness, so that B = w·(N × T) keeps
+/// pointing along +t with the normals of the inverse transpose.
+fn transform_tangents(out: &mut [ClipVertex], tangents: &[Vec4], t: &ObjectTransforms) {
+    let linear = Mat3::from_mat4(t.eye_from_object);
+    let mirror = if linear.determinant() < 0.0 { -1.0 } else { 1.0 };
+    for (v, &tangent) in out.iter_mut().zip(tangents) {
+        v.tangent = (linear * tangent.truncate()).extend(tangent.w * mirror);
+    }
 }
 
 /// Gouraud: the lighting model at every vertex, eight at a time (the lanes
@@ -268,6 +287,7 @@ fn transform_vertex(p: Vec3, n: Vec3, t: &ObjectTransforms, s: &Screen) -> ClipV
         normal,
         color: Vec3::ZERO,
         uv: glam::Vec2::ZERO,
+        tangent: Vec4::ZERO,
         projected: projected.unwrap_or_default(),
         view_code: view_code(clip),
         clip_code,

@@ -66,6 +66,22 @@ pub enum MeshError {
         /// Number of positions.
         positions: usize,
     },
+    /// The tangent array does not have one tangent per vertex.
+    #[error("{tangents} tangents given for {positions} vertices")]
+    TangentCount {
+        /// Number of tangents.
+        tangents: usize,
+        /// Number of positions.
+        positions: usize,
+    },
+    /// A tangent is NaN or infinite.
+    #[error("vertex {vertex} has non-finite tangent {tangent}")]
+    NonFiniteTangent {
+        /// Index of the vertex.
+        vertex: usize,
+        /// The tangent (xyz, handedness).
+        tangent: glam::Vec4,
+    },
     /// A vertex colour is NaN or infinite.
     #[error("vertex {vertex} has non-finite colour {color}")]
     NonFiniteColor {

@@ -21,6 +21,7 @@ mod heightfield;
 mod limits;
 mod mesh;
 mod model;
+mod normal_map;
 mod occluders;
 mod primitives;
 mod shadow;
@@ -37,8 +38,8 @@ pub use limits::{
 };
 pub use mesh::{face_normal, FALLBACK_NORMAL};
 pub use model::{
-    Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, Object, Projection, RenderSettings,
-    Scene, ShadowMode, ShadowPlane, Shadows, TextureMap, DEFAULT_SHADOW_MAP_SIZE,
+    Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, NormalEncoding, NormalMap, Object,
+    Projection, RenderSettings, Scene, ShadowMode, ShadowPlane, Shadows, TextureMap, DEFAULT_SHADOW_MAP_SIZE,
 };
 pub use occluders::{Occluders, TriangleId};
 pub use primitives::{cube, plane, torus, uv_sphere};

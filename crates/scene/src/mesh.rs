@@ -59,6 +59,8 @@ impl Mesh {
             uvs: Vec::new(),
             colors: Vec::new(),
             diffuse_map: None,
+            tangents: Vec::new(),
+            normal_map: None,
         })
     }
 

@@ -51,6 +51,46 @@ pub struct Mesh {
     pub colors: Vec<Vec3>,
     /// The diffuse texture, if any; used only when `uvs` is not empty.
     pub diffuse_map: Option<TextureMap>,
+    /// Tangents (xyz, w = ±1 the bitangent's handedness: B = w·(N × T)),
+    /// one per position, or empty (`crate::normal_map`).
+    pub tangents: Vec<Vec4>,
+    /// A bump or normal map perturbing the normal per sample (Phong only);
+    /// used only when `uvs` and `tangents` are not empty.
+    pub normal_map: Option<NormalMap>,
+}
+
+/// What a [`NormalMap`]'s texels hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum NormalEncoding {
+    /// A height in the red channel (a bump map); the normal follows its
+    /// gradient.
+    Height,
+    /// A tangent-space normal in r, g, b (a normal map).
+    Tangent,
+}
+
+impl NormalEncoding {
+    /// A lower-case name for messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalEncoding::Height => "bump",
+            NormalEncoding::Tangent => "normal",
+        }
+    }
+}
+
+/// A bump or normal map; `crate::normal_map`'s documentation states the
+/// formulas.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalMap {
+    /// The texels and the sampler (its alpha settings are ignored).
+    pub map: TextureMap,
+    /// What the texels hold.
+    pub encoding: NormalEncoding,
+    /// k: the bump height of a white texel in texture-coordinate units
+    /// ([`NormalEncoding::Height`]), or the factor on the x and y of a
+    /// normal map ([`NormalEncoding::Tangent`]).
+    pub scale: f32,
 }
 
 /// How values are interpolated across a triangle in window space (SPEC §6).

@@ -140,6 +140,8 @@ fn primitive(name: &str, positions: Vec<Vec3>, normals: Vec<Vec3>, triangles: Ve
         uvs: Vec::new(),
         colors: Vec::new(),
         diffuse_map: None,
+        tangents: Vec::new(),
+        normal_map: None,
     }
 }
 

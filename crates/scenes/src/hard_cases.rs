@@ -102,6 +102,8 @@ fn flat_object(
         material: plain(color),
         uvs: Vec::new(),
         diffuse_map: None,
+        tangents: Vec::new(),
+        normal_map: None,
         colors: Vec::new(),
     };
     Object {

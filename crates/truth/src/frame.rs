@@ -56,6 +56,8 @@ pub(crate) struct ObjectFrame {
     pub(crate) texture: Option<TextureMap>,
     /// Drawn in the transparency pass: opacity < 1, or texture alpha blends.
     pub(crate) transparent: bool,
+    /// The bump or normal map, when it is drawn.
+    pub(crate) normal_map: Option<crate::normal_map::FrameNormalMap>,
 }
 
 /// A corner of a clipped piece: its projection and its weights with
@@ -194,12 +196,11 @@ fn object_frame(scene: &Scene, index: usize, t: &ObjectTransforms, space: &Sampl
     let material = MaterialF64::new(&object.material());
     let transparent = material.opacity < 1.0 || texture.as_ref().is_some_and(|m| m.alpha_blend);
     let receives_shadows = scene.shadows.receives(index);
+    let mode =
+        if receives_shadows { ShadingMode::Phong } else { object.shading.unwrap_or(scene.settings.shading) };
     ObjectFrame {
-        mode: if receives_shadows {
-            ShadingMode::Phong
-        } else {
-            object.shading.unwrap_or(scene.settings.shading)
-        },
+        normal_map: crate::normal_map::FrameNormalMap::new(&mesh, mode, t),
+        mode,
         receives_shadows,
         mesh,
         vertices,

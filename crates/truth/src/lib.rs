@@ -67,6 +67,7 @@ mod frame;
 mod image;
 mod lighting;
 pub mod metrics;
+mod normal_map;
 mod shade;
 mod shadow;
 mod texture;

@@ -20,7 +20,9 @@
 //!   §7). A clipped piece's new vertices carry interpolated colours, not
 //!   relit ones.
 //! - Phong: eye position and normal interpolated, the normal renormalized
-//!   (a zero normal stays zero), the lighting model per sample. A shadow
+//!   (a zero normal stays zero) and perturbed by a bump or normal map when
+//!   the mesh has one ([`crate::normal_map`]), the lighting model per
+//!   sample. A shadow
 //!   receiver is always shaded so, and a light the occluders hide from the
 //!   exact surface point is left out ([`crate::shadow`]).
 //!
@@ -185,7 +187,16 @@ impl Frame<'_> {
                 Parts::blend(&at_vertices, &s.attr)
             }
             ShadingMode::Phong => {
-                let n = blend3(&s.attr, normal).normalize_or_zero();
+                let n = match &s.object.normal_map {
+                    None => blend3(&s.attr, normal).normalize_or_zero(),
+                    Some(map) => {
+                        let uv = |k: usize| {
+                            s.object.mesh.uvs.get(s.vertices[k]).map_or(DVec2::ZERO, |t| t.as_dvec2())
+                        };
+                        let normals = [0, 1, 2].map(normal);
+                        map.normal((s.vertices, &s.attr), normals, side, blend3(&s.attr, uv))
+                    }
+                };
                 let color = tint.map(|c| blend3(&s.attr, |k| c[k]));
                 let shadow = match &self.occluders {
                     Some(o) if s.object.receives_shadows => {

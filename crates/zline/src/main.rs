@@ -177,6 +177,19 @@ struct Common {
     /// Background colour, each channel in [0, 1].
     #[arg(long, value_name = "R,G,B", value_parser = parse_color)]
     background: Option<Vec3>,
+    /// A height map (PNG or JPEG, red channel) on every mesh with texture
+    /// coordinates: bump mapping in Phong shading (flat and Gouraud ignore
+    /// it), with MikkTSpace tangents.
+    #[arg(long, value_name = "FILE")]
+    bump: Option<PathBuf>,
+    /// The bump map's scale k: a white texel's height in texture
+    /// coordinate units (the normal tilts by atan(k·∂h/∂s) along s).
+    #[arg(long, value_name = "K", default_value_t = 1.0, requires = "bump")]
+    bump_scale: f32,
+    /// Draw without bump and normal maps (the files' and --bump's): the
+    /// interpolated normal alone, as before they existed.
+    #[arg(long, conflicts_with = "bump")]
+    no_normal_maps: bool,
     /// Tile edge in pixels, 8..=1024; the image does not depend on it.
     #[arg(
         long,
@@ -469,6 +482,19 @@ fn run(cli: Cli) -> Result<()> {
     // Judged before the size changes: a camera that is zline's framing of a
     // model is framed again for the final image's shape.
     let framed = input.is_some() && zline::view::is_framed(&scene);
+    if common.no_normal_maps {
+        for object in &mut scene.objects {
+            if object.mesh.normal_map.is_some() {
+                object.mesh =
+                    std::sync::Arc::new(zline::scene::Mesh { normal_map: None, ..(*object.mesh).clone() });
+            }
+        }
+    }
+    if let Some(file) = &common.bump {
+        if zline::io::apply_bump_map(&mut scene, file, common.bump_scale)? == 0 {
+            eprintln!("warning: --bump: no mesh has texture coordinates; nothing is bump-mapped");
+        }
+    }
     apply_overrides(&mut scene.settings, &common);
     apply_camera(&mut scene, &common, framed);
     apply_fog(&mut scene, &common);

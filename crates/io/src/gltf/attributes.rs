@@ -1,4 +1,4 @@
-//! glTF vertex attributes and indices: POSITION, NORMAL, COLOR_0,
+//! glTF vertex attributes and indices: POSITION, NORMAL, TANGENT, COLOR_0,
 //! TEXCOORD_n and the triangle indices, each accessor checked for its type,
 //! its range in the buffer and its count (see the parent module).
 
@@ -45,6 +45,23 @@ impl Attributes<'_> {
         let normals: Vec<Vec3> = read.map(|it| it.map(Vec3::from).collect()).unwrap_or_default();
         self.check_count(&accessor, name, "NORMAL", normals.len())?;
         Ok((normals.len() == vertices).then_some(normals))
+    }
+
+    /// TANGENT (xyz, w the handedness), when the primitive has one per
+    /// vertex. glTF's bitangent w·(N × T) points up the image, along
+    /// t = 1 − v, as zline's does.
+    pub(super) fn read_tangents(
+        &self,
+        primitive: &gltf::Primitive,
+        name: &str,
+        vertices: usize,
+    ) -> Result<Option<Vec<glam::Vec4>>, SceneError> {
+        let Some(accessor) = primitive.get(&gltf::Semantic::Tangents) else { return Ok(None) };
+        self.check_accessor(&accessor, name, "TANGENT", &[(Dimensions::Vec4, DataType::F32)])?;
+        let read = primitive.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice)).read_tangents();
+        let tangents: Vec<glam::Vec4> = read.map(|it| it.map(glam::Vec4::from).collect()).unwrap_or_default();
+        self.check_count(&accessor, name, "TANGENT", tangents.len())?;
+        Ok((tangents.len() == vertices).then_some(tangents))
     }
 
     /// COLOR_0 as RGB, and whether some alpha is below 1 (not used; the

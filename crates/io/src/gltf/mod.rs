@@ -88,7 +88,12 @@
 //! glTF's base colour multiplication prescribes (applied by flat and
 //! Gouraud shading; Phong shading does not apply it yet).
 //!
-//! **Warned and ignored:** COLOR_0 alpha, emissive textures, normal, occlusion and
+//! Normal textures (`normalTexture` with its `scale`) perturb the normal
+//! in Phong shading (`zline_scene::NormalMap`), with the file's TANGENT
+//! or, without one, MikkTSpace tangents; they must use the base colour
+//! texture's TEXCOORD set when there is one.
+//!
+//! **Warned and ignored:** COLOR_0 alpha, emissive textures, occlusion and
 //! metallic–roughness textures, MIRRORED_REPEAT, primitive
 //! modes other than TRIANGLES, skins (drawn in the bind pose), morph
 //! targets (drawn without), animations (drawn at rest), extensions other
@@ -116,7 +121,7 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
 use gltf::mesh::Mode;
-use zline_scene::{Camera, Mesh, Object, Projection, TextureMap};
+use zline_scene::{Camera, Mesh, NormalEncoding, NormalMap, Object, Projection, TextureMap};
 use zline_shading::{Attenuation, Light, Sampler, Texture};
 
 use crate::culling::default_culling;
@@ -381,8 +386,17 @@ impl Loader<'_> {
         }
         let material = primitive.material();
         let base_color = material.pbr_metallic_roughness().base_color_texture();
-        let uv_set = base_color.as_ref().map_or(0, |info| info.tex_coord());
+        let normal_texture = material.normal_texture();
+        let uv_set = base_color
+            .as_ref()
+            .map(|info| info.tex_coord())
+            .or(normal_texture.as_ref().map(|n| n.tex_coord()))
+            .unwrap_or(0);
         let uvs = attributes.read_uvs(primitive, &name, uv_set)?;
+        let tangents = match normal_texture {
+            Some(_) => attributes.read_tangents(primitive, &name, positions.len())?,
+            None => None,
+        };
         let mesh_error =
             |source| SceneError::Mesh { path: self.path.to_path_buf(), mesh: name.clone(), source };
         let mut built = Mesh::new(name.clone(), positions, normals, triangles, material_from_gltf(&material))
@@ -415,6 +429,9 @@ impl Loader<'_> {
             };
             built = self.attach_base_color(built, &info, uv_set, alpha, &material_name(&material))?;
         }
+        if let Some(normal) = normal_texture {
+            built = self.attach_normal_map(built, &normal, (uv_set, tangents), &material_name(&material))?;
+        }
         if material.alpha_mode() == gltf::material::AlphaMode::Mask && built.diffuse_map.is_none() {
             // MASK on the constant alpha: every sample has the factor's alpha.
             let alpha = material.pbr_metallic_roughness().base_color_factor()[3];
@@ -436,9 +453,6 @@ impl Loader<'_> {
         let mut ignored = Vec::new();
         if material.emissive_texture().is_some() {
             ignored.push("emissive texture (emissiveFactor alone is used)");
-        }
-        if material.normal_texture().is_some() {
-            ignored.push("normal texture");
         }
         if material.occlusion_texture().is_some() {
             ignored.push("occlusion texture");
@@ -470,6 +484,50 @@ impl Loader<'_> {
         let Some(image) = self.image(&texture.source(), material)? else { return Ok(mesh) };
         let sampler = self.sampler(&texture.sampler());
         Ok(mesh.with_diffuse_map(TextureMap { texture: image, sampler, alpha_blend, alpha_cutoff }))
+    }
+
+    /// The mesh with its normal texture (glTF `normalTexture` and its
+    /// `scale`, `zline_scene::NormalMap`) and tangents — the file's
+    /// TANGENT, or MikkTSpace's when it has none, as glTF prescribes —
+    /// when the mesh has the texture's coordinates (the set the base
+    /// colour uses, if any) and the image can be used; warnings otherwise.
+    fn attach_normal_map(
+        &mut self,
+        mesh: Mesh,
+        normal: &gltf::material::NormalTexture,
+        (set, tangents): (u32, Option<Vec<glam::Vec4>>),
+        material: &str,
+    ) -> Result<Mesh, SceneError> {
+        let name = mesh.name.clone();
+        if normal.tex_coord() != set {
+            let (theirs, ours) = (normal.tex_coord(), set);
+            self.warn(format!(
+                "mesh '{name}': normal texture on TEXCOORD_{theirs}, base colour on TEXCOORD_{ours};                  one set per mesh is supported: drawn without the normal texture"
+            ));
+            return Ok(mesh);
+        }
+        if mesh.uvs.is_empty() {
+            self.warn(format!("mesh '{name}': normal texture but no TEXCOORD_{set}; drawn without it"));
+            return Ok(mesh);
+        }
+        let texture = normal.texture();
+        let Some(image) = self.image(&texture.source(), material)? else { return Ok(mesh) };
+        let sampler = self.sampler(&texture.sampler());
+        let mesh_error =
+            |source| SceneError::Mesh { path: self.path.to_path_buf(), mesh: name.clone(), source };
+        let mesh = match tangents {
+            Some(tangents) => mesh.with_tangents(tangents).map_err(mesh_error)?,
+            None => mesh.with_generated_tangents(),
+        };
+        if mesh.tangents.is_empty() {
+            self.warn(format!(
+                "mesh '{name}': no tangents could be made for the normal texture; drawn without it"
+            ));
+            return Ok(mesh);
+        }
+        let map = TextureMap { texture: image, sampler, alpha_blend: false, alpha_cutoff: None };
+        let scale = normal.scale();
+        Ok(mesh.with_normal_map(NormalMap { map, encoding: NormalEncoding::Tangent, scale }))
     }
 
     /// The decoded image, on first use (see the module doc); errors name

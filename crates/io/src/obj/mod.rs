@@ -41,6 +41,12 @@
 //! material's Kd. A PNG or JPEG that does not decode is an error naming the
 //! model, the material and the image file.
 //!
+//! Bump maps: `bump` or `map_bump` (tobj's `normal_texture`) names a height
+//! map (the red channel), `-bm mult` its scale k (default 1; see
+//! `zline_scene::NormalMap` for the formula); a mesh with one gets
+//! MikkTSpace tangents. Drawn with Phong shading only; the same fallbacks
+//! as `map_Kd`, each with a warning.
+//!
 //! MTL values (see `mtl`): a non-finite `Ka`, `Kd`, `Ks`, `Ke`, `Ns`, `d`
 //! or `Tr` is an error naming the MTL file, line and key; a finite value
 //! outside its range is clamped with a warning.
@@ -64,7 +70,7 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
-use zline_scene::{Mesh, TextureMap, MAX_MATERIAL_LIBRARIES};
+use zline_scene::{Mesh, NormalEncoding, NormalMap, TextureMap, MAX_MATERIAL_LIBRARIES};
 use zline_shading::{Material, Sampler, Wrap};
 
 use crate::error::SceneError;
@@ -211,6 +217,8 @@ struct ObjMaterial {
     name: String,
     material: Material,
     diffuse_map: Option<MapStatement>,
+    /// `bump`/`map_bump`: a height map ([`attach_bump_map`]).
+    bump_map: Option<MapStatement>,
 }
 
 impl ObjMaterial {
@@ -241,7 +249,8 @@ impl ObjMaterial {
                 )),
             }
         }
-        Ok(ObjMaterial { name: m.name.clone(), material: material_from_mtl(m), diffuse_map })
+        let bump_map = bump_statement(m, mtl, options, warnings)?;
+        Ok(ObjMaterial { name: m.name.clone(), material: material_from_mtl(m), diffuse_map, bump_map })
     }
 }
 
@@ -252,10 +261,13 @@ impl ObjMaterial {
 struct MapStatement {
     file: PathBuf,
     sampler: Sampler,
+    /// `-bm mult`, the bump multiplier (bump maps only).
+    bump_multiplier: Option<f32>,
 }
 
-/// Parses `[options] file` of a `map_Kd` statement. `-clamp on` selects
-/// clamp-to-edge; every other option (`-o`, `-s`, `-t`, `-mm`, `-bm`,
+/// Parses `[options] file` of a `map_Kd` or `bump` statement. `-clamp on`
+/// selects clamp-to-edge, `-bm mult` sets the bump multiplier (used by
+/// bump maps only); every other option (`-o`, `-s`, `-t`, `-mm`, `-bm`,
 /// `-blendu`, …) is skipped with its arguments and a warning. The rest of
 /// the line, spaces included, is the file name; `None` when it is empty.
 /// `mtl` is the MTL file, for messages.
@@ -266,6 +278,7 @@ fn parse_map_statement(
     material: &str,
 ) -> Option<MapStatement> {
     let mut sampler = Sampler::default();
+    let mut bump_multiplier = None;
     let mut rest = value.trim();
     while rest.starts_with('-') {
         let option;
@@ -289,6 +302,10 @@ fn parse_map_statement(
             let wrap = if args[0] == "on" { Wrap::ClampToEdge } else { Wrap::Repeat };
             sampler.wrap_s = wrap;
             sampler.wrap_t = wrap;
+        } else if let ("-bm", [Ok(mult)]) =
+            (option, args.iter().map(|a| a.parse::<f32>()).collect::<Vec<_>>().as_slice())
+        {
+            bump_multiplier = Some(*mult);
         } else {
             warnings.push(format!(
                 "{}: material '{material}': map_Kd option '{} {}' is not supported; ignored",
@@ -301,7 +318,7 @@ fn parse_map_statement(
     // MTL files written on Windows use `\` as the separator (`.\tex.jpg`);
     // a backslash is never part of a portable file name, so read it as `/`.
     let file = rest.replace('\\', "/");
-    (!file.is_empty()).then(|| MapStatement { file: file.into(), sampler })
+    (!file.is_empty()).then(|| MapStatement { file: file.into(), sampler, bump_multiplier })
 }
 
 /// The first word of a trimmed string and the trimmed rest.
@@ -335,7 +352,8 @@ fn meshes_from_models(
         };
         let mesh =
             mesh_from_tobj(path, name, model.mesh, material.map_or(Material::DEFAULT, |m| m.material))?;
-        meshes.push(attach_diffuse_map(path, mesh, material, &mut textures, warnings)?);
+        let mesh = attach_diffuse_map(path, mesh, material, &mut textures, warnings)?;
+        meshes.push(attach_bump_map(path, mesh, material, &mut textures, warnings)?);
     }
     if meshes.is_empty() {
         return Err(SceneError::NoTriangles { path: path.to_path_buf() });
@@ -383,6 +401,76 @@ fn attach_diffuse_map(
         }),
         None => mesh,
     })
+}
+
+/// The `bump`/`map_bump` statement of an MTL material (tobj's
+/// `normal_texture`), its file resolved like `map_Kd`'s.
+fn bump_statement(
+    m: &tobj::Material,
+    mtl: &Path,
+    options: LoadOptions,
+    warnings: &mut Vec<String>,
+) -> Result<Option<MapStatement>, SceneError> {
+    let Some(value) = m.normal_texture.as_deref() else {
+        return Ok(None);
+    };
+    let Some(map) = parse_map_statement(value, mtl, warnings, &m.name) else {
+        let (path, name) = (mtl.display(), &m.name);
+        warnings.push(format!("{path}: material '{name}': bump {} names no file; ignored", quote(value)));
+        return Ok(None);
+    };
+    let file = resolve(mtl, &map.file, options).map_err(|why| SceneError::File {
+        path: mtl.to_path_buf(),
+        message: format!("material '{}': bump: {why}", m.name),
+    })?;
+    Ok(Some(MapStatement { file, ..map }))
+}
+
+/// The mesh with its material's bump map (`bump`/`map_bump`, a height in
+/// the red channel; `-bm mult` is the scale k, default 1: see
+/// `zline_scene::NormalMap`), with MikkTSpace tangents, when it has texture
+/// coordinates and the image can be read; otherwise the mesh as it was,
+/// with a warning.
+fn attach_bump_map(
+    path: &Path,
+    mesh: Mesh,
+    material: Option<&ObjMaterial>,
+    textures: &mut TextureCache,
+    warnings: &mut Vec<String>,
+) -> Result<Mesh, SceneError> {
+    let Some((map, name)) = material.and_then(|m| Some((m.bump_map.as_ref()?, &m.name))) else {
+        return Ok(mesh);
+    };
+    let mesh_name = mesh.name.clone();
+    let without =
+        |why: &str| format!("{}: mesh '{mesh_name}' {why}; drawn without its bump map", path.display());
+    if mesh.uvs.is_empty() {
+        warnings.push(without("has a bump map but no texture coordinates (vt)"));
+        return Ok(mesh);
+    }
+    let scale = map.bump_multiplier.unwrap_or(1.0);
+    if !scale.is_finite() {
+        warnings.push(without(&format!("has a non-finite bump multiplier -bm {scale}")));
+        return Ok(mesh);
+    }
+    let mut texture_warnings = Vec::new();
+    let texture = textures.file(&map.file, &mut texture_warnings).map_err(|e| SceneError::Texture {
+        model: path.to_path_buf(),
+        material: name.clone(),
+        source: Box::new(e),
+    })?;
+    warnings
+        .extend(texture_warnings.into_iter().map(|w| format!("{}: material '{name}': {w}", path.display())));
+    let Some(texture) = texture else {
+        return Ok(mesh);
+    };
+    let mesh = mesh.with_generated_tangents();
+    if mesh.tangents.is_empty() {
+        warnings.push(without("has texture coordinates MikkTSpace cannot make tangents from"));
+        return Ok(mesh);
+    }
+    let map = TextureMap { texture, sampler: map.sampler, alpha_blend: false, alpha_cutoff: None };
+    Ok(mesh.with_normal_map(NormalMap { map, encoding: NormalEncoding::Height, scale }))
 }
 
 fn mesh_from_tobj(path: &Path, name: String, m: tobj::Mesh, material: Material) -> Result<Mesh, SceneError> {
@@ -437,7 +525,10 @@ mod tests {
         assert_eq!(warnings.len(), 1, "{warnings:?}");
         assert!(warnings[0].contains("models/a.mtl: material 'm': map_Kd option '-mm 0 1'"), "{warnings:?}");
         let map = parse_map_statement("-clamp off t.jpg", mtl, &mut warnings, "m").unwrap();
-        assert_eq!(map, MapStatement { file: "t.jpg".into(), sampler: Sampler::default() });
+        assert_eq!(
+            map,
+            MapStatement { file: "t.jpg".into(), sampler: Sampler::default(), bump_multiplier: None }
+        );
         assert_eq!(parse_map_statement("-blendu on", mtl, &mut warnings, "m"), None);
         let windows = parse_map_statement(".\\textures\\Spider Tex.jpg", mtl, &mut warnings, "m").unwrap();
         assert_eq!(windows.file, Path::new("./textures/Spider Tex.jpg"), "backslashes are separators");

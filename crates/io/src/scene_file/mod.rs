@@ -36,6 +36,7 @@ use crate::framing::{
     aspect, bounds_of, camera_is_finite, default_lights, model_camera, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
 };
 
+mod bump;
 mod checks;
 mod lights;
 mod models;
@@ -127,6 +128,8 @@ use render::{settings, shadows, RenderDef, ShadingDef};
 /// shading = "gouraud"               # overrides [render] shading
 /// cull_back_faces = true            # default: true for closed, opaque meshes
 /// shadow_plane = true               # receives planar shadows (casts none); must be flat; default false
+/// bump = "textures/bumps.png"       # a height map (red channel) on every mesh with texture coordinates;
+/// bump_scale = 1.0                  #   k, a white texel's height in texture units (default 1); Phong only
 /// [objects.material]                # overrides, applied to every mesh of the model
 /// color = [0.8, 0.2, 0.2]           # sets ka and kd together
 /// ka = [0.8, 0.2, 0.2]              # in [0, 1]
@@ -156,7 +159,8 @@ pub fn load_scene_with_options(path: &Path, options: LoadOptions) -> Result<Scen
     let text = read_text(path, FileKind::Text).map_err(|e| e.into_error(path))?;
     let file: SceneFile = toml::from_str(&text).map_err(|e| toml_error(path, &text, &e))?;
     let check = Checker { path, text: &text };
-    Builder { check, models: ModelCache::default(), options, primitive_triangles: 0 }.scene(file)
+    let (models, textures) = (ModelCache::default(), Default::default());
+    Builder { check, models, options, primitive_triangles: 0, textures }.scene(file)
 }
 
 fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> SceneError {
@@ -256,6 +260,8 @@ struct ObjectDef {
     cull_back_faces: Option<bool>,
     shadow_plane: Option<S<bool>>,
     material: Option<MaterialDef>,
+    bump: Option<S<String>>,
+    bump_scale: Option<S<f32>>,
 }
 
 #[derive(Clone, Copy, Deserialize)]
@@ -284,6 +290,8 @@ struct Builder<'a> {
     options: LoadOptions,
     /// The triangles of the primitives built so far.
     primitive_triangles: u64,
+    /// Bump map images, each decoded once.
+    textures: crate::texture_file::TextureCache,
 }
 
 impl Builder<'_> {
@@ -487,6 +495,8 @@ impl Builder<'_> {
             }
             (None, None) => return Err(self.check.error(def.span(), key, "needs 'model' or 'primitive'")),
         };
+        let bump_keys = bump::BumpKeys { file: o.bump.as_ref(), scale: &o.bump_scale };
+        let parts = bump::apply(&self.check, (self.options, &mut self.textures), bump_keys, key, parts)?;
         let world_from_object = self.transform(o, key)?;
         let shading = o.shading.map(ShadingMode::from);
         let material_def = o.material.as_ref();

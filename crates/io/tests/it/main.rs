@@ -2,6 +2,7 @@
 //! `tests/data/`, scene files written to a temporary directory, and the
 //! repository's `examples/` and `assets/` (OBJ and glTF models).
 
+mod bump;
 mod examples;
 mod fuzz_regressions;
 mod gltf;

@@ -12,8 +12,8 @@
 mod primitive;
 
 pub use primitive::{
-    layout, AlphaUse, Draw, Flat, Gouraud, Kernel, KernelTables, LevelOfDetail, PassKind, Phong, Primitive,
-    PrimitiveChunk, TexturedFlat, TexturedGouraud, TexturedLighting, TexturedPhong,
+    layout, AlphaUse, Draw, Flat, Gouraud, Kernel, KernelTables, LevelOfDetail, PassKind, Perturbed, Phong,
+    Primitive, PrimitiveChunk, TexturedFlat, TexturedGouraud, TexturedLighting, TexturedPhong,
 };
 
 use glam::Vec3;
@@ -111,6 +111,17 @@ pub struct TextureUse {
     pub alpha: AlphaUse,
 }
 
+/// An object's bump or normal map as its kernel uses it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalMapUse {
+    /// Index into the frame's texture table.
+    pub index: u32,
+    /// What the map holds.
+    pub encoding: zline_scene::NormalEncoding,
+    /// Its scale k.
+    pub scale: f32,
+}
+
 /// Everything setup needs to know about the object a triangle belongs to.
 #[derive(Clone, Copy, Debug)]
 pub struct SetupContext<'a> {
@@ -150,6 +161,9 @@ pub struct SetupContext<'a> {
     pub texture: Option<TextureUse>,
     /// Whether the mesh has vertex colours.
     pub vertex_colors: VertexColors,
+    /// The object's bump or normal map, when it is drawn: Phong shading,
+    /// texture coordinates and tangents, no vertex colours.
+    pub normal_map: Option<NormalMapUse>,
 }
 
 /// Sets up one triangle (vertices in the mesh's order) and appends 0 or more
@@ -280,13 +294,16 @@ fn seen_from_behind(tri: &[&ClipVertex; 3], viewer: Viewer) -> bool {
 /// normal when the vertex stage lit it.
 fn turned(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
     let normal = -v.normal;
+    // The whole tangent frame turns: T and w negated keep B = w·(N × T)
+    // negated too, so the perturbed normal is the front one negated.
+    let tangent = -v.tangent;
     let color = match ctx.vertex_lighting {
         VertexLighting::VertexStage => {
             lit_color(ctx.lighting.shade_parts(ctx.material.0, v.eye, normal, Vec3::ZERO), ctx.gouraud_clamp)
         }
         VertexLighting::Unlit | VertexLighting::Setup => v.color,
     };
-    ClipVertex { normal, color, ..*v }
+    ClipVertex { normal, color, tangent, ..*v }
 }
 
 /// What the adaptive mode ([`crate::adaptive`]) decided for one triangle.
@@ -401,6 +418,21 @@ fn emit(
                 sort_depth,
             )
         };
+    }
+    if let (Some(map), Shortcut::None) = (ctx.normal_map, sc.lighting) {
+        let planes = planes.textured(|v| {
+            let tangent = v.tangent.truncate();
+            [v.normal, v.eye, tangent, v.normal.cross(tangent) * v.tangent.w]
+        });
+        let kernel = Kernel::Perturbed {
+            encoding: map.encoding,
+            interpolation,
+            texture: ctx.texture.map(|t| (t.lod, t.alpha)),
+        };
+        let texture = ctx.texture.map_or(0, |t| t.index);
+        let shader = Perturbed { planes, material: sc.material, map: map.index, scale: map.scale, texture };
+        push!(t.perturbed, kernel, shader);
+        return;
     }
     let Some(texture) = ctx.texture else {
         // Untextured: only the attributes the shading mode needs.

@@ -8,7 +8,7 @@
 
 use glam::Vec3;
 use zline_raster::{AttributePlanes, DepthPlane, EdgeTable, Rect};
-use zline_scene::{GouraudClamp, Interpolation};
+use zline_scene::{GouraudClamp, Interpolation, NormalEncoding};
 
 /// The plane sets of the kernels: the index of each attribute in a
 /// primitive's [`AttributePlanes`], and their count. Plane `Q` is 1/w when
@@ -68,6 +68,18 @@ pub mod layout {
         pub const COLOR: usize = 9;
         /// Planes of textured Phong with vertex colours.
         pub const COLORED_PHONG_LEN: usize = 12;
+    }
+    /// Phong with a bump or normal map, textured or not: the textured
+    /// Phong planes (the map's coordinates are s and t), then the tangent
+    /// frame.
+    pub mod perturbed {
+        pub use super::textured::{EYE, NORMAL, Q, S, T};
+        /// Eye-space tangent T x, y, z.
+        pub const TANGENT: usize = 9;
+        /// Eye-space bitangent B = w·(N × T) x, y, z (formed per vertex).
+        pub const BITANGENT: usize = 12;
+        /// Planes.
+        pub const LEN: usize = 15;
     }
 }
 
@@ -144,6 +156,23 @@ pub struct TexturedPhong<const N: usize> {
     pub material: u32,
 }
 
+/// Phong with a bump or normal map (`zline_scene::NormalMap`), with or
+/// without a diffuse texture ([`layout::perturbed`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Perturbed {
+    /// The planes.
+    pub planes: AttributePlanes<{ layout::perturbed::LEN }>,
+    /// Index into the frame's material table.
+    pub material: u32,
+    /// The map's index in the frame's texture table.
+    pub map: u32,
+    /// The map's scale k.
+    pub scale: f32,
+    /// The diffuse texture's index in the frame's texture table (unread
+    /// by the untextured kernel).
+    pub texture: u32,
+}
+
 /// How a textured kernel finds its level of detail: decided by the
 /// texture's filter, once per primitive.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -212,6 +241,17 @@ pub enum Kernel {
         /// What the texel's alpha does.
         alpha: AlphaUse,
     },
+    /// [`Perturbed`]: Phong (without vertex colours) with a bump or normal
+    /// map.
+    Perturbed {
+        /// What the map holds.
+        encoding: NormalEncoding,
+        /// How attributes are interpolated.
+        interpolation: Interpolation,
+        /// The diffuse texture's level of detail and alpha use, or `None`
+        /// untextured.
+        texture: Option<(LevelOfDetail, AlphaUse)>,
+    },
 }
 
 /// One table per kernel (see [`Kernel`]); a [`Draw`] indexes the table its
@@ -234,6 +274,8 @@ pub struct KernelTables {
     pub textured_phong: Vec<Primitive<TexturedPhong<{ layout::textured::PHONG_LEN }>>>,
     /// [`TexturedLighting::ColoredPhong`].
     pub textured_colored_phong: Vec<Primitive<TexturedPhong<{ layout::textured::COLORED_PHONG_LEN }>>>,
+    /// [`Kernel::Perturbed`].
+    pub perturbed: Vec<Primitive<Perturbed>>,
 }
 
 impl KernelTables {
@@ -255,6 +297,7 @@ impl KernelTables {
                     self.textured_colored_phong.get(i).map(zline_simd::prefetch)
                 }
             },
+            Kernel::Perturbed { .. } => self.perturbed.get(i).map(zline_simd::prefetch),
         };
     }
 
@@ -267,6 +310,7 @@ impl KernelTables {
         self.textured_gouraud.clear();
         self.textured_phong.clear();
         self.textured_colored_phong.clear();
+        self.perturbed.clear();
     }
 }
 

@@ -293,7 +293,7 @@ fn phong_point<const N: usize, I: Interp>(a: &[f32x8; N]) -> (f32x8, Vec3x8, Vec
 
 /// Three consecutive planes from `i`, each times `w`.
 #[inline(always)]
-fn triple<const N: usize>(a: &[f32x8; N], i: usize, w: f32x8) -> Vec3x8 {
+pub(super) fn triple<const N: usize>(a: &[f32x8; N], i: usize, w: f32x8) -> Vec3x8 {
     Vec3x8 { x: a[i] * w, y: a[i + 1] * w, z: a[i + 2] * w }
 }
 
@@ -307,7 +307,7 @@ impl TileTarget {
     /// block: 6 % more instructions in the Phong kernel, measured with
     /// callgrind).
     #[inline(always)]
-    fn scan<const N: usize, P: Pass, A: Alpha>(
+    pub(super) fn scan<const N: usize, P: Pass, A: Alpha>(
         &mut self,
         (edges, depth): (&EdgeTable, &DepthPlane),
         planes: &AttributePlanes<N>,
@@ -463,7 +463,7 @@ impl TileTarget {
     /// `L` finds, and c = texel ⊙ (ambient+diffuse) + specular, clamped,
     /// with the parts from `parts(attributes, w)`.
     #[inline(always)]
-    fn textured<const N: usize, I: Interp, L: Lod, P: Pass, A: Alpha>(
+    pub(super) fn textured<const N: usize, I: Interp, L: Lod, P: Pass, A: Alpha>(
         &mut self,
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
         map: &FrameTexture,

@@ -19,6 +19,7 @@
 //! draw, not state kept on the tile.
 
 mod kernel;
+mod perturbed;
 mod target;
 
 pub(crate) use target::{load, load_for_blend, sample, store};
@@ -202,6 +203,9 @@ impl TileTarget {
                     }
                     Interpolation::ScreenLinear => self.textured_lod::<Linear, P>(chunk, k, ctx, pass),
                 }
+            }
+            Kernel::Perturbed { encoding, interpolation, texture } => {
+                self.perturbed(&t.perturbed[i], (encoding, interpolation, texture), ctx, pass)
             }
         }
     }

@@ -9,6 +9,7 @@ mod determinism;
 mod fog;
 mod interpolation;
 mod lit_square;
+mod normal_map;
 mod shadows;
 mod ssaa;
 mod support;

@@ -23,6 +23,8 @@ pub(crate) fn mesh(
         uvs: Vec::new(),
         colors: Vec::new(),
         diffuse_map: None,
+        tangents: Vec::new(),
+        normal_map: None,
     })
 }
 

@@ -1,6 +1,7 @@
 //! Integration tests of the ground truth: scenes with hand-computed
 //! answers, property tests against the fast renderer, and determinism.
 
+mod bump;
 mod emission_colors;
 mod hand;
 mod shadows;

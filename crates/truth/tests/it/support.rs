@@ -21,6 +21,8 @@ pub(crate) fn mesh(
         material,
         uvs: Vec::new(),
         diffuse_map: None,
+        tangents: Vec::new(),
+        normal_map: None,
         colors: Vec::new(),
     })
 }

@@ -68,9 +68,9 @@ const MARGIN: f32 = 1.0;
 const TOLERANCE: f64 = 0.01;
 /// Share of compared pixels that must equal the quantized truth; at least
 /// two pixels may differ in any scene, for scenes with few compared pixels.
-const EXACT_SHARE: f64 = 0.95;
+pub(crate) const EXACT_SHARE: f64 = 0.95;
 /// Image side in pixels.
-const SIZE: u32 = 48;
+pub(crate) const SIZE: u32 = 48;
 
 fn unit() -> impl Strategy<Value = f32> {
     0.0f32..=1.0
@@ -94,7 +94,7 @@ fn vertex() -> impl Strategy<Value = Vec3> {
 }
 
 /// A material with a small random emission (up to 0.3 per channel).
-fn material() -> impl Strategy<Value = Material> {
+pub(crate) fn material() -> impl Strategy<Value = Material> {
     (color(), color(), color(), prop::sample::select(vec![1.0f32, 5.0, 16.0, 40.5]), color())
         .prop_map(|(ka, kd, ks, ns, ke)| Material { ka, kd, ks, ns, opacity: 1.0, ke: ke * 0.3 })
 }
@@ -190,6 +190,8 @@ fn opaque_object() -> impl Strategy<Value = Object> {
                 uvs,
                 diffuse_map,
                 colors,
+                tangents: Vec::new(),
+                normal_map: None,
             };
             object(mesh, shading, cull, world_from_object)
         })
@@ -222,6 +224,8 @@ fn transparent_quad() -> impl Strategy<Value = Object> {
                 material: Material { opacity, ..material },
                 uvs: vec![],
                 diffuse_map: None,
+                tangents: Vec::new(),
+                normal_map: None,
                 colors,
             };
             object(mesh, shading, false, Mat4::IDENTITY)
@@ -237,7 +241,7 @@ fn object(
     Object { mesh: Arc::new(mesh), world_from_object, material: None, shading, cull_back_faces }
 }
 
-fn light() -> impl Strategy<Value = Light> {
+pub(crate) fn light() -> impl Strategy<Value = Light> {
     prop_oneof![
         ((-5.0f32..5.0, -5.0f32..5.0, -8.0f32..3.0), color(), (0.5f32..1.5, 0.0f32..0.3, 0.0f32..0.1))
             .prop_map(|((x, y, z), color, (a0, a1, a2))| Light::Point {
@@ -249,7 +253,7 @@ fn light() -> impl Strategy<Value = Light> {
     ]
 }
 
-fn camera() -> impl Strategy<Value = Camera> {
+pub(crate) fn camera() -> impl Strategy<Value = Camera> {
     (any::<bool>(), 30.0f32..90.0, 0.2f32..1.0, 15.0f32..40.0, (-1.0f32..1.0, -1.0f32..1.0, 0.0f32..1.0))
         .prop_map(|(ortho, fovy_degrees, near, far, (x, y, z))| Camera {
             eye: Vec3::new(x, y, z),
@@ -316,7 +320,7 @@ prop_compose! {
 
 /// The comparison: returns (compared, exact) or a description of the first
 /// pixel beyond the bound.
-fn compare(scene: &Scene) -> Result<(usize, usize), String> {
+pub(crate) fn compare(scene: &Scene) -> Result<(usize, usize), String> {
     compare_skipping(scene, &[])
 }
 
@@ -360,7 +364,7 @@ fn compare_skipping(scene: &Scene, skip: &[bool]) -> Result<(usize, usize), Stri
 }
 
 /// 64 cases, or `ZLINE_TRUTH_CASES` for a longer search.
-fn cases() -> u32 {
+pub(crate) fn cases() -> u32 {
     std::env::var("ZLINE_TRUTH_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(64)
 }
 
@@ -389,6 +393,8 @@ fn floor() -> impl Strategy<Value = Object> {
             material,
             uvs: Vec::new(),
             diffuse_map: None,
+            tangents: Vec::new(),
+            normal_map: None,
             colors: Vec::new(),
         };
         let to_world = Mat4::from_translation(Vec3::new(0.0, 0.0, -8.0))

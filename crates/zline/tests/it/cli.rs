@@ -267,3 +267,28 @@ fn an_unknown_built_in_scene_is_a_usage_error() {
     let out = zline(&["render", "x.obj", "--scene", "room", "-o", "x.png"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn bump_flags_map_the_model_and_name_a_bad_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = repo().join("assets/bump/sphere.obj");
+    let bumps = repo().join("assets/bump/bumps.png");
+    let (m, b) = (model.to_str().unwrap(), bumps.to_str().unwrap());
+    let render = |name: &str, extra: &[&str]| {
+        let png = dir.path().join(name);
+        let args = [&["render", m, "-o", png.to_str().unwrap(), "--size", "96x64"][..], extra].concat();
+        let out = zline(&args);
+        check_png(&out, &png, (96, 64))
+    };
+    // The MTL's own bump map, a stronger one from the flags, and none.
+    let own = render("own.png", &[]);
+    let strong = render("strong.png", &["--bump", b, "--bump-scale", "0.2"]);
+    let smooth = render("smooth.png", &["--no-normal-maps"]);
+    assert_ne!(own, smooth, "the MTL's bump map changes the image");
+    assert_ne!(strong, own, "--bump-scale changes it");
+    let png = dir.path().join("bad.png");
+    let out = zline(&["render", m, "-o", png.to_str().unwrap(), "--bump", "/no/such/bumps.png"]);
+    check_clean_error(&out, &["/no/such/bumps.png", "bump map"]);
+    let out = zline(&["render", m, "-o", png.to_str().unwrap(), "--bump-scale", "2"]);
+    assert_eq!(out.status.code(), Some(2), "--bump-scale needs --bump (a usage error)");
+}
