@@ -24,6 +24,7 @@ pub mod bin;
 pub mod clip;
 pub mod fog;
 pub mod image;
+pub mod lines;
 mod render;
 pub mod resolve;
 pub mod setup;

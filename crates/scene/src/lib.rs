@@ -19,6 +19,7 @@ mod mesh;
 mod model;
 mod primitives;
 mod shadow;
+mod visibility;
 
 pub use area::{AreaLight, AreaShape};
 pub use error::MeshError;
@@ -35,6 +36,7 @@ pub use model::{
 };
 pub use primitives::{cube, plane, torus, uv_sphere};
 pub use shadow::{light_position, shadow_matrix, shadow_matrix_f64};
+pub use visibility::{Visibility, Wireframe, WireframeMode};
 pub use zline_shading::{
     Attenuation, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
 };

@@ -4,6 +4,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+mod cli {
+    pub(crate) mod visibility;
+}
+
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
@@ -133,6 +137,8 @@ struct Common {
         value_parser = clap::value_parser!(u32).range(MIN_TILE_SIZE as i64..=MAX_TILE_SIZE as i64)
     )]
     tile_size: u32,
+    #[command(flatten)]
+    visibility: cli::visibility::VisibilityArgs,
 }
 
 /// The built-in scenes of `zline demo --scene`.
@@ -615,6 +621,7 @@ fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
             Interp::Linear => Interpolation::ScreenLinear,
         };
     }
+    common.visibility.apply(settings);
 }
 
 #[cfg(test)]

@@ -40,6 +40,7 @@ mod checks;
 mod lights;
 mod models;
 mod render;
+mod visibility;
 
 use checks::{Checker, Result, S};
 use lights::LightDef;
