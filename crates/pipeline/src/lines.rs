@@ -241,7 +241,8 @@ fn feature(mut faces: impl Iterator<Item = Face>, cos_limit: f64) -> bool {
         return true;
     };
     let lengths = f.normal.length() * g.normal.length();
-    if !(lengths > 0.0) || !lengths.is_finite() {
+    let usable = lengths.is_finite() && lengths > 0.0;
+    if !usable {
         return true;
     }
     f.front != g.front || f.normal.dot(g.normal) / lengths < cos_limit
@@ -282,7 +283,8 @@ pub fn segment(a: DVec4, b: DVec4, frame: &LineFrame, tolerance: f64) -> Option<
     }
     let (t0, t1) = clip_range(a, b)?;
     let (p, q) = (a.lerp(b, t0), a.lerp(b, t1));
-    if !(p.w > 0.0 && q.w > 0.0) {
+    let in_front = p.w > 0.0 && q.w > 0.0;
+    if !in_front {
         return None;
     }
     let (p, q) = (window(p, frame), window(q, frame));

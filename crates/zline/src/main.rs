@@ -470,7 +470,9 @@ fn check_samples(w: u32, h: u32, ssaa: u32) -> Result<()> {
 /// triangle culled, clipped or degenerate (with the scene's bounds, which
 /// show a model too large or too small for `f32`), or no sample covered.
 fn blank_image(scene: &Scene, stats: &RenderStats) -> Option<String> {
-    if stats.fragments > 0 {
+    // Lines alone shade no samples.
+    let lines_only = scene.settings.wireframe.only && scene.settings.wireframe.drawn();
+    if stats.fragments > 0 || lines_only {
         return None;
     }
     if stats.triangles == 0 {

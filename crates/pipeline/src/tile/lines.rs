@@ -70,7 +70,7 @@ impl TileTarget {
         // Major axis m, minor axis o.
         let (m, o) = if dx.abs() >= dy.abs() { (0, 1) } else { (1, 0) };
         let (dm, d_o) = if m == 0 { (dx, dy) } else { (dy, dx) };
-        if !(dm != 0.0) || !length.is_finite() {
+        if dm == 0.0 || dm.is_nan() || !length.is_finite() {
             return;
         }
         let ni = n as i32;
@@ -90,12 +90,13 @@ impl TileTarget {
             let z = s.z[0] + t * (s.z[1] - s.z[0]);
             let on = (t * length).rem_euclid(DASH_PERIOD) < DASH_ON;
             let (px, py) = if m == 0 { (i, j as i32) } else { (j as i32, i) };
-            self.line_pixel((px, py), ni, z + s.tolerance, (lines.mode, on), lines.color);
+            self.line_pixel((px, py), ni, z - s.tolerance, (lines.mode, on), lines.color);
         }
     }
 
     /// The n × n samples of pixel (px, py): each drawn when the mode says
-    /// so for its visibility (`limit` is the line's depth plus tolerance).
+    /// so for its visibility (`limit` is the line's depth less its
+    /// tolerance: visible when no nearer than the stored depth).
     #[inline]
     fn line_pixel(
         &mut self,
@@ -109,7 +110,7 @@ impl TileTarget {
             for sx in px * n..(px + 1) * n {
                 let i = self.index(sx, sy);
                 let stored = f64::from(super::sample(&self.depth, i));
-                let visible = limit >= stored;
+                let visible = limit <= stored;
                 let drawn = match mode {
                     WireframeMode::None => false,
                     WireframeMode::All => true,
