@@ -6,6 +6,7 @@ mod bad_input;
 mod cli;
 mod hard_cases;
 mod hostile;
+mod visibility;
 
 use std::path::Path;
 use std::process::{Command, Output};
