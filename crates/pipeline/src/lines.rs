@@ -28,18 +28,25 @@
 //! is affine in window space, so interpolated linearly along the segment)
 //! at the pixel's point on the line is compared with each sample's stored
 //! depth: the sample shows the line as visible when
-//! `z_line ≤ z_stored + DEPTH_EPSILON + 1 px · s`, where s = |∂z/∂x| +
-//! |∂z/∂y| (per pixel) is the steepest window-space depth slope of the
-//! edge's faces that face the viewer (of all its faces when none does;
-//! non-finite slopes of edge-on faces count as 0). The slope term covers
-//! the distance from the exact edge to the sample (under ½ pixel across,
-//! under 1 pixel with supersampling) on a face beside it; `DEPTH_EPSILON`
-//! covers rounding. A surface nearer than that tolerance does not hide a
-//! line.
+//! `z_line ≤ z_stored + DEPTH_EPSILON + min(1 px · s, SLOPE_CAP · D)`,
+//! where s = |∂z/∂x| + |∂z/∂y| (per pixel) is the steepest window-space
+//! depth slope of the edge's faces that face the viewer (of all its faces
+//! when none does; non-finite slopes of faces with a vertex behind the
+//! camera or edge-on count as 0) and D the object's depth extent (over its
+//! vertices in front of the camera). The slope term covers the distance
+//! from the exact edge to the sample (under ½ pixel across, under 1 pixel
+//! with supersampling) on a face beside it; the cap keeps the nearly
+//! edge-on faces beside a silhouette from letting everything behind them
+//! through (a silhouette pixel on such a face may then read as hidden);
+//! `DEPTH_EPSILON` covers rounding. A surface nearer than the tolerance
+//! does not hide a line.
 //!
-//! **Dashes** (hidden-dashed): a hidden pixel is drawn when its distance
-//! along the segment from the segment's (clipped) start, in pixels, modulo
-//! [`DASH_PERIOD`] is below [`DASH_ON`]: 6 pixels on, 4 off.
+//! **Dashes** (hidden-dashed): a hidden pixel is drawn when its column
+//! (row, for a mostly vertical segment) modulo [`DASH_PERIOD`] is below
+//! [`DASH_ON`]: 6 pixels on, 4 off, measured along the major axis in
+//! window pixels (6 to 8.5 pixels along the line). The pattern is fixed to
+//! the window, not to each edge, so a chain of short edges (a silhouette
+//! of a fine mesh, edges of 2–3 pixels) is dashed as one line.
 
 use glam::{DVec3, DVec4, Vec3};
 use zline_scene::{Mesh, WireframeMode};
@@ -51,16 +58,21 @@ use crate::vertex::ObjectTransforms;
 /// Depth tolerance of the visibility test, in stored depth units.
 pub const DEPTH_EPSILON: f64 = 1.0 / 65536.0;
 
-/// Length of a dash, in pixels along the line.
-pub const DASH_ON: f64 = 6.0;
+/// Length of a dash, in pixels along the major axis.
+pub const DASH_ON: i32 = 6;
 
-/// Length of a dash and the gap after it, in pixels along the line.
-pub const DASH_PERIOD: f64 = 10.0;
+/// Length of a dash and the gap after it, in pixels along the major axis.
+pub const DASH_PERIOD: i32 = 10;
+
+/// The slope term of the tolerance is at most this share of the object's
+/// depth extent (the faces beside a silhouette are nearly edge-on, with
+/// slopes that would let everything behind them through).
+pub const SLOPE_CAP: f64 = 1.0 / 64.0;
 
 /// One clipped edge in window pixels.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment {
-    /// Start (x, y) in pixels (the dash pattern starts here).
+    /// Start (x, y) in pixels.
     pub a: [f64; 2],
     /// End (x, y) in pixels.
     pub b: [f64; 2],
@@ -162,6 +174,7 @@ impl Lines {
             }
         }
         self.edges.sort_unstable();
+        let cap = depth_extent(&self.clip, frame) * SLOPE_CAP;
         let cos_limit = feature_angle.map(|a| f64::from(a).to_radians().cos());
         let mut start = 0;
         while start < self.edges.len() {
@@ -179,7 +192,7 @@ impl Lines {
                 let front = faces.clone().filter(|f| f.front).map(|f| f.slope).fold(None, max);
                 let s = front.or_else(|| faces.map(|f| f.slope).fold(None, max)).unwrap_or(0.0);
                 let (ca, cb) = (self.clip[a as usize], self.clip[b as usize]);
-                if let Some(segment) = segment(ca, cb, frame, DEPTH_EPSILON + s) {
+                if let Some(segment) = segment(ca, cb, frame, DEPTH_EPSILON + s.min(cap)) {
                     self.segments.push(segment);
                 }
             }
@@ -246,6 +259,17 @@ fn feature(mut faces: impl Iterator<Item = Face>, cos_limit: f64) -> bool {
         return true;
     }
     f.front != g.front || f.normal.dot(g.normal) / lengths < cos_limit
+}
+
+/// The range of stored depth over the vertices in front of the camera.
+fn depth_extent(clip: &[DVec4], frame: &LineFrame) -> f64 {
+    let depths = clip.iter().filter(|c| c.w > 0.0).map(|&c| window(c, frame).z).filter(|z| z.is_finite());
+    let (lo, hi) = depths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| (lo.min(z), hi.max(z)));
+    if hi >= lo {
+        hi - lo
+    } else {
+        0.0
+    }
 }
 
 /// The window-space depth slope of a face, |∂z/∂x| + |∂z/∂y| per pixel;

@@ -66,11 +66,10 @@ impl TileTarget {
 
     fn segment(&mut self, s: &Segment, lines: &Lines, n: u32) {
         let (dx, dy) = (s.b[0] - s.a[0], s.b[1] - s.a[1]);
-        let length = dx.hypot(dy);
         // Major axis m, minor axis o.
         let (m, o) = if dx.abs() >= dy.abs() { (0, 1) } else { (1, 0) };
         let (dm, d_o) = if m == 0 { (dx, dy) } else { (dy, dx) };
-        if dm == 0.0 || dm.is_nan() || !length.is_finite() {
+        if dm == 0.0 || !dm.is_finite() || !d_o.is_finite() {
             return;
         }
         let ni = n as i32;
@@ -88,7 +87,7 @@ impl TileTarget {
                 continue;
             }
             let z = s.z[0] + t * (s.z[1] - s.z[0]);
-            let on = (t * length).rem_euclid(DASH_PERIOD) < DASH_ON;
+            let on = i.rem_euclid(DASH_PERIOD) < DASH_ON;
             let (px, py) = if m == 0 { (i, j as i32) } else { (j as i32, i) };
             self.line_pixel((px, py), ni, z - s.tolerance, (lines.mode, on), lines.color);
         }
