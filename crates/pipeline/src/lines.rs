@@ -49,6 +49,7 @@
 //! of a fine mesh, edges of 2–3 pixels) is dashed as one line.
 
 use glam::{DVec3, DVec4, Vec3};
+use rayon::slice::ParallelSliceMut;
 use zline_scene::{Mesh, WireframeMode};
 
 use crate::bin::TileGrid;
@@ -173,7 +174,9 @@ impl Lines {
                 }
             }
         }
-        self.edges.sort_unstable();
+        // Every key is distinct (it holds the face), so the parallel
+        // unstable sort gives one order for any thread count.
+        self.edges.par_sort_unstable();
         let cap = depth_extent(&self.clip, frame) * SLOPE_CAP;
         let cos_limit = feature_angle.map(|a| f64::from(a).to_radians().cos());
         let mut start = 0;
@@ -205,7 +208,7 @@ impl Lines {
         let key = |p: Vec3| [(p.x + 0.0).to_bits(), (p.y + 0.0).to_bits(), (p.z + 0.0).to_bits()];
         self.order.clear();
         self.order.extend(0..positions.len() as u32);
-        self.order.sort_unstable_by_key(|&i| (key(positions[i as usize]), i));
+        self.order.par_sort_unstable_by_key(|&i| (key(positions[i as usize]), i));
         self.weld.clear();
         self.weld.resize(positions.len(), 0);
         let mut first = 0;
