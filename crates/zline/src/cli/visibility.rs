@@ -18,7 +18,8 @@ pub(crate) struct VisibilityArgs {
     /// removed, or hidden ones dashed (6 px on, 4 off).
     #[arg(long, value_enum)]
     wireframe: Option<WireframeArg>,
-    /// Lines alone on the background (the surfaces only hide lines).
+    /// With --wireframe: the lines alone on the background (the surfaces
+    /// only hide lines).
     #[arg(long)]
     wireframe_only: bool,
     /// Only feature edges: borders, silhouettes and creases sharper than
