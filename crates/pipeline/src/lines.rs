@@ -369,6 +369,32 @@ mod tests {
         assert!(segment(DVec4::new(f64::INFINITY, 0.0, 0.0, 1.0), a, &FRAME, 0.0).is_none());
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+        /// The clipped range against brute force: points of the segment
+        /// sampled along it are inside the view volume exactly within
+        /// [t0, t1] (away from its ends by 1e-6).
+        #[test]
+        fn the_clipped_range_is_where_the_segment_is_inside(
+            a in proptest::array::uniform4(-3.0f64..3.0),
+            b in proptest::array::uniform4(-3.0f64..3.0),
+        ) {
+            let (a, b) = (DVec4::from_array(a), DVec4::from_array(b));
+            let inside = |v: DVec4| v.x.abs() <= v.w && v.y.abs() <= v.w && v.z.abs() <= v.w;
+            let range = clip_range(a, b);
+            for k in 0..=200 {
+                let t = f64::from(k) / 200.0;
+                let expected = inside(a.lerp(b, t));
+                match range {
+                    Some((t0, t1)) if t > t0 + 1e-6 && t < t1 - 1e-6 => proptest::prop_assert!(expected, "t {t} in [{t0}, {t1}]"),
+                    Some((t0, t1)) if t < t0 - 1e-6 || t > t1 + 1e-6 => proptest::prop_assert!(!expected, "t {t} outside [{t0}, {t1}]"),
+                    None => proptest::prop_assert!(!expected, "t {t}: no range, but inside"),
+                    Some(_) => {}
+                }
+            }
+        }
+    }
+
     #[test]
     fn a_cube_has_twelve_feature_edges_and_eighteen_edges() {
         let cube = zline_scene::cube(1.0);
