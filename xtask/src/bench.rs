@@ -183,6 +183,38 @@ pub(crate) fn bunny(assets: &Path) -> Option<std::path::PathBuf> {
     Some(assets.join("obj/bunny/bunny.obj")).filter(|p| p.exists())
 }
 
+/// The painter's algorithm on the bunny and the transparent spheres, and
+/// lines (every edge, and feature edges, hidden ones dashed) over the bunny.
+fn visibility_cases(assets: &Path, out: &mut Vec<Case>) {
+    use zline::scene::{Visibility, Wireframe, WireframeMode};
+    let with = |scene: Result<Scene>, visibility: Visibility, wireframe: Wireframe| {
+        let mut scene = scene?;
+        scene.settings.visibility = visibility;
+        scene.settings.wireframe = wireframe;
+        Ok(scene)
+    };
+    let dashed = |feature_angle| Wireframe { mode: WireframeMode::HiddenDashed, only: false, feature_angle };
+    if let Some(bunny) = bunny(assets) {
+        let load = move || Ok(scene_for_model(load_obj(&bunny)?, settings(ShadingMode::Phong)));
+        let variants = [
+            ("painter", Visibility::Painter, Wireframe::default()),
+            ("+ lines hidden-dashed", Visibility::ZBuffer, dashed(None)),
+            ("+ feature lines 40°", Visibility::ZBuffer, dashed(Some(40.0))),
+        ];
+        for (name, visibility, wireframe) in variants {
+            let load = load.clone();
+            out.push(Case {
+                name: format!("bunny 69k phong {name}"),
+                build: Box::new(move || with(load(), visibility, wireframe)),
+            });
+        }
+    }
+    out.push(Case {
+        name: "transparent spheres painter".into(),
+        build: Box::new(move || with(textured_plane(true), Visibility::Painter, Wireframe::default())),
+    });
+}
+
 fn cases(assets: &Path) -> Result<Vec<Case>> {
     let mut out = Vec::new();
     if let Some(bunny) = bunny(assets) {
@@ -244,6 +276,9 @@ fn cases(assets: &Path) -> Result<Vec<Case>> {
             build: Box::new(move || bump_sphere(map)),
         });
     }
+    // The painter's algorithm and lines (issue 12): the same scenes drawn
+    // another way.
+    visibility_cases(assets, &mut out);
     // 500 × 1000 ≈ 1M triangles.
     for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {
         out.push(Case {

@@ -95,6 +95,18 @@ pub struct Bins {
 
 /// Fills `bins` for this frame's primitives (see [`Bins`]).
 pub fn bin_primitives(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins) {
+    bin_into(chunks, grid, bins, false);
+}
+
+/// Fills `bins` for the painter's algorithm (`Visibility::Painter`): every
+/// drawn primitive, opaque or transparent, in `transparent` in draw order
+/// (the painter pass sorts them), none in `opaque`; shadows as
+/// [`bin_primitives`] puts them.
+pub fn bin_primitives_painter(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins) {
+    bin_into(chunks, grid, bins, true);
+}
+
+fn bin_into(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins, painter: bool) {
     reset(&mut bins.opaque, grid.len());
     reset(&mut bins.transparent, grid.len());
     reset(&mut bins.shadow, grid.len());
@@ -111,11 +123,11 @@ pub fn bin_primitives(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bin
                 (b.x0 / ts..=(b.x1 - 1) / ts).map(move |col| first + col as usize)
             });
             match chunk.pass {
-                PassKind::Opaque => {
+                PassKind::Opaque if !painter => {
                     let r = OpaqueRef { chunk: c as u32, kernel: d.kernel, index: d.index };
                     tiles.for_each(|t| bins.opaque[t].push(r));
                 }
-                PassKind::Transparent { .. } => {
+                PassKind::Opaque | PassKind::Transparent { .. } => {
                     let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
                     tiles.for_each(|t| bins.transparent[t].push(r));
                 }

@@ -11,8 +11,9 @@
 //! 4. [`bin`]: each primitive is listed in the tiles its bounds touch, in
 //!    draw order.
 //! 5. [`tile`]: every tile is rasterized on its own (rayon over tiles): the
-//!    opaque pass with a depth buffer in NC depth, then quantization into the
-//!    image.
+//!    opaque pass with a depth buffer in NC depth (or the painter's
+//!    algorithm), the mesh edges of [`lines`] when asked for, then
+//!    quantization into the image.
 //!
 //! Steps 1–3 run once per frame and in parallel over chunks of vertices and
 //! triangles; their output order does not depend on the thread count, and
@@ -24,6 +25,7 @@ pub mod bin;
 pub mod clip;
 pub mod fog;
 pub mod image;
+pub mod lines;
 mod normal_map;
 mod render;
 pub mod resolve;

@@ -10,13 +10,14 @@ use std::time::{Duration, Instant};
 
 use glam::{Mat4, Vec3};
 use zline_raster::Rect;
-use zline_scene::{DepthMode, Object, Projection, Scene, ShadowMode};
+use zline_scene::{DepthMode, Object, Projection, Scene, ShadowMode, Visibility};
 use zline_shading::{Filter, LightingModel, Material, PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::adaptive::Adaptive;
-use crate::bin::{bin_primitives, Bins, PrimitiveRef, TileGrid};
+use crate::bin::{bin_primitives, bin_primitives_painter, Bins, PrimitiveRef, TileGrid};
 use crate::fog::FogPass;
 use crate::image::{quantize_rgba, Image};
+use crate::lines::{LineFrame, Lines};
 use crate::setup::{
     setup_triangle, AlphaUse, DepthEncoding, Faces, LevelOfDetail, NormalMapUse, PassKind, PrimitiveChunk,
     SetupContext, TextureUse, VertexColors, Viewer,
@@ -97,6 +98,8 @@ pub struct Renderer {
     shadow_mesh: Option<zline_scene::Mesh>,
     /// The frame's shadow maps (`ShadowMode::Map`).
     maps: Option<ShadowMaps>,
+    /// The frame's lines (`RenderSettings::wireframe`).
+    lines: Lines,
 }
 
 /// The frame's lights, materials and textures, indexed by the primitives.
@@ -204,12 +207,21 @@ impl Renderer {
         }
         self.maps = (scene.shadows.mode == ShadowMode::Map && !scene.lights.is_empty())
             .then(|| ShadowMaps::build(scene, &frame.eye_from_world));
+        if scene.settings.wireframe.drawn() {
+            self.setup_lines(scene, &frame);
+        }
         stats.geometry = start.elapsed();
 
         let start = Instant::now();
         let tile_size = options.tile_size.clamp(1, zline_scene::MAX_TILE_SIZE);
         let grid = TileGrid::new(frame.viewport.width, frame.viewport.height, tile_size * frame.n);
-        bin_primitives(&self.chunks[..self.used], &grid, &mut self.bins);
+        match scene.settings.visibility {
+            Visibility::ZBuffer => bin_primitives(&self.chunks[..self.used], &grid, &mut self.bins),
+            Visibility::Painter => bin_primitives_painter(&self.chunks[..self.used], &grid, &mut self.bins),
+        }
+        if scene.settings.wireframe.drawn() {
+            self.lines.bin(&grid, frame.n);
+        }
         stats.binning = start.elapsed();
 
         let start = Instant::now();
@@ -379,6 +391,24 @@ impl Renderer {
         self.shadow_mesh = Some(mesh);
     }
 
+    /// The mesh edges of every object as clipped window segments
+    /// ([`crate::lines`]).
+    fn setup_lines(&mut self, scene: &Scene, frame: &Frame) {
+        let wireframe = scene.settings.wireframe;
+        self.lines.reset(wireframe.mode, scene.background);
+        let line_frame = LineFrame {
+            width: frame.width,
+            height: frame.height,
+            depth: frame.depth,
+            perspective: frame.viewer == Viewer::AtOrigin,
+        };
+        for object in &scene.objects {
+            let transforms =
+                ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, object.world_from_object);
+            self.lines.add_object(&object.mesh, &transforms, &line_frame, wireframe.feature_angle);
+        }
+    }
+
     /// Every tile, bands of tiles in parallel: each tile clears its depth,
     /// draws its opaque bin, fogs, draws its transparent bin and resolves
     /// into the image rows it owns. Returns the samples shaded.
@@ -417,6 +447,9 @@ impl Renderer {
             DepthEncoding::Reversed { .. } => DEPTH_CLEAR_REVERSED,
         };
         let background = quantize_rgba(scene.background.extend(1.0));
+        let painter = scene.settings.visibility == Visibility::Painter;
+        let wireframe = scene.settings.wireframe;
+        let lines = wireframe.drawn().then_some(&self.lines);
         image
             .pixels
             .par_chunks_mut(band_len)
@@ -432,19 +465,36 @@ impl Renderer {
                     let tile = row * grid.cols as usize + col as usize;
                     let (rect, opaque, transparent) =
                         (grid.rect(col, row as u32), &bins.opaque[tile], &bins.transparent[tile]);
-                    if opaque.is_empty() && transparent.is_empty() {
+                    let line_bin = lines.map_or(&[][..], |l| l.bin_of(tile));
+                    if opaque.is_empty() && transparent.is_empty() && line_bin.is_empty() {
                         // Nothing to draw: the background's bytes, without the buffers.
                         fill_rect(band, width as usize, pixels_of(rect, n), background);
                         continue;
                     }
                     target.clear(rect, scene.background, clear);
-                    target.shadow_pass(chunks, &bins.shadow[tile]);
-                    shaded += target.opaque_pass(chunks, opaque, &shade);
-                    if let Some(fog) = &fog {
-                        target.fog_pass(fog);
+                    if wireframe.only && lines.is_some() {
+                        // Lines alone: the surfaces only decide which lines are hidden.
+                        target.depth_only_pass(chunks, opaque_primitives(chunks, opaque, transparent));
+                        target.fill_background();
+                    } else if painter {
+                        target.shadow_pass(chunks, &bins.shadow[tile]);
+                        shaded += target.painter_pass(chunks, transparent, &shade, fog.as_ref(), order);
+                        if lines.is_some_and(|l| l.mode.hides() && !line_bin.is_empty()) {
+                            target.depth_only_pass(chunks, opaque_primitives(chunks, opaque, transparent));
+                        }
+                    } else {
+                        target.shadow_pass(chunks, &bins.shadow[tile]);
+                        shaded += target.opaque_pass(chunks, opaque, &shade);
+                        if let Some(fog) = &fog {
+                            target.fog_pass(fog);
+                        }
+                        if !transparent.is_empty() {
+                            shaded +=
+                                target.transparency_pass(chunks, transparent, &shade, fog.as_ref(), order);
+                        }
                     }
-                    if !transparent.is_empty() {
-                        shaded += target.transparency_pass(chunks, transparent, &shade, fog.as_ref(), order);
+                    if let Some(lines) = lines {
+                        target.line_pass(lines, line_bin, n);
                     }
                     if n == 1 {
                         target.resolve(band, width as usize);
@@ -485,6 +535,23 @@ fn setup_mesh(
             }
         }
     });
+}
+
+/// The opaque primitives of a tile as (chunk, kernel, table index): its
+/// opaque bin, or with the painter's algorithm (which bins every primitive
+/// in `transparent`) the opaque chunks' primitives there.
+fn opaque_primitives<'a>(
+    chunks: &'a [PrimitiveChunk],
+    opaque: &'a [crate::bin::OpaqueRef],
+    transparent: &'a [PrimitiveRef],
+) -> impl Iterator<Item = (u32, crate::setup::Kernel, u32)> + 'a {
+    let zbuffer = opaque.iter().map(|r| (r.chunk, r.kernel, r.index));
+    let painted = transparent.iter().filter_map(|r| {
+        let chunk = &chunks[r.chunk as usize];
+        let d = chunk.draws[r.index as usize];
+        (chunk.pass == PassKind::Opaque).then_some((r.chunk, d.kernel, d.index))
+    });
+    zbuffer.chain(painted)
 }
 
 /// The pixels whose samples a tile holds: with n×n samples per pixel, tiles

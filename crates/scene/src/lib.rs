@@ -25,6 +25,7 @@ mod normal_map;
 mod occluders;
 mod primitives;
 mod shadow;
+mod visibility;
 
 pub use area::{AreaLight, AreaShape};
 pub use area_auto::{choose_area_samples, AreaChoice, PROBES as AREA_PROBES};
@@ -44,6 +45,7 @@ pub use model::{
 pub use occluders::{Occluders, TriangleId};
 pub use primitives::{cube, plane, torus, uv_sphere};
 pub use shadow::{light_position, shadow_matrix, shadow_matrix_f64};
+pub use visibility::{Visibility, Wireframe, WireframeMode};
 pub use zline_shading::{
     Attenuation, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
 };

@@ -276,6 +276,10 @@ pub struct RenderSettings {
     pub gouraud_clamp: GouraudClamp,
     /// How triangles seen from behind are lit when not culled (SPEC §11).
     pub lighting_sides: LightingSides,
+    /// The z-buffer or the painter's algorithm.
+    pub visibility: crate::visibility::Visibility,
+    /// Mesh edges drawn as lines.
+    pub wireframe: crate::visibility::Wireframe,
 }
 
 /// Where untextured Gouraud shading clamps the lit colour to [0, 1] (SPEC
@@ -370,6 +374,8 @@ impl Default for RenderSettings {
             adaptive_tolerance: None,
             gouraud_clamp: GouraudClamp::PerVertex,
             lighting_sides: LightingSides::TwoSided,
+            visibility: crate::visibility::Visibility::ZBuffer,
+            wireframe: crate::visibility::Wireframe::default(),
         }
     }
 }

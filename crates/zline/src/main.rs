@@ -5,6 +5,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+mod cli {
+    pub(crate) mod visibility;
+}
+
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
@@ -198,6 +202,8 @@ struct Common {
         value_parser = clap::value_parser!(u32).range(MIN_TILE_SIZE as i64..=MAX_TILE_SIZE as i64)
     )]
     tile_size: u32,
+    #[command(flatten)]
+    visibility: cli::visibility::VisibilityArgs,
 }
 
 /// The built-in scenes of `zline demo --scene`.
@@ -584,7 +590,9 @@ fn check_samples(w: u32, h: u32, ssaa: u32) -> Result<()> {
 /// triangle culled, clipped or degenerate (with the scene's bounds, which
 /// show a model too large or too small for `f32`), or no sample covered.
 fn blank_image(scene: &Scene, stats: &RenderStats) -> Option<String> {
-    if stats.fragments > 0 {
+    // Lines alone shade no samples.
+    let lines_only = scene.settings.wireframe.only && scene.settings.wireframe.drawn();
+    if stats.fragments > 0 || lines_only {
         return None;
     }
     if stats.triangles == 0 {
@@ -804,6 +812,7 @@ fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
             Interp::Linear => Interpolation::ScreenLinear,
         };
     }
+    common.visibility.apply(settings);
 }
 
 #[cfg(test)]

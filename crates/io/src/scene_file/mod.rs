@@ -41,6 +41,7 @@ mod checks;
 mod lights;
 mod models;
 mod render;
+mod visibility;
 
 use checks::{Checker, Result, S};
 use lights::{LightDef, LightEntry};
@@ -72,6 +73,10 @@ use render::{settings, shadows, RenderDef, ShadingDef};
 ///                                   #   map: shadow maps, every object casts and receives
 /// shadow_map_size = 1024            # map: texels per side (per cube face for a point light), 16..=8192; default 1024
 /// shadow_filter = "pcf"             # map: pcf (3×3 percentage-closer filtering, default) | nearest (one texel)
+/// visibility = "zbuffer"           # zbuffer (default) | painter: sorted by farthest depth, no depth buffer
+/// wireframe = "none"                # none (default) | all | hidden-removed | hidden-dashed: mesh edges as lines
+/// wireframe_only = false            # true: the lines alone on the background
+/// feature_angle = 30                # degrees in [0, 180]: only borders, silhouettes, sharper creases; default every edge
 ///
 /// [camera]                          # omitted: the scene is framed
 /// eye = [0, 1, 5]                   # required

@@ -15,6 +15,7 @@ use zline_scene::{
 use zline_shading::ShadingMode;
 
 use super::checks::{Checker, Result, S};
+use super::visibility::{VisibilityDef, VisibilityName, WireframeName};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -34,6 +35,10 @@ pub(super) struct RenderDef {
     /// key like an integer out of range.
     shadow_map_size: Option<S<toml::Value>>,
     shadow_filter: Option<ShadowFilterDef>,
+    visibility: Option<VisibilityName>,
+    wireframe: Option<WireframeName>,
+    wireframe_only: Option<bool>,
+    feature_angle: Option<S<f32>>,
 }
 
 /// A shading mode: `[render] shading` and an object's `shading`.
@@ -199,6 +204,13 @@ pub(super) fn settings(check: &Checker, render: Option<RenderDef>) -> Result<Ren
             LightingDef::OneSided => LightingSides::OneSided,
         };
     }
+    let def = VisibilityDef {
+        visibility: render.visibility,
+        wireframe: render.wireframe,
+        wireframe_only: render.wireframe_only,
+        feature_angle: &render.feature_angle,
+    };
+    super::visibility::apply(check, def, &mut settings)?;
     Ok(settings)
 }
 

@@ -406,6 +406,7 @@ fn emit(
         Interpolation::ScreenLinear => [1.0; 3],
     };
     let sort_depth = ((p[0].z + p[1].z + p[2].z) / 3.0) as f32;
+    let far_depth = p[0].z.max(p[1].z).max(p[2].z) as f32;
     let planes = Planes { tri, q, basis: &basis };
     let PrimitiveChunk { draws, bounds, tables: t, .. } = out;
     macro_rules! push {
@@ -415,7 +416,7 @@ fn emit(
                 &mut $table,
                 $kernel,
                 Primitive { edges, depth, shader: $shader },
-                sort_depth,
+                (sort_depth, far_depth),
             )
         };
     }

@@ -325,6 +325,9 @@ pub struct Draw {
     /// The mean NC depth of the vertices: the back-to-front sort key of the
     /// transparency pass.
     pub sort_depth: f32,
+    /// The largest NC depth of the vertices: the back-to-front sort key of
+    /// the painter's algorithm (`tile::painter`).
+    pub far_depth: f32,
 }
 
 /// Which pass draws a chunk's primitives (a chunk holds one object's
@@ -381,9 +384,9 @@ impl PrimitiveChunk {
         table: &mut Vec<Primitive<S>>,
         kernel: Kernel,
         primitive: Primitive<S>,
-        sort_depth: f32,
+        (sort_depth, far_depth): (f32, f32),
     ) {
-        draws.push(Draw { kernel, index: table.len() as u32, sort_depth });
+        draws.push(Draw { kernel, index: table.len() as u32, sort_depth, far_depth });
         bounds.push(primitive.edges.bounds());
         table.push(primitive);
     }

@@ -19,6 +19,8 @@
 //! draw, not state kept on the tile.
 
 mod kernel;
+mod lines;
+mod painter;
 mod perturbed;
 mod target;
 
@@ -82,14 +84,7 @@ impl TileTarget {
     ) -> u64 {
         self.materialize_background();
         let draw = |r: &PrimitiveRef| chunks[r.chunk as usize].draws[r.index as usize];
-        order.clear();
-        order.extend(bin.iter().map(|r| (draw(r).sort_depth, *r)));
-        // Far to near, ties in draw order (chunk, then index: the bin's
-        // order). An unstable sort with the draw order as the tie-break
-        // gives the stable sort's order without its scratch allocation.
-        order.sort_unstable_by(|a, b| {
-            b.0.total_cmp(&a.0).then_with(|| (a.1.chunk, a.1.index).cmp(&(b.1.chunk, b.1.index)))
-        });
+        back_to_front(order, bin.iter().map(|r| (draw(r).sort_depth, *r)));
         let mut shaded = 0;
         for (_, r) in order.iter() {
             let chunk = &chunks[r.chunk as usize];
@@ -297,6 +292,18 @@ impl TileTarget {
             }
         }
     }
+}
+
+/// Fills `order` with `keyed` sorted far to near (largest key first), ties
+/// in draw order (chunk, then index: the bin's order), so every tile sorts
+/// alike. An unstable sort with the draw order as the tie-break gives the
+/// stable sort's order without its scratch allocation.
+fn back_to_front(order: &mut Vec<(f32, PrimitiveRef)>, keyed: impl Iterator<Item = (f32, PrimitiveRef)>) {
+    order.clear();
+    order.extend(keyed);
+    order.sort_unstable_by(|a, b| {
+        b.0.total_cmp(&a.0).then_with(|| (a.1.chunk, a.1.index).cmp(&(b.1.chunk, b.1.index)))
+    });
 }
 
 /// The parts of a textured [`Kernel`] still to dispatch on, and the

@@ -9,6 +9,7 @@ mod formats;
 mod hard_cases;
 mod hostile;
 mod terrain;
+mod visibility;
 
 use std::path::Path;
 use std::process::{Command, Output};

@@ -1,0 +1,89 @@
+//! The painter's algorithm against the z-buffer on the documented failure
+//! scene, and the scene-file keys and flags of hidden-surface and
+//! hidden-line drawing.
+
+use zline::io::load_scene;
+use zline::pipeline::{render, RenderOptions};
+use zline::scene::{Visibility, WireframeMode};
+
+use crate::{check_error_line, repo, zline};
+
+/// `tests/scenes/visibility_painter_cyclic.toml` painted and z-buffered:
+/// prints the share of wrong pixels (of the pixels either image draws)
+/// that docs/visibility.md quotes, and checks that each failure is there:
+/// the cycle is wrong at two of its three corners, the intersecting pair
+/// where the first-painted triangle is nearer.
+#[test]
+fn painter_share_of_wrong_pixels() {
+    let path = repo().join("tests/scenes/visibility_painter_cyclic.toml");
+    let painter = load_scene(&path).unwrap();
+    assert_eq!(painter.settings.visibility, Visibility::Painter);
+    let mut zbuffer = painter.clone();
+    zbuffer.settings.visibility = Visibility::ZBuffer;
+    let reference = load_scene(&repo().join("tests/scenes/visibility_zbuffer_cyclic.toml")).unwrap();
+    assert_eq!(reference, zbuffer, "the two regress scenes differ only in visibility");
+    let (p, z) =
+        (render(&painter, &RenderOptions::default()).0, render(&zbuffer, &RenderOptions::default()).0);
+    let background = p.pixels[0];
+    let (mut drawn, mut wrong, mut wrong_left, mut wrong_right) = (0, 0, 0, 0);
+    for y in 0..p.height {
+        for x in 0..p.width {
+            let i = (y * p.width + x) as usize;
+            if p.pixels[i] == background && z.pixels[i] == background {
+                continue;
+            }
+            drawn += 1;
+            if p.pixels[i] != z.pixels[i] {
+                wrong += 1;
+                // The cycle is left of x = 0 (pixel 128), the pair right of it.
+                if x < p.width / 2 {
+                    wrong_left += 1
+                } else {
+                    wrong_right += 1
+                }
+            }
+        }
+    }
+    let share = 100.0 * f64::from(wrong) / f64::from(drawn);
+    println!(
+        "painter vs z-buffer: {wrong} of {drawn} drawn pixels wrong ({share:.1} %): {wrong_left} in the cycle, {wrong_right} in the intersecting pair"
+    );
+    assert!(wrong_left > 50 && wrong_right > 200, "both failures must show");
+}
+
+#[test]
+fn flags_and_keys_reach_the_settings_and_bad_values_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cube.png");
+    let scene = repo().join("tests/scenes/wireframe_cube_dashed.toml");
+    let loaded = load_scene(&scene).unwrap();
+    assert_eq!(loaded.settings.wireframe.mode, WireframeMode::HiddenDashed);
+    assert_eq!(loaded.settings.wireframe.feature_angle, Some(30.0));
+    let run = zline(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--visibility",
+        "painter",
+        "--wireframe",
+        "hidden-removed",
+        "--wireframe-only",
+        "--feature-angle",
+        "45",
+    ]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(!String::from_utf8_lossy(&run.stderr).contains("blank"), "lines alone are not a blank image");
+    let bad =
+        zline(&["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "--feature-angle", "200"]);
+    check_error_line(&bad, 2, &["200"]);
+    let file = dir.path().join("bad.toml");
+    let text = std::fs::read_to_string(&scene).unwrap().replace("feature_angle = 30", "feature_angle = -5");
+    std::fs::write(&file, text).unwrap();
+    let err = load_scene(&file).unwrap_err().to_string();
+    assert!(err.contains("render.feature_angle") && err.contains("bad.toml"), "{err}");
+    let text = std::fs::read_to_string(&scene).unwrap().replace("hidden-dashed", "dotted");
+    std::fs::write(&file, text).unwrap();
+    let err = load_scene(&file).unwrap_err().to_string();
+    assert!(err.contains("dotted") && err.contains("hidden-dashed") && err.contains("bad.toml"), "{err}");
+}
