@@ -279,7 +279,9 @@ fn light_info(light: &Light) -> LightInfo {
 /// A number for people: four significant digits, scientific when huge or
 /// tiny.
 fn short(x: f32) -> String {
-    if x == 0.0 || (1e-3..1e6).contains(&x.abs()) {
+    if x == 0.0 {
+        "0".to_string()
+    } else if (1e-3..1e6).contains(&x.abs()) {
         let digits = (3 - x.abs().log10().floor() as i32).clamp(0, 6) as usize;
         let s = format!("{x:.digits$}");
         if s.contains('.') {
