@@ -29,7 +29,11 @@ const MIN_SHADOW_MAP_SIZE: u32 = 16;
 
 /// zline — a CPU renderer for the classical rendering pipeline.
 #[derive(Parser)]
-#[command(version, about)]
+#[command(
+    version,
+    about = "Render 3D models (OBJ, glTF, STL, PLY) and scene files to PNG images on the CPU, no GPU needed: \
+             z-buffer, flat, Gouraud and Phong shading, textures, fog, transparency, shadows."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -135,10 +139,10 @@ struct Common {
     /// What the depth buffer stores.
     #[arg(long, value_enum)]
     depth: Option<Depth>,
-    /// Where untextured Gouraud shading clamps the lit colour (SPEC §11).
+    /// Where untextured Gouraud shading clamps the lit colour (docs/SPEC.md §11).
     #[arg(long, value_enum)]
     gouraud_clamp: Option<Clamp>,
-    /// How back faces drawn without culling are lit (SPEC §11).
+    /// How back faces drawn without culling are lit (docs/SPEC.md §11).
     #[arg(long, value_enum)]
     lighting: Option<Sides>,
     /// Shadows (replaces the scene file's `[render] shadows`): planar ones
@@ -258,7 +262,7 @@ enum FogCoord {
 
 #[derive(Clone, Copy, ValueEnum)]
 enum Depth {
-    /// NC depth in [−1, 1] (the seed's depth buffer; the default).
+    /// Normalized depth in [−1, 1], as OpenGL's classic depth buffer (the default).
     Normalized,
     /// Reversed depth in f32: far more precise far from the camera.
     Reversed,
@@ -315,7 +319,7 @@ impl From<Shadows> for ShadowMode {
 enum Interp {
     /// Perspective-correct (a/w and 1/w).
     Perspective,
-    /// Screen-linear (the seed's formulas).
+    /// Screen-linear: attributes interpolated in the window without perspective correction.
     Linear,
 }
 
