@@ -22,7 +22,10 @@ use zline::scene::{
 };
 use zline::shading::Filter;
 
+mod batch;
+mod progress;
 mod terrain;
+mod turntable;
 
 /// The smallest `--shadow-map-size`, as the scene file's.
 const MIN_SHADOW_MAP_SIZE: u32 = 16;
@@ -86,6 +89,14 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
+    /// Render a model turning a full circle about its up axis: an animated
+    /// GIF (.gif), an animated PNG (.png) or numbered PNGs in a folder.
+    #[command(mut_arg("output", turntable::output_arg))]
+    Turntable(turntable::TurntableArgs),
+    /// Render many models or scene files to OUTDIR/<stem>.png, skipping
+    /// those already there; `--shard I/N` splits the work among machines.
+    #[command(mut_arg("output", batch::output_arg))]
+    Batch(batch::BatchArgs),
 }
 
 #[derive(Args)]
@@ -470,6 +481,8 @@ fn run(cli: Cli) -> Result<()> {
         Command::Terrain { heights, terrain, common } => {
             (Some(heights), BuiltIn::Demo, false, common, Some(terrain))
         }
+        Command::Turntable(args) => return turntable::run(&args),
+        Command::Batch(args) => return batch::run(&args),
     };
     // Everything that can be checked without the scene is checked before
     // loading it: a bad output path or thread count fails at once.
@@ -488,24 +501,8 @@ fn run(cli: Cli) -> Result<()> {
     // Judged before the size changes: a camera that is zline's framing of a
     // model is framed again for the final image's shape.
     let framed = input.is_some() && zline::view::is_framed(&scene);
-    if common.no_normal_maps {
-        for object in &mut scene.objects {
-            if object.mesh.normal_map.is_some() {
-                object.mesh =
-                    std::sync::Arc::new(zline::scene::Mesh { normal_map: None, ..(*object.mesh).clone() });
-            }
-        }
-    }
-    if let Some(file) = &common.bump {
-        if zline::io::apply_bump_map(&mut scene, file, common.bump_scale)? == 0 {
-            eprintln!("warning: --bump: no mesh has texture coordinates; nothing is bump-mapped");
-        }
-    }
-    apply_overrides(&mut scene.settings, &common);
-    apply_camera(&mut scene, &common, framed);
-    apply_fog(&mut scene, &common);
-    apply_shadows(&mut scene, &common);
-    check_samples(scene.settings.width, scene.settings.height, scene.settings.ssaa)?;
+    set_up(&mut scene, &common)?;
+    apply_camera(&mut scene, &common, framed, 0.0);
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         pool = pool.num_threads(n);
@@ -548,6 +545,30 @@ fn run(cli: Cli) -> Result<()> {
             std::fs::metadata(&common.output).map_or(0, |m| m.len())
         );
     }
+    Ok(())
+}
+
+/// The flags other than the camera's applied to a loaded scene, as
+/// `render` does: normal maps, `--bump`, the settings, fog and shadows;
+/// then the sample budget checked.
+fn set_up(scene: &mut Scene, common: &Common) -> Result<()> {
+    if common.no_normal_maps {
+        for object in &mut scene.objects {
+            if object.mesh.normal_map.is_some() {
+                object.mesh =
+                    std::sync::Arc::new(zline::scene::Mesh { normal_map: None, ..(*object.mesh).clone() });
+            }
+        }
+    }
+    if let Some(file) = &common.bump {
+        if zline::io::apply_bump_map(scene, file, common.bump_scale)? == 0 {
+            eprintln!("warning: --bump: no mesh has texture coordinates; nothing is bump-mapped");
+        }
+    }
+    apply_overrides(&mut scene.settings, common);
+    apply_fog(scene, common);
+    apply_shadows(scene, common);
+    check_samples(scene.settings.width, scene.settings.height, scene.settings.ssaa)?;
     Ok(())
 }
 
@@ -704,14 +725,15 @@ fn load_input(input: &Path, options: LoadOptions) -> Result<Scene> {
 }
 
 /// The camera flags and `--background`; a framed model is framed again
-/// for the final aspect ratio first.
-fn apply_camera(scene: &mut Scene, common: &Common, framed: bool) {
+/// for the final aspect ratio first. `turn` adds degrees to `--azimuth`
+/// (a turntable's frames).
+fn apply_camera(scene: &mut Scene, common: &Common, framed: bool, turn: f32) {
     let aspect = zline::view::aspect_of(scene);
     if framed {
         scene.camera = zline::io::model_camera(&scene.objects, aspect);
     }
     let change = zline::view::ViewChange {
-        azimuth: common.azimuth,
+        azimuth: if turn == 0.0 { common.azimuth } else { Some(common.azimuth.unwrap_or(0.0) + turn) },
         elevation: common.elevation,
         distance: common.distance,
         zoom: common.zoom,
