@@ -17,11 +17,10 @@ use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
-use zline::io::LoadOptions;
-use zline::pipeline::{render, RenderOptions};
+use zline::pipeline::render;
 
+use crate::job::Job;
 use crate::progress::{Progress, ProgressArgs};
-use crate::Common;
 
 /// The options of `zline batch` besides the common ones.
 #[derive(Args)]
@@ -45,11 +44,9 @@ pub(crate) struct BatchArgs {
     force: bool,
     /// As for `render`: read files the inputs name outside their folders.
     #[arg(long)]
-    allow_paths_outside: bool,
+    pub(crate) allow_paths_outside: bool,
     #[command(flatten)]
     progress: ProgressArgs,
-    #[command(flatten)]
-    common: Common,
 }
 
 /// `-o` for `zline batch`.
@@ -141,28 +138,16 @@ fn stem(input: &Path) -> Result<String> {
 }
 
 /// `zline batch`.
-pub(crate) fn run(args: &BatchArgs) -> Result<()> {
-    let common = &args.common;
-    let outdir = &common.output;
-    let threads = crate::thread_count(common.threads)?;
-    if let (Some((w, h)), Some(s)) = (common.size, common.ssaa) {
-        crate::check_samples(w, h, s)?;
-    }
+pub(crate) fn run(args: &BatchArgs, job: &Job) -> Result<()> {
+    let outdir = &job.output;
     let all = inputs(args)?;
     check_stems(&all)?;
     let (shard, shards) = args.shard.unwrap_or((1, 1));
     let mine: Vec<&PathBuf> = all.iter().skip(shard - 1).step_by(shards).collect();
     std::fs::create_dir_all(outdir)
         .with_context(|| format!("{}: cannot create the folder", outdir.display()))?;
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = threads {
-        pool = pool.num_threads(n);
-    }
-    let pool = pool.build().context("cannot start the worker threads")?;
-    let options = RenderOptions { tile_size: common.tile_size };
-    let load = LoadOptions { allow_outside: args.allow_paths_outside };
     let started = Instant::now();
-    let progress = Progress::new(mine.len() as u64, &args.progress);
+    let progress = Progress::new(mine.len() as u64, &args.progress, job.timings);
     let (mut rendered, mut skipped, mut failed) = (0usize, 0usize, 0usize);
     for input in &mine {
         let png = outdir.join(format!("{}.png", stem(input)?));
@@ -174,11 +159,10 @@ pub(crate) fn run(args: &BatchArgs) -> Result<()> {
         }
         let start = Instant::now();
         let one = || -> Result<()> {
-            let mut scene = crate::load_input(input, load)?;
-            let framed = zline::view::is_framed(&scene);
-            crate::set_up(&mut scene, common)?;
-            crate::apply_camera(&mut scene, common, framed, 0.0);
-            let (image, _) = pool.install(|| render(&scene, &options));
+            let (mut scene, framed) = (job.load)(input)?;
+            (job.aim)(&mut scene, framed, 0.0);
+            let options = &job.options;
+            let (image, _) = job.pool.install(|| render(&scene, options));
             zline::save_png(&image, &png).with_context(|| format!("{}: cannot write PNG", png.display()))
         };
         match std::panic::catch_unwind(AssertUnwindSafe(one)) {
@@ -188,7 +172,7 @@ pub(crate) fn run(args: &BatchArgs) -> Result<()> {
             }
             Ok(Err(e)) => {
                 failed += 1;
-                let why = crate::one_line(&e);
+                let why = (job.describe)(&e);
                 let name = input.display().to_string();
                 // Loader errors often start with the file's name already.
                 let line = if why.starts_with(&name) { why } else { format!("{name}: {why}") };

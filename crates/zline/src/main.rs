@@ -23,6 +23,7 @@ use zline::scene::{
 use zline::shading::Filter;
 
 mod batch;
+mod job;
 mod progress;
 mod terrain;
 mod turntable;
@@ -92,11 +93,21 @@ enum Command {
     /// Render a model turning a full circle about its up axis: an animated
     /// GIF (.gif), an animated PNG (.png) or numbered PNGs in a folder.
     #[command(mut_arg("output", turntable::output_arg))]
-    Turntable(turntable::TurntableArgs),
+    Turntable {
+        #[command(flatten)]
+        turntable: turntable::TurntableArgs,
+        #[command(flatten)]
+        common: Common,
+    },
     /// Render many models or scene files to OUTDIR/<stem>.png, skipping
     /// those already there; `--shard I/N` splits the work among machines.
     #[command(mut_arg("output", batch::output_arg))]
-    Batch(batch::BatchArgs),
+    Batch {
+        #[command(flatten)]
+        batch: batch::BatchArgs,
+        #[command(flatten)]
+        common: Common,
+    },
 }
 
 #[derive(Args)]
@@ -481,8 +492,14 @@ fn run(cli: Cli) -> Result<()> {
         Command::Terrain { heights, terrain, common } => {
             (Some(heights), BuiltIn::Demo, false, common, Some(terrain))
         }
-        Command::Turntable(args) => return turntable::run(&args),
-        Command::Batch(args) => return batch::run(&args),
+        Command::Turntable { turntable, common } => {
+            let allow_outside = turntable.allow_paths_outside;
+            return turntable::run(&turntable, &job(&common, allow_outside)?);
+        }
+        Command::Batch { batch, common } => {
+            let allow_outside = batch.allow_paths_outside;
+            return batch::run(&batch, &job(&common, allow_outside)?);
+        }
     };
     // Everything that can be checked without the scene is checked before
     // loading it: a bad output path or thread count fails at once.
@@ -546,6 +563,33 @@ fn run(cli: Cli) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The common options as `turntable` and `batch` take them, checked as
+/// `render` checks them before loading anything.
+fn job(common: &Common, allow_outside: bool) -> Result<job::Job<'_>> {
+    let threads = thread_count(common.threads)?;
+    if let (Some((w, h)), Some(n)) = (common.size, common.ssaa) {
+        check_samples(w, h, n)?;
+    }
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = threads {
+        pool = pool.num_threads(n);
+    }
+    Ok(job::Job {
+        output: common.output.clone(),
+        timings: common.timings,
+        options: RenderOptions { tile_size: common.tile_size },
+        pool: pool.build().context("cannot start the worker threads")?,
+        load: Box::new(move |input| {
+            let mut scene = load_input(input, LoadOptions { allow_outside })?;
+            let framed = zline::view::is_framed(&scene);
+            set_up(&mut scene, common)?;
+            Ok((scene, framed))
+        }),
+        aim: Box::new(|scene, framed, turn| apply_camera(scene, common, framed, turn)),
+        describe: one_line,
+    })
 }
 
 /// The flags other than the camera's applied to a loaded scene, as

@@ -28,8 +28,9 @@ pub(crate) struct Progress {
 }
 
 impl Progress {
-    /// A bar for `len` steps.
-    pub(crate) fn new(len: u64, args: &ProgressArgs) -> Progress {
+    /// A bar for `len` steps; `timings` (the common `--timings`) asks for
+    /// the per-file lines as `--verbose` does.
+    pub(crate) fn new(len: u64, args: &ProgressArgs, timings: bool) -> Progress {
         let bar = if args.quiet || !std::io::stderr().is_terminal() {
             ProgressBar::hidden()
         } else {
@@ -42,7 +43,7 @@ impl Progress {
             bar.enable_steady_tick(Duration::from_millis(250));
             bar
         };
-        Progress { bar, quiet: args.quiet, verbose: args.verbose }
+        Progress { bar, quiet: args.quiet, verbose: args.verbose || (timings && !args.quiet) }
     }
 
     /// The name shown beside the bar.

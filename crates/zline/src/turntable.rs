@@ -16,11 +16,10 @@ use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
-use zline::io::LoadOptions;
-use zline::pipeline::{render, Image, RenderOptions};
+use zline::pipeline::{render, Image};
 
+use crate::job::Job;
 use crate::progress::{Progress, ProgressArgs};
-use crate::Common;
 
 /// The most frames in a turn.
 const MAX_FRAMES: u32 = 3600;
@@ -47,11 +46,9 @@ pub(crate) struct TurntableArgs {
     fps: u16,
     /// As for `render`: read files the input names outside its folder.
     #[arg(long)]
-    allow_paths_outside: bool,
+    pub(crate) allow_paths_outside: bool,
     #[command(flatten)]
     progress: ProgressArgs,
-    #[command(flatten)]
-    common: Common,
 }
 
 /// `-o` for `zline turntable`.
@@ -97,9 +94,8 @@ impl Target {
 }
 
 /// `zline turntable`.
-pub(crate) fn run(args: &TurntableArgs) -> Result<()> {
-    let common = &args.common;
-    let out = &common.output;
+pub(crate) fn run(args: &TurntableArgs, job: &Job) -> Result<()> {
+    let out = &job.output;
     let target = Target::of(out)?;
     let n = args.frames;
     let frames = args.frame_range.clone().unwrap_or(0..n);
@@ -111,30 +107,19 @@ pub(crate) fn run(args: &TurntableArgs) -> Result<()> {
             .with_context(|| format!("{}: cannot create the folder", out.display()))?,
         Target::Gif | Target::Apng => check_folder(out)?,
     }
-    let threads = crate::thread_count(common.threads)?;
-    if let (Some((w, h)), Some(s)) = (common.size, common.ssaa) {
-        crate::check_samples(w, h, s)?;
-    }
     let started = Instant::now();
-    let mut scene = crate::load_input(&args.input, LoadOptions { allow_outside: args.allow_paths_outside })?;
-    let framed = zline::view::is_framed(&scene);
-    crate::set_up(&mut scene, common)?;
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(n) = threads {
-        pool = pool.num_threads(n);
-    }
-    let pool = pool.build().context("cannot start the worker threads")?;
-    let options = RenderOptions { tile_size: common.tile_size };
-    let progress = Progress::new(u64::from(frames.end - frames.start), &args.progress);
+    let (scene, framed) = (job.load)(&args.input)?;
+    let progress = Progress::new(u64::from(frames.end - frames.start), &args.progress, job.timings);
     let (width, height) = (scene.settings.width, scene.settings.height);
     let each_frame = |add: &mut dyn FnMut(u32, &Image) -> Result<()>| -> Result<()> {
         for k in frames.clone() {
             progress.show(&format!("frame {k}"));
             let mut frame = scene.clone();
             let turn = (360.0 * f64::from(k) / f64::from(n)) as f32;
-            crate::apply_camera(&mut frame, common, framed, turn);
+            (job.aim)(&mut frame, framed, turn);
             let start = Instant::now();
-            let (image, _) = pool.install(|| render(&frame, &options));
+            let options = &job.options;
+            let (image, _) = job.pool.install(|| render(&frame, options));
             add(k, &image)?;
             progress.done(&format!("frame {k} (azimuth +{turn}°)"), start.elapsed());
         }
