@@ -212,3 +212,28 @@ fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     };
     write().map_err(|e| anyhow!("{}: cannot write: {e}", path.display()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_ranges_are_a_to_b_with_a_below_b() {
+        assert_eq!(parse_range("0..36"), Ok(0..36));
+        assert_eq!(parse_range(" 5 .. 7 "), Ok(5..7));
+        for bad in ["3..3", "4..2", "..5", "1..", "1-5", "a..b", "-1..2", ""] {
+            assert!(parse_range(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn the_output_name_chooses_the_format() {
+        assert!(matches!(Target::of(Path::new("a.gif")), Ok(Target::Gif)));
+        assert!(matches!(Target::of(Path::new("a.GIF")), Ok(Target::Gif)));
+        assert!(matches!(Target::of(Path::new("a.png")), Ok(Target::Apng)));
+        assert!(matches!(Target::of(Path::new("frames/")), Ok(Target::Folder)));
+        assert!(matches!(Target::of(Path::new(".")), Ok(Target::Folder)));
+        assert!(Target::of(Path::new("a.jpg")).is_err());
+        assert!(Target::of(Path::new("no-extension")).is_err());
+    }
+}

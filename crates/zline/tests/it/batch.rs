@@ -39,6 +39,8 @@ fn two_shards_give_the_unsharded_batch_and_a_rerun_skips_what_exists() {
     let (whole, sharded) = (dir.path().join("whole"), dir.path().join("sharded"));
     let o = |p: &Path| p.to_str().unwrap().to_string();
     let stderr = check_ok(&batch(&["-o", &o(&whole)]));
+    // stderr is a pipe here: no progress bar, no escape codes.
+    assert!(!stderr.contains('\x1b') && !stderr.contains('\r'), "{stderr:?}");
     assert!(stderr.contains("3 rendered, 0 skipped (already there), 0 failed, of 3 inputs"), "{stderr}");
     let first = check_ok(&batch(&["-o", &o(&sharded), "--shard", "1/2"]));
     assert!(first.contains("2 rendered") && first.contains("of 2 inputs of shard 1/2 (3 in all)"), "{first}");

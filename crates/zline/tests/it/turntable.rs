@@ -66,10 +66,23 @@ fn a_gif_an_apng_and_a_folder_hold_the_same_four_frames() {
     // The animated PNG: the same pixels exactly.
     turntable(&d.join("turn.png"), &["--frames", "4", "--fps", "10"]);
     let apng = image::codecs::png::PngDecoder::new(open_file(&d.join("turn.png"))).unwrap().apng().unwrap();
-    assert_eq!(frames(apng), folder);
+    let apng = apng.into_frames().collect_frames().unwrap();
+    assert!(apng.iter().all(|f| f.delay().numer_denom_ms() == (100, 1)), "--fps 10: 100 ms a frame");
+    let apng: Vec<image::RgbImage> =
+        apng.into_iter().map(|f| image::DynamicImage::ImageRgba8(f.into_buffer()).to_rgb8()).collect();
+    assert_eq!(apng, folder);
     // The GIF: four frames of the size, each within the palette's error of
     // the PNG frame (256 colours a frame).
     turntable(&d.join("turn.gif"), &["--frames", "4"]);
+    // Looping forever (the NETSCAPE2.0 extension with a count of 0), 12
+    // frames a second stored as 8/100 s.
+    let bytes = std::fs::read(d.join("turn.gif")).unwrap();
+    let netscape = bytes.windows(11).position(|w| w == b"NETSCAPE2.0").expect("a loop extension");
+    assert_eq!(bytes[netscape + 11..netscape + 15], [3, 1, 0, 0], "loop count 0: forever");
+    let decoded = image::codecs::gif::GifDecoder::new(open_file(&d.join("turn.gif"))).unwrap();
+    let delays: Vec<(u32, u32)> =
+        decoded.into_frames().map(|f| f.unwrap().delay().numer_denom_ms()).collect();
+    assert_eq!(delays, [(80, 1); 4]);
     let gif = frames(image::codecs::gif::GifDecoder::new(open_file(&d.join("turn.gif"))).unwrap());
     assert_eq!(gif.len(), 4);
     for (k, (g, p)) in gif.iter().zip(&folder).enumerate() {
