@@ -22,7 +22,11 @@ use zline::scene::{
 };
 use zline::shading::Filter;
 
+mod batch;
+mod job;
+mod progress;
 mod terrain;
+mod turntable;
 
 /// The smallest `--shadow-map-size`, as the scene file's.
 const MIN_SHADOW_MAP_SIZE: u32 = 16;
@@ -87,6 +91,24 @@ enum Command {
         heights: PathBuf,
         #[command(flatten)]
         terrain: terrain::TerrainArgs,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// Render a model turning a full circle about its up axis: an animated
+    /// GIF (.gif), an animated PNG (.png) or numbered PNGs in a folder.
+    #[command(mut_arg("output", turntable::output_arg))]
+    Turntable {
+        #[command(flatten)]
+        turntable: turntable::TurntableArgs,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// Render many models or scene files to OUTDIR/<stem>.png, skipping
+    /// those already there; `--shard I/N` splits the work among machines.
+    #[command(mut_arg("output", batch::output_arg))]
+    Batch {
+        #[command(flatten)]
+        batch: batch::BatchArgs,
         #[command(flatten)]
         common: Common,
     },
@@ -474,6 +496,14 @@ fn run(cli: Cli) -> Result<()> {
         Command::Terrain { heights, terrain, common } => {
             (Some(heights), BuiltIn::Demo, false, common, Some(terrain))
         }
+        Command::Turntable { turntable, common } => {
+            let allow_outside = turntable.allow_paths_outside;
+            return turntable::run(&turntable, &job(&common, allow_outside)?);
+        }
+        Command::Batch { batch, common } => {
+            let allow_outside = batch.allow_paths_outside;
+            return batch::run(&batch, &job(&common, allow_outside)?);
+        }
     };
     // Everything that can be checked without the scene is checked before
     // loading it: a bad output path or thread count fails at once.
@@ -492,24 +522,8 @@ fn run(cli: Cli) -> Result<()> {
     // Judged before the size changes: a camera that is zline's framing of a
     // model is framed again for the final image's shape.
     let framed = input.is_some() && zline::view::is_framed(&scene);
-    if common.no_normal_maps {
-        for object in &mut scene.objects {
-            if object.mesh.normal_map.is_some() {
-                object.mesh =
-                    std::sync::Arc::new(zline::scene::Mesh { normal_map: None, ..(*object.mesh).clone() });
-            }
-        }
-    }
-    if let Some(file) = &common.bump {
-        if zline::io::apply_bump_map(&mut scene, file, common.bump_scale)? == 0 {
-            eprintln!("warning: --bump: no mesh has texture coordinates; nothing is bump-mapped");
-        }
-    }
-    apply_overrides(&mut scene.settings, &common);
-    apply_camera(&mut scene, &common, framed);
-    apply_fog(&mut scene, &common);
-    apply_shadows(&mut scene, &common);
-    check_samples(scene.settings.width, scene.settings.height, scene.settings.ssaa)?;
+    set_up(&mut scene, &common)?;
+    apply_camera(&mut scene, &common, framed, 0.0);
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         pool = pool.num_threads(n);
@@ -552,6 +566,57 @@ fn run(cli: Cli) -> Result<()> {
             std::fs::metadata(&common.output).map_or(0, |m| m.len())
         );
     }
+    Ok(())
+}
+
+/// The common options as `turntable` and `batch` take them, checked as
+/// `render` checks them before loading anything.
+fn job(common: &Common, allow_outside: bool) -> Result<job::Job<'_>> {
+    let threads = thread_count(common.threads)?;
+    if let (Some((w, h)), Some(n)) = (common.size, common.ssaa) {
+        check_samples(w, h, n)?;
+    }
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = threads {
+        pool = pool.num_threads(n);
+    }
+    Ok(job::Job {
+        output: common.output.clone(),
+        timings: common.timings,
+        options: RenderOptions { tile_size: common.tile_size },
+        pool: pool.build().context("cannot start the worker threads")?,
+        load: Box::new(move |input| {
+            let mut scene = load_input(input, LoadOptions { allow_outside })?;
+            let framed = zline::view::is_framed(&scene);
+            set_up(&mut scene, common)?;
+            Ok((scene, framed))
+        }),
+        aim: Box::new(|scene, framed, turn| apply_camera(scene, common, framed, turn)),
+        describe: one_line,
+    })
+}
+
+/// The flags other than the camera's applied to a loaded scene, as
+/// `render` does: normal maps, `--bump`, the settings, fog and shadows;
+/// then the sample budget checked.
+fn set_up(scene: &mut Scene, common: &Common) -> Result<()> {
+    if common.no_normal_maps {
+        for object in &mut scene.objects {
+            if object.mesh.normal_map.is_some() {
+                object.mesh =
+                    std::sync::Arc::new(zline::scene::Mesh { normal_map: None, ..(*object.mesh).clone() });
+            }
+        }
+    }
+    if let Some(file) = &common.bump {
+        if zline::io::apply_bump_map(scene, file, common.bump_scale)? == 0 {
+            eprintln!("warning: --bump: no mesh has texture coordinates; nothing is bump-mapped");
+        }
+    }
+    apply_overrides(&mut scene.settings, common);
+    apply_fog(scene, common);
+    apply_shadows(scene, common);
+    check_samples(scene.settings.width, scene.settings.height, scene.settings.ssaa)?;
     Ok(())
 }
 
@@ -708,14 +773,15 @@ fn load_input(input: &Path, options: LoadOptions) -> Result<Scene> {
 }
 
 /// The camera flags and `--background`; a framed model is framed again
-/// for the final aspect ratio first.
-fn apply_camera(scene: &mut Scene, common: &Common, framed: bool) {
+/// for the final aspect ratio first. `turn` adds degrees to `--azimuth`
+/// (a turntable's frames).
+fn apply_camera(scene: &mut Scene, common: &Common, framed: bool, turn: f32) {
     let aspect = zline::view::aspect_of(scene);
     if framed {
         scene.camera = zline::io::model_camera(&scene.objects, aspect);
     }
     let change = zline::view::ViewChange {
-        azimuth: common.azimuth,
+        azimuth: if turn == 0.0 { common.azimuth } else { Some(common.azimuth.unwrap_or(0.0) + turn) },
         elevation: common.elevation,
         distance: common.distance,
         zoom: common.zoom,

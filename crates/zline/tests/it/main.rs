@@ -3,12 +3,14 @@
 #[cfg(unix)]
 mod bad_corpus;
 mod bad_input;
+mod batch;
 mod camera;
 mod cli;
 mod formats;
 mod hard_cases;
 mod hostile;
 mod terrain;
+mod turntable;
 mod visibility;
 
 use std::path::Path;
