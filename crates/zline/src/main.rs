@@ -116,8 +116,8 @@ enum Command {
 
 #[derive(Args)]
 struct Common {
-    /// Output PNG file (the extension must be .png). Written to a
-    /// temporary file in the same folder, then renamed over OUT.png: a failed
+    /// Output image: .png, or .jpg/.jpeg for JPEG at quality 90. Written to
+    /// a temporary file in the same folder, then renamed over OUT: a failed
     /// write leaves an existing file as it was.
     #[arg(short, long, value_name = "OUT.png")]
     output: PathBuf,
@@ -535,8 +535,8 @@ fn run(cli: Cli) -> Result<()> {
     let (image, stats) = pool.install(|| render(&scene, &options));
     let elapsed = start.elapsed();
     let saving = Instant::now();
-    zline::save_png(&image, &common.output)
-        .with_context(|| format!("{}: cannot write PNG", common.output.display()))?;
+    zline::save_image(&image, &common.output)
+        .with_context(|| format!("{}: cannot write the image", common.output.display()))?;
     let saved = saving.elapsed();
     let count = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     eprintln!(

@@ -99,3 +99,28 @@ fn info_on_a_missing_file_is_a_clean_error() {
     let out = zline(&["info", "no/such/model.ply"]);
     crate::check_clean_error(&out, &["no/such/model.ply"]);
 }
+
+/// `-o out.jpg` writes a JPEG of the same picture as the PNG (lossy: the
+/// mean difference stays under 3 steps); another extension is refused
+/// before rendering.
+#[test]
+fn the_output_format_follows_the_extension() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = repo().join("assets/obj/spot/spot.obj");
+    let (png, jpg) = (dir.path().join("spot.png"), dir.path().join("spot.JPG"));
+    for out in [&png, &jpg] {
+        let o = zline(&["render", model.to_str().unwrap(), "-o", out.to_str().unwrap(), "--size", "96x72"]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    assert_eq!(image::ImageFormat::from_path(&jpg).unwrap(), image::ImageFormat::Jpeg);
+    let bytes = std::fs::read(&jpg).unwrap();
+    assert_eq!(&bytes[..3], &[0xFF, 0xD8, 0xFF], "a JPEG file");
+    let a = image::open(&png).unwrap().to_rgb8();
+    let b = image::load_from_memory(&bytes).unwrap().to_rgb8();
+    assert_eq!(a.dimensions(), b.dimensions());
+    let total: u64 = a.as_raw().iter().zip(b.as_raw()).map(|(x, y)| u64::from(x.abs_diff(*y))).sum();
+    let mean = total as f64 / a.as_raw().len() as f64;
+    assert!(mean < 3.0, "JPEG differs from the PNG by {mean} steps on average");
+    let out = zline(&["render", model.to_str().unwrap(), "-o", dir.path().join("x.bmp").to_str().unwrap()]);
+    crate::check_clean_error(&out, &["x.bmp", ".png, .jpg or .jpeg"]);
+}
