@@ -101,30 +101,52 @@ fn save_as(image: &pipeline::Image, path: &Path, format: ImageFormat) -> Result<
     use image::codecs::jpeg::JpegEncoder;
     use image::codecs::png::{CompressionType, FilterType, PngEncoder};
     use image::ImageEncoder;
-    let path = &through_links(path);
-    let mut temp = temporary_beside(path).map_err(image::ImageError::IoError)?;
-    let mut out = std::io::BufWriter::new(temp.as_file_mut());
     let rgb = image.to_rgb();
     let (w, h, rgb8) = (image.width, image.height, image::ExtendedColorType::Rgb8);
-    match format {
-        ImageFormat::Png => {
-            PngEncoder::new_with_quality(&mut out, CompressionType::Fast, FilterType::Adaptive)
-                .write_image(&rgb, w, h, rgb8)?
-        }
-        ImageFormat::Jpeg => {
-            JpegEncoder::new_with_quality(&mut out, JPEG_QUALITY).write_image(&rgb, w, h, rgb8)?
-        }
-    }
-    out.flush().map_err(image::ImageError::IoError)?;
+    // The encoder's own error, kept apart from the file's I/O errors.
+    let mut encoding = Ok(());
+    let written = write_atomically(path, |out| {
+        encoding = match format {
+            ImageFormat::Png => {
+                PngEncoder::new_with_quality(&mut *out, CompressionType::Fast, FilterType::Adaptive)
+                    .write_image(&rgb, w, h, rgb8)
+            }
+            ImageFormat::Jpeg => {
+                JpegEncoder::new_with_quality(&mut *out, JPEG_QUALITY).write_image(&rgb, w, h, rgb8)
+            }
+        };
+        Ok(())
+    });
+    encoding?;
+    written.map_err(image::ImageError::IoError)
+}
+
+/// Writes a file atomically: `write` fills a temporary file in `path`'s
+/// folder (through a buffer), which is flushed to disk, given the old
+/// file's permissions when there was one, and renamed over `path` (a
+/// symbolic link there is followed). A failed write leaves an existing
+/// file as it was and removes the temporary file.
+pub fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let path = &through_links(path);
+    let mut temp = temporary_beside(path)?;
+    let mut out = std::io::BufWriter::new(temp.as_file_mut());
+    write(&mut out)?;
+    out.flush()?;
     drop(out);
-    let finish = |temp: &tempfile::NamedTempFile| -> std::io::Result<()> {
-        if let Ok(old) = std::fs::metadata(path) {
-            temp.as_file().set_permissions(old.permissions())?;
-        }
-        temp.as_file().sync_all()
-    };
-    finish(&temp).map_err(image::ImageError::IoError)?;
-    temp.persist(path).map(drop).map_err(|e| image::ImageError::IoError(e.error))
+    if let Ok(old) = std::fs::metadata(path) {
+        temp.as_file().set_permissions(old.permissions())?;
+    }
+    temp.as_file().sync_all()?;
+    temp.persist(path).map(drop).map_err(|e| e.error)
+}
+
+/// Checks that `path`'s folder exists and takes a new file (a temporary
+/// file is created and removed there).
+pub fn check_writable(path: &Path) -> std::io::Result<()> {
+    temporary_beside(&through_links(path)).map(drop)
 }
 
 /// `path` with symbolic links at its end followed (at most 40, as Linux

@@ -9,7 +9,6 @@
 //! follows the model's silhouette, so a long model comes a little closer
 //! when seen end-on; `--distance` fixes the eye's distance instead.
 
-use std::io::Write;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -179,38 +178,13 @@ pub(crate) fn run(args: &TurntableArgs, job: &Job) -> Result<()> {
 
 /// The folder `out` is written in exists and takes a new file.
 fn check_folder(out: &Path) -> Result<()> {
-    temporary_beside(out).map(drop).with_context(|| format!("{}: cannot write there", out.display()))
+    zline::check_writable(out).with_context(|| format!("{}: cannot write there", out.display()))
 }
 
-/// A temporary file in `path`'s folder, removed when dropped unless
-/// persisted; mode 0666 less the umask, as `File::create` makes.
-fn temporary_beside(path: &Path) -> std::io::Result<tempfile::NamedTempFile> {
-    let folder = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let name = path.file_name().map_or_else(|| "zline".into(), |n| n.to_string_lossy());
-    let prefix = format!(".{name}.");
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(&prefix).suffix(".tmp");
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    builder.tempfile_in(folder)
-}
-
-/// `bytes` written to a temporary file beside `path`, flushed to disk and
-/// renamed over `path`: a failed write leaves an existing file as it was.
+/// `bytes` written atomically over `path` ([`zline::write_atomically`]).
 fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    let write = || -> std::io::Result<()> {
-        let mut temp = temporary_beside(path)?;
-        temp.write_all(bytes)?;
-        temp.as_file().sync_all()?;
-        temp.persist(path).map(drop).map_err(|e| e.error)
-    };
-    write().map_err(|e| anyhow!("{}: cannot write: {e}", path.display()))
+    zline::write_atomically(path, |out| out.write_all(bytes))
+        .map_err(|e| anyhow!("{}: cannot write: {e}", path.display()))
 }
 
 #[cfg(test)]
