@@ -1,13 +1,21 @@
 //! The `zline` command line: render a model or scene file, the demo, or a
 //! terrain from elevation data (`terrain`).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
 mod cli {
+    pub(crate) mod load;
+    pub(crate) mod parse;
     pub(crate) mod visibility;
 }
+
+use cli::load::{info, load_input};
+use cli::parse::{
+    parse_angle, parse_color, parse_direction, parse_fog, parse_fov, parse_positive, parse_size,
+    parse_tolerance,
+};
 
 use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -17,8 +25,8 @@ use zline::pipeline::RenderStats;
 use zline::pipeline::{render, RenderOptions};
 use zline::scene::{
     DepthMode, Fog, FogCoordinate, FogMode, GouraudClamp, Interpolation, LightingSides, RenderSettings,
-    Scene, ShadingMode, ShadowMode, MAX_IMAGE_SIDE, MAX_SAMPLES, MAX_SHADOW_MAP_SIZE, MAX_THREADS,
-    MAX_TILE_SIZE, MIN_TILE_SIZE,
+    Scene, ShadingMode, ShadowMode, MAX_SAMPLES, MAX_SHADOW_MAP_SIZE, MAX_THREADS, MAX_TILE_SIZE,
+    MIN_TILE_SIZE,
 };
 use zline::shading::Filter;
 
@@ -345,85 +353,6 @@ enum Interp {
     Linear,
 }
 
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("expected WxH, e.g. 800x600, got '{s}'"))?;
-    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|n| (1..=MAX_IMAGE_SIDE).contains(n));
-    match (parse(w), parse(h)) {
-        (Some(w), Some(h)) => Ok((w, h)),
-        _ => Err(format!("width and height must be whole numbers in 1..={MAX_IMAGE_SIDE}, got '{s}'")),
-    }
-}
-
-fn parse_tolerance(s: &str) -> Result<f32, String> {
-    s.trim()
-        .parse::<f32>()
-        .ok()
-        .filter(|t| (0.0..=zline::scene::MAX_ADAPTIVE_TOLERANCE).contains(t))
-        .ok_or_else(|| format!("expected a tolerance in 8-bit steps, 0 to 255, got '{s}'"))
-}
-
-fn parse_fog(s: &str) -> Result<FogMode, String> {
-    let parts: Vec<&str> = s.split(':').collect();
-    let num = |v: &str| {
-        v.trim()
-            .parse::<f32>()
-            .ok()
-            .filter(|x| x.is_finite() && *x >= 0.0)
-            .ok_or_else(|| format!("'{v}' in --fog '{s}' is not a finite, non-negative number"))
-    };
-    match parts.as_slice() {
-        ["linear", start, end] => {
-            let (start, end) = (num(start)?, num(end)?);
-            if end < start {
-                return Err(format!("linear fog needs end ≥ start, got '{s}'"));
-            }
-            Ok(FogMode::Linear { start, end })
-        }
-        ["exp", d] => Ok(FogMode::Exponential { density: num(d)? }),
-        ["exp2", d] => Ok(FogMode::SquaredExponential { density: num(d)? }),
-        _ => Err(format!("expected linear:START:END, exp:DENSITY or exp2:DENSITY, got '{s}'")),
-    }
-}
-
-fn parse_color(s: &str) -> Result<Vec3, String> {
-    let c: Vec<f32> = s.split(',').filter_map(|v| v.trim().parse().ok()).collect();
-    match c.as_slice() {
-        [r, g, b] if c.iter().all(|v| (0.0..=1.0).contains(v)) => Ok(Vec3::new(*r, *g, *b)),
-        _ => Err(format!("expected R,G,B with each in [0, 1], got '{s}'")),
-    }
-}
-
-fn parse_angle(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f32>() {
-        Ok(v) if v.is_finite() => Ok(v),
-        _ => Err(format!("expected an angle in degrees, got '{s}'")),
-    }
-}
-
-fn parse_positive(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f32>() {
-        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        _ => Err(format!("expected a number > 0, got '{s}'")),
-    }
-}
-
-fn parse_fov(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f32>() {
-        Ok(v) if (1.0..=179.0).contains(&v) => Ok(v),
-        _ => Err(format!("expected degrees in 1..=179, got '{s}'")),
-    }
-}
-
-fn parse_direction(s: &str) -> Result<Vec3, String> {
-    let c: Vec<f32> = s.split(',').filter_map(|v| v.trim().parse().ok()).collect();
-    match c.as_slice() {
-        [x, y, z] if c.iter().all(|v| v.is_finite()) && c.iter().any(|v| *v != 0.0) => {
-            Ok(Vec3::new(*x, *y, *z))
-        }
-        _ => Err(format!("expected X,Y,Z, finite and not all zero, got '{s}'")),
-    }
-}
-
 fn main() -> ExitCode {
     ExitCode::from(exit_code(|| run(Cli::parse())))
 }
@@ -700,76 +629,6 @@ fn short(v: Vec3) -> String {
     let num =
         |x: f32| if x == 0.0 || (1e-3..1e6).contains(&x.abs()) { format!("{x}") } else { format!("{x:e}") };
     format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
-}
-
-/// `zline info`: the input described on stdout.
-fn info(input: &Path, json: bool, options: LoadOptions) -> Result<()> {
-    let ext = input.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    let settings = RenderSettings::default();
-    let (format, scene, own_lights, own_camera, warnings) = match ext.as_deref() {
-        Some("obj") => {
-            let (meshes, warnings) = zline::io::load_obj_with_options(input, options)?;
-            ("OBJ", zline::io::scene_for_model(meshes, settings), false, false, warnings)
-        }
-        Some(e @ ("gltf" | "glb")) => {
-            let (gltf, warnings) = zline::io::load_gltf_with_options(input, options)?;
-            let (lights, camera) = (!gltf.lights.is_empty(), gltf.camera.is_some());
-            let format = if e == "glb" { "GLB" } else { "glTF" };
-            (format, zline::io::scene_for_gltf(gltf, settings), lights, camera, warnings)
-        }
-        Some("stl") => {
-            ("STL", zline::io::scene_for_model(zline::io::load_stl(input)?, settings), false, false, vec![])
-        }
-        Some("ply") => {
-            ("PLY", zline::io::scene_for_model(zline::io::load_ply(input)?, settings), false, false, vec![])
-        }
-        // A scene file's own warnings (its models') go to stderr as it loads.
-        Some("toml") => {
-            ("scene file", zline::io::load_scene_with_options(input, options)?, true, true, vec![])
-        }
-        _ => bail!(
-            "{}: unsupported input; expected an .obj, .gltf, .glb, .stl or .ply model or a .toml scene file",
-            input.display()
-        ),
-    };
-    let info = zline::info::ModelInfo::of_scene(
-        &input.display().to_string(),
-        format,
-        &scene,
-        own_lights,
-        own_camera,
-        warnings,
-    );
-    if json {
-        println!("{}", serde_json::to_string_pretty(&info)?);
-    } else {
-        print!("{}", info.text());
-    }
-    Ok(())
-}
-
-fn load_input(input: &Path, options: LoadOptions) -> Result<Scene> {
-    let ext = input.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    let warn = |warnings: Vec<String>| warnings.iter().for_each(|w| eprintln!("warning: {w}"));
-    Ok(match ext.as_deref() {
-        Some("obj") => {
-            let (meshes, warnings) = zline::io::load_obj_with_options(input, options)?;
-            warn(warnings);
-            zline::io::scene_for_model(meshes, RenderSettings::default())
-        }
-        Some("gltf" | "glb") => {
-            let (gltf, warnings) = zline::io::load_gltf_with_options(input, options)?;
-            warn(warnings);
-            zline::io::scene_for_gltf(gltf, RenderSettings::default())
-        }
-        Some("stl") => zline::io::scene_for_model(zline::io::load_stl(input)?, RenderSettings::default()),
-        Some("ply") => zline::io::scene_for_model(zline::io::load_ply(input)?, RenderSettings::default()),
-        Some("toml") => zline::io::load_scene_with_options(input, options)?,
-        _ => bail!(
-            "{}: unsupported input; expected an .obj, .gltf, .glb, .stl or .ply model or a .toml scene file",
-            input.display()
-        ),
-    })
 }
 
 /// The camera flags and `--background`; a framed model is framed again
