@@ -16,7 +16,8 @@
 //! model or glTF file), `scene_file` (TOML scenes; the format is documented
 //! on [`load_scene`], and `examples/scene.toml` shows every key), `heightfield` (elevation files: greyscale PNG and ESRI ASCII grids → a
 //! `HeightField`), `error`
-//! (the error type), `files` (reading within the size limits and resolving
+//! (the error type), `stream` (an input read from standard input: its
+//! format told from its bytes), `files` (reading within the size limits and resolving
 //! referenced files inside the folder of the file that names them; see
 //! [`LoadOptions`]). The limits are constants of zline-scene
 //! (`zline_scene::MAX_TRIANGLES` and the others).
@@ -33,6 +34,7 @@ mod obj;
 mod ply;
 mod scene_file;
 mod stl;
+mod stream;
 mod texture_file;
 
 pub use bump::apply_bump_map;
@@ -52,3 +54,4 @@ pub use obj::{load_obj, load_obj_with_options, load_obj_with_warnings};
 pub use ply::load_ply;
 pub use scene_file::{load_scene, load_scene_with_options};
 pub use stl::load_stl;
+pub use stream::{load_bytes, read_stream, InputFormat, LoadedInput, STDIN_NAME};

@@ -130,7 +130,7 @@ impl PropertyAccess for Entry {
 }
 
 /// Parses PLY bytes read from `path` (which names the file in messages).
-fn parse_ply(path: &Path, bytes: &[u8]) -> Result<Vec<Mesh>, SceneError> {
+pub(crate) fn parse_ply(path: &Path, bytes: &[u8]) -> Result<Vec<Mesh>, SceneError> {
     let error = |message: String| SceneError::File { path: path.to_path_buf(), message };
     let mut reader = Cursor::new(bytes);
     let parser = Parser::<Entry>::new();

@@ -40,8 +40,20 @@ fn is_ascii(bytes: &[u8]) -> bool {
         })
 }
 
+/// True when `bytes` are ASCII STL or a binary STL whose size matches its
+/// triangle count (what [`crate::InputFormat::sniff`] takes as STL).
+pub(crate) fn looks_like_stl(bytes: &[u8]) -> bool {
+    if is_ascii(bytes) {
+        return true;
+    }
+    bytes.len() >= 84 && {
+        let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64;
+        84 + 50 * count == bytes.len() as u64
+    }
+}
+
 /// Parses STL bytes read from `path` (which names the file in messages).
-fn parse_stl(path: &Path, bytes: &[u8]) -> Result<Vec<Mesh>, SceneError> {
+pub(crate) fn parse_stl(path: &Path, bytes: &[u8]) -> Result<Vec<Mesh>, SceneError> {
     let error = |message: String| SceneError::File { path: path.to_path_buf(), message };
     if !is_ascii(bytes) {
         if bytes.len() < 84 {

@@ -57,7 +57,9 @@ enum Command {
     Render {
         /// An `.obj`, `.gltf`, `.glb`, `.stl` or `.ply` model (framed automatically unless a
         /// glTF file brings its own camera; a key and a fill light unless it
-        /// brings lights) or a `.toml` scene file.
+        /// brings lights) or a `.toml` scene file; `-` reads standard input
+        /// (the format told from its bytes, files it names looked up in the
+        /// current folder).
         input: PathBuf,
         /// Read the files the input names (mtllib, map_Kd, glTF URIs, a
         /// scene's models) even outside the folder of the file naming them;
@@ -81,7 +83,7 @@ enum Command {
     /// materials, textures, lights, camera and warnings.
     Info {
         /// An `.obj`, `.gltf`, `.glb`, `.stl` or `.ply` model or a `.toml`
-        /// scene file.
+        /// scene file; `-` reads standard input.
         input: PathBuf,
         /// Print JSON (one object) for scripts instead of text.
         #[arg(long)]

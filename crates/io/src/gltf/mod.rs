@@ -179,6 +179,16 @@ pub fn load_gltf_with_options(
     options: LoadOptions,
 ) -> Result<(GltfScene, Vec<String>), SceneError> {
     let bytes = read_limited(path, FileKind::Model).map_err(|e| e.into_error(path))?;
+    parse_gltf(path, bytes, options)
+}
+
+/// Loads glTF or GLB bytes read from `path` (which names the file in
+/// messages and locates the files it refers to).
+pub(crate) fn parse_gltf(
+    path: &Path,
+    bytes: Vec<u8>,
+    options: LoadOptions,
+) -> Result<(GltfScene, Vec<String>), SceneError> {
     let (document, blob) = document::parse(path, &bytes)
         .map_err(|message| SceneError::File { path: path.to_path_buf(), message })?;
     drop(bytes);

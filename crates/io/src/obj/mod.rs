@@ -111,7 +111,11 @@ pub fn load_obj_with_options(
 
 /// Loads OBJ text read from `path` (which names the file in messages and
 /// locates MTL files).
-fn parse_obj(path: &Path, text: &str, options: LoadOptions) -> Result<(Vec<Mesh>, Vec<String>), SceneError> {
+pub(crate) fn parse_obj(
+    path: &Path,
+    text: &str,
+    options: LoadOptions,
+) -> Result<(Vec<Mesh>, Vec<String>), SceneError> {
     let (pieces, before) = check_obj_text(path, text)?;
     let warnings = RefCell::new(Vec::new());
     // The MTL file each material came from, in the order libraries are

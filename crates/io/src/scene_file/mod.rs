@@ -162,8 +162,14 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
 /// [`load_scene`] with options (files outside the scene's folder).
 pub fn load_scene_with_options(path: &Path, options: LoadOptions) -> Result<Scene, SceneError> {
     let text = read_text(path, FileKind::Text).map_err(|e| e.into_error(path))?;
-    let file: SceneFile = toml::from_str(&text).map_err(|e| toml_error(path, &text, &e))?;
-    let check = Checker { path, text: &text };
+    parse_scene(path, &text, options)
+}
+
+/// Loads scene-file text read from `path` (which names the file in
+/// messages and locates the models it names).
+pub(crate) fn parse_scene(path: &Path, text: &str, options: LoadOptions) -> Result<Scene, SceneError> {
+    let file: SceneFile = toml::from_str(text).map_err(|e| toml_error(path, text, &e))?;
+    let check = Checker { path, text };
     let (models, textures) = (ModelCache::default(), Default::default());
     Builder { check, models, options, primitive_triangles: 0, textures }.scene(file)
 }

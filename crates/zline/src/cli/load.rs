@@ -23,41 +23,72 @@ pub(crate) struct Loaded {
     pub(crate) warnings: Vec<String>,
 }
 
-/// Loads `input` by its extension.
+/// Loads `input` by its extension, or standard input for `-` (the format
+/// told from the bytes; files it names are looked up in the current
+/// folder).
 pub(crate) fn load(input: &Path, options: LoadOptions) -> Result<Loaded> {
-    let ext = input.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    use zline::io::{InputFormat, LoadedInput};
+    let (format, (loaded, warnings)) = if input == Path::new("-") {
+        let name = Path::new(zline::io::STDIN_NAME);
+        let bytes = zline::io::read_stream(std::io::stdin().lock(), name)?;
+        let Some(format) = InputFormat::sniff(&bytes) else {
+            bail!(
+                "{}: could not tell the format of the input; expected an OBJ, glTF, GLB, STL or PLY model or a TOML scene file",
+                name.display()
+            );
+        };
+        (format, zline::io::load_bytes(format, name, bytes, options)?)
+    } else {
+        let Some(format) = InputFormat::from_extension(input) else {
+            bail!(
+                "{}: unsupported input; expected an .obj, .gltf, .glb, .stl or .ply model, a .toml scene file, or - for standard input",
+                input.display()
+            );
+        };
+        (format, load_file(format, input, options)?)
+    };
     let settings = RenderSettings::default();
-    let model =
-        |scene, format, warnings| Loaded { scene, format, own_lights: false, own_camera: false, warnings };
-    Ok(match ext.as_deref() {
-        Some("obj") => {
-            let (meshes, warnings) = zline::io::load_obj_with_options(input, options)?;
-            model(zline::io::scene_for_model(meshes, settings), "OBJ", warnings)
-        }
-        Some(e @ ("gltf" | "glb")) => {
-            let (gltf, warnings) = zline::io::load_gltf_with_options(input, options)?;
-            let (own_lights, own_camera) = (!gltf.lights.is_empty(), gltf.camera.is_some());
-            let format = if e == "glb" { "GLB" } else { "glTF" };
-            let scene = zline::io::scene_for_gltf(gltf, settings);
-            Loaded { scene, format, own_lights, own_camera, warnings }
-        }
-        Some("stl") => {
-            model(zline::io::scene_for_model(zline::io::load_stl(input)?, settings), "STL", vec![])
-        }
-        Some("ply") => {
-            model(zline::io::scene_for_model(zline::io::load_ply(input)?, settings), "PLY", vec![])
-        }
-        Some("toml") => Loaded {
-            scene: zline::io::load_scene_with_options(input, options)?,
-            format: "scene file",
-            own_lights: true,
-            own_camera: true,
-            warnings: vec![],
+    let name = format.name();
+    Ok(match loaded {
+        LoadedInput::Model(meshes) => Loaded {
+            scene: zline::io::scene_for_model(meshes, settings),
+            format: name,
+            own_lights: false,
+            own_camera: false,
+            warnings,
         },
-        _ => bail!(
-            "{}: unsupported input; expected an .obj, .gltf, .glb, .stl or .ply model or a .toml scene file",
-            input.display()
-        ),
+        LoadedInput::Gltf(gltf) => {
+            let (own_lights, own_camera) = (!gltf.lights.is_empty(), gltf.camera.is_some());
+            let scene = zline::io::scene_for_gltf(gltf, settings);
+            Loaded { scene, format: name, own_lights, own_camera, warnings }
+        }
+        LoadedInput::Scene(scene) => {
+            Loaded { scene, format: name, own_lights: true, own_camera: true, warnings }
+        }
+    })
+}
+
+/// The file `input` in `format`, with its loader's warnings.
+fn load_file(
+    format: zline::io::InputFormat,
+    input: &Path,
+    options: LoadOptions,
+) -> Result<(zline::io::LoadedInput, Vec<String>)> {
+    use zline::io::{InputFormat, LoadedInput};
+    Ok(match format {
+        InputFormat::Obj => {
+            let (meshes, warnings) = zline::io::load_obj_with_options(input, options)?;
+            (LoadedInput::Model(meshes), warnings)
+        }
+        InputFormat::Gltf | InputFormat::Glb => {
+            let (gltf, warnings) = zline::io::load_gltf_with_options(input, options)?;
+            (LoadedInput::Gltf(gltf), warnings)
+        }
+        InputFormat::Stl => (LoadedInput::Model(zline::io::load_stl(input)?), vec![]),
+        InputFormat::Ply => (LoadedInput::Model(zline::io::load_ply(input)?), vec![]),
+        InputFormat::Scene => {
+            (LoadedInput::Scene(zline::io::load_scene_with_options(input, options)?), vec![])
+        }
     })
 }
 
@@ -73,7 +104,8 @@ pub(crate) fn load_input(input: &Path, options: LoadOptions) -> Result<Scene> {
 /// `zline info`: the input described on stdout, as text or JSON.
 pub(crate) fn info(input: &Path, json: bool, options: LoadOptions) -> Result<()> {
     let Loaded { scene, format, own_lights, own_camera, warnings } = load(input, options)?;
-    let name = input.display().to_string();
+    let name =
+        if input == Path::new("-") { zline::io::STDIN_NAME.to_owned() } else { input.display().to_string() };
     let info = zline::info::ModelInfo::of_scene(&name, format, &scene, own_lights, own_camera, warnings);
     if json {
         println!("{}", serde_json::to_string_pretty(&info)?);

@@ -124,3 +124,66 @@ fn the_output_format_follows_the_extension() {
     let out = zline(&["render", model.to_str().unwrap(), "-o", dir.path().join("x.bmp").to_str().unwrap()]);
     crate::check_clean_error(&out, &["x.bmp", ".png, .jpg or .jpeg"]);
 }
+
+/// Runs `zline ARGS` with `stdin` as its standard input, in folder `dir`.
+fn zline_with_stdin(args: &[&str], stdin: &[u8], dir: &std::path::Path) -> std::process::Output {
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_zline"))
+        .args(args)
+        .current_dir(dir)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // A loader that fails early may close its input before reading all of it.
+    let _ = child.stdin.take().unwrap().write_all(stdin);
+    child.wait_with_output().unwrap()
+}
+
+/// `-` reads the model from standard input, whatever its format, and the
+/// image is byte for byte the one rendered from the file.
+#[test]
+fn standard_input_renders_as_the_file_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let ply = repo().join("assets/ply/bunny_lowres.ply");
+    let stl = dir.path().join("bunny.stl");
+    write_stl(&stl, &zline::io::load_ply(&ply).unwrap()[0]);
+    let glb = repo().join("assets/gltf/Box/glTF-Binary/Box.glb");
+    let spot = repo().join("assets/obj/spot/spot.obj");
+    for input in [&ply, &stl, &glb, &spot] {
+        let (from_file, from_stdin) = (dir.path().join("file.png"), dir.path().join("stdin.png"));
+        let size = ["--size", "64x48"];
+        let out = zline(
+            &[&["render", input.to_str().unwrap(), "-o", from_file.to_str().unwrap()], &size[..]].concat(),
+        );
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        // Files the input names are looked up in the current folder: the model's.
+        let folder = input.parent().unwrap();
+        let args = [&["render", "-", "-o", from_stdin.to_str().unwrap()], &size[..]].concat();
+        let out = zline_with_stdin(&args, &std::fs::read(input).unwrap(), folder);
+        assert!(out.status.success(), "{}: {}", input.display(), String::from_utf8_lossy(&out.stderr));
+        assert_eq!(
+            std::fs::read(&from_file).unwrap(),
+            std::fs::read(&from_stdin).unwrap(),
+            "{}: stdin and file renders differ",
+            input.display()
+        );
+    }
+    let out = zline_with_stdin(&["info", "-"], &std::fs::read(&ply).unwrap(), dir.path());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && text.contains("<stdin> (PLY)") && text.contains("6598"), "{text}");
+}
+
+#[test]
+fn unreadable_standard_input_is_a_clean_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("x.png");
+    for (stdin, why) in [(&b""[..], "empty input"), (b"hello there\n", "could not tell the format")] {
+        let out = zline_with_stdin(&["render", "-", "-o", png.to_str().unwrap()], stdin, dir.path());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(err.contains("<stdin>") && err.contains(why) && !err.contains("panicked"), "{err}");
+    }
+    assert!(!png.exists());
+}
