@@ -12,6 +12,7 @@ mod chart;
 mod contact;
 mod docs;
 mod modules;
+mod ray_batch;
 mod regress;
 mod report;
 mod report_shadows;
@@ -164,6 +165,18 @@ enum Task {
         #[arg(long, default_value_t = 5)]
         frames: usize,
     },
+    /// The Ray recipe (docs/ray_batch.py) on a local Ray cluster, one
+    /// worker killed mid-shard and retried, checked byte for byte against
+    /// a one-machine `zline batch` of the same models; skipped without Ray
+    /// (`pip install ray`).
+    RayBatch {
+        /// Ray tasks, one `zline batch --shard I/N` each.
+        #[arg(long, default_value_t = 3)]
+        shards: u32,
+        /// Image size, WxH.
+        #[arg(long, default_value = "320x240")]
+        size: String,
+    },
     /// The module import graph of every crate (crates/*/src, xtask/src):
     /// module, edge and cycle counts; fails if a module imports one that
     /// imports it back.
@@ -200,6 +213,7 @@ fn main() -> Result<()> {
             })
         }
         Task::Modules { verbose } => modules::run(verbose),
+        Task::RayBatch { shards, size } => ray_batch::run(shards, &size),
         Task::TerrainAsset { out } => terrain::write_assets(&out),
         Task::TerrainBench { size, terrain_error, frames } => terrain::bench(size, terrain_error, frames),
     }
