@@ -65,10 +65,17 @@ pub(crate) fn output_arg(arg: clap::Arg) -> clap::Arg {
 /// Loads the input as `render` does and opens the window (or writes the
 /// first frame).
 pub(crate) fn run(args: &ViewArgs, job: &Job<'_>) -> Result<()> {
-    let check = |path: &PathBuf| zline::check_output(path).map_err(|e| anyhow!("{}: {e}", path.display()));
     match &args.save_first_frame {
-        Some(path) => check(path)?,
-        None => check(&job.output)?,
+        Some(path) => zline::check_output(path).map_err(|e| anyhow!("{}: {e}", path.display()))?,
+        // A folder that takes no file only matters when S is pressed: a
+        // warning now, an error line then (the window stays open).
+        None => match zline::check_output(&job.output) {
+            Err(e) if e.kind() == std::io::ErrorKind::InvalidInput => {
+                return Err(anyhow!("{}: {e}", job.output.display()))
+            }
+            Err(e) => eprintln!("warning: {}: {e}; S will not save screenshots there", job.output.display()),
+            Ok(()) => {}
+        },
     }
     let (mut scene, framed) = (job.load)(&args.input)?;
     (job.aim)(&mut scene, framed, 0.0);
@@ -91,6 +98,7 @@ pub(crate) fn run(args: &ViewArgs, job: &Job<'_>) -> Result<()> {
         screenshot: job.output.clone(),
         exit_after_frames: args.exit_after_frames,
         render: job.options,
+        timings: job.timings,
     };
     zline::viewer::window::run(&mut state, &options, &job.pool)
 }

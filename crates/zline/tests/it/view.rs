@@ -296,3 +296,17 @@ fn under_xvfb_the_window_shows_the_frame() {
     // the rest is the frame exactly.
     assert!(capture.matching > 0.8, "only {:.1} % of the screen is the frame", 100.0 * capture.matching);
 }
+
+#[test]
+fn bad_view_arguments_are_clean_errors() {
+    let spot = repo().join("assets/obj/spot/spot.obj");
+    let spot = spot.to_str().unwrap();
+    let out = zline(&["view", spot, "-o", "shots.gif"]);
+    crate::check_clean_error(&out, &["shots.gif", ".png"]);
+    let out = zline(&["view", spot, "--save-first-frame", "/nonexistent-folder/x.png"]);
+    crate::check_clean_error(&out, &["/nonexistent-folder/x.png", "does not exist"]);
+    let out = zline(&["view", "model.xyz", "--save-first-frame", "/tmp/x.png"]);
+    crate::check_clean_error(&out, &["model.xyz", "unsupported input"]);
+    let out = zline(&["view", spot, "--exit-after-frames", "0"]);
+    assert_eq!(out.status.code(), Some(2), "clap refuses 0 frames");
+}
