@@ -125,7 +125,11 @@ enum Command {
     /// drawn on the CPU as `render` draws it, the same flags setting the
     /// first view (--size is the window's). Needs an X display (X11 or
     /// XWayland).
-    #[command(mut_arg("output", view_command::output_arg), after_help = view_command::KEYS)]
+    #[command(
+        mut_arg("output", view_command::output_arg),
+        mut_arg("timings", view_command::timings_arg),
+        after_help = view_command::KEYS
+    )]
     View {
         #[command(flatten)]
         view: view_command::ViewArgs,

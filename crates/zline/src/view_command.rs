@@ -62,6 +62,11 @@ pub(crate) fn output_arg(arg: clap::Arg) -> clap::Arg {
     )
 }
 
+/// `--timings` of `zline view`: a line per frame.
+pub(crate) fn timings_arg(arg: clap::Arg) -> clap::Arg {
+    arg.help("Print a line per frame drawn: preview or full, its size and its time in ms")
+}
+
 /// Loads the input as `render` does and opens the window (or writes the
 /// first frame).
 pub(crate) fn run(args: &ViewArgs, job: &Job<'_>) -> Result<()> {

@@ -91,8 +91,9 @@ pub fn run(state: &mut ViewerState, options: &ViewOptions, pool: &rayon::ThreadP
     let mut mouse: Option<(f32, f32)> = None;
     let mut last_time: Option<Duration> = None;
     while window.is_open() && !state.quit() {
-        input(&window, state, &mut mouse, &presses);
+        // The clock first: input events are stamped with it.
         state.handle(Event::Tick(start.elapsed()));
+        input(&window, state, &mut mouse, &presses);
         if state.take_screenshot() {
             // A failed save is reported; the window stays.
             match screenshot(state, options, pool, &mut frames.renderer) {
