@@ -19,6 +19,7 @@ mod report_shadows;
 mod terrain;
 mod timing;
 mod versus;
+mod view_screenshot;
 
 /// Developer tasks for zline.
 #[derive(Parser)]
@@ -185,6 +186,24 @@ enum Task {
         #[arg(long)]
         verbose: bool,
     },
+    /// A real screenshot of `zline view`: the viewer on a private Xvfb
+    /// (started here; skipped with a message when Xvfb is not installed),
+    /// the picture read from the X server's framebuffer and checked
+    /// against zline's own render of the frame.
+    ViewScreenshot {
+        /// Where the PNG goes (relative to the workspace).
+        #[arg(long, default_value = "docs/images/view.png")]
+        out: PathBuf,
+        /// The window size, WxH.
+        #[arg(long, default_value = "640x480", value_parser = contact::parse_cell)]
+        size: (u32, u32),
+        /// The model or scene file (relative to the workspace).
+        #[arg(default_value = "assets/obj/spot/spot.obj")]
+        model: PathBuf,
+        /// More `zline view` flags, after `--` (e.g. -- --ssaa 2).
+        #[arg(last = true)]
+        flags: Vec<String>,
+    },
 }
 
 fn main() -> Result<()> {
@@ -214,6 +233,7 @@ fn main() -> Result<()> {
         }
         Task::Modules { verbose } => modules::run(verbose),
         Task::RayBatch { shards, size } => ray_batch::run(shards, &size),
+        Task::ViewScreenshot { out, size, model, flags } => view_screenshot::run(&out, &model, size, &flags),
         Task::TerrainAsset { out } => terrain::write_assets(&out),
         Task::TerrainBench { size, terrain_error, frames } => terrain::bench(size, terrain_error, frames),
     }

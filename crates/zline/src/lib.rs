@@ -16,6 +16,7 @@ use std::path::Path;
 
 pub mod info;
 pub mod view;
+pub mod viewer;
 
 pub use zline_io as io;
 pub use zline_pipeline as pipeline;

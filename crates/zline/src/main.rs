@@ -35,6 +35,7 @@ mod job;
 mod progress;
 mod terrain;
 mod turntable;
+mod view_command;
 
 /// The smallest `--shadow-map-size`, as the scene file's.
 const MIN_SHADOW_MAP_SIZE: u32 = 16;
@@ -119,6 +120,21 @@ enum Command {
     Batch {
         #[command(flatten)]
         batch: batch::BatchArgs,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// Open a window on a model or scene file and turn it with the mouse:
+    /// drawn on the CPU as `render` draws it, the same flags setting the
+    /// first view (--size is the window's). Needs an X display (X11 or
+    /// XWayland).
+    #[command(
+        mut_arg("output", view_command::output_arg),
+        mut_arg("timings", view_command::timings_arg),
+        after_help = view_command::KEYS
+    )]
+    View {
+        #[command(flatten)]
+        view: view_command::ViewArgs,
         #[command(flatten)]
         common: Common,
     },
@@ -434,6 +450,10 @@ fn run(cli: Cli) -> Result<()> {
         Command::Batch { batch, common } => {
             let allow_outside = batch.allow_paths_outside;
             return batch::run(&batch, &job(&common, allow_outside)?);
+        }
+        Command::View { view, common } => {
+            let allow_outside = view.allow_paths_outside;
+            return view_command::run(&view, &job(&common, allow_outside)?);
         }
     };
     // Everything that can be checked without the scene is checked before

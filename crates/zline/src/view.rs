@@ -119,8 +119,10 @@ fn orbit(back: Vec3, up: Vec3, azimuth: f32, elevation: f32) -> Vec3 {
     (flat * angle.cos() + up * angle.sin()) * length
 }
 
-/// Near and far around the scene's bounding sphere from the camera's eye.
-fn hug(camera: &mut Camera, scene: &Scene) {
+/// Near and far around the scene's bounding sphere from the camera's eye
+/// (the rule of the module documentation; `zline view` applies it after a
+/// pan).
+pub fn hug(camera: &mut Camera, scene: &Scene) {
     let mut min = Vec3::splat(f32::INFINITY);
     let mut max = Vec3::splat(f32::NEG_INFINITY);
     for o in &scene.objects {

@@ -11,6 +11,7 @@ mod hard_cases;
 mod hostile;
 mod terrain;
 mod turntable;
+mod view;
 mod visibility;
 
 use std::path::Path;

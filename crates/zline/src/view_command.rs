@@ -1,0 +1,109 @@
+//! `zline view`: the command line of the interactive window
+//! (`zline::viewer`). The input is loaded and set up by the same closures
+//! as `turntable` and `batch` (`job::Job`), so the first frame is the image
+//! `zline render` draws with the same flags.
+
+use std::path::PathBuf;
+
+use anyhow::{anyhow, Context, Result};
+use clap::Args;
+use zline::viewer::state::ViewerState;
+use zline::viewer::window::ViewOptions;
+
+use crate::job::Job;
+
+/// The keys and mouse, after `zline view --help`.
+pub(crate) const KEYS: &str = "\
+Mouse:
+  left drag               orbit about the target
+  right or middle drag    pan (also shift + left drag)
+  wheel                   zoom
+Keys:
+  1, 2, 3   flat, Gouraud, Phong shading
+  T         textures on/off
+  F         fog on/off (a scene without fog gets one fitted to its size)
+  W         wireframe: none, all, hidden removed, hidden dashed
+  M         shadows: none, planar (scenes with shadow planes), map
+  + / -     supersampling of the still frame up/down (1..8)
+  R         reset the camera
+  H         hide/show the frame time
+  S         screenshot: the full frame to -o with a number (zline-view-1.png, ...)
+  Esc, Q    quit
+While the camera moves, frames are drawn at a lower resolution to keep
+about 30 frames a second; the full frame follows 150 ms after the input
+stops. Nothing is drawn while nothing changes.";
+
+/// `zline view`'s own options (the look flags are `render`'s).
+#[derive(Args)]
+pub(crate) struct ViewArgs {
+    /// An `.obj`, `.gltf`, `.glb`, `.stl` or `.ply` model or a `.toml`
+    /// scene file.
+    input: PathBuf,
+    /// As for `render`: read files the input names outside its folder.
+    #[arg(long)]
+    pub(crate) allow_paths_outside: bool,
+    /// Close the window after N frames were shown (the last frame is shown
+    /// again about every 10 ms while nothing changes): for scripts and
+    /// tests.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    exit_after_frames: Option<u64>,
+    /// Write the first frame the window would show (the full frame, no
+    /// text over it) to FILE and exit without opening a window: the image
+    /// `zline render` draws with the same flags.
+    #[arg(long, value_name = "FILE")]
+    save_first_frame: Option<PathBuf>,
+}
+
+/// `-o` of `zline view`: where S saves screenshots.
+pub(crate) fn output_arg(arg: clap::Arg) -> clap::Arg {
+    arg.required(false).default_value("zline-view.png").value_name("SHOT.png").help(
+        "Where S saves screenshots: SHOT-1.png, SHOT-2.png, … (the first free names; .jpg for JPEG), \
+         each written atomically",
+    )
+}
+
+/// `--timings` of `zline view`: a line per frame.
+pub(crate) fn timings_arg(arg: clap::Arg) -> clap::Arg {
+    arg.help("Print a line per frame drawn: preview or full, its size and its time in ms")
+}
+
+/// Loads the input as `render` does and opens the window (or writes the
+/// first frame).
+pub(crate) fn run(args: &ViewArgs, job: &Job<'_>) -> Result<()> {
+    match &args.save_first_frame {
+        Some(path) => zline::check_output(path).map_err(|e| anyhow!("{}: {e}", path.display()))?,
+        // A folder that takes no file only matters when S is pressed: a
+        // warning now, an error line then (the window stays open).
+        None => match zline::check_output(&job.output) {
+            Err(e) if e.kind() == std::io::ErrorKind::InvalidInput => {
+                return Err(anyhow!("{}: {e}", job.output.display()))
+            }
+            Err(e) => eprintln!("warning: {}: {e}; S will not save screenshots there", job.output.display()),
+            Ok(()) => {}
+        },
+    }
+    let (mut scene, framed) = (job.load)(&args.input)?;
+    (job.aim)(&mut scene, framed, 0.0);
+    let mut state = ViewerState::new(scene);
+    if let Some(path) = &args.save_first_frame {
+        let scene = state.scene(&state.full_request());
+        let options = job.options;
+        let (image, _) = job.pool.install(|| zline::pipeline::render(&scene, &options));
+        zline::save_image(&image, path)
+            .with_context(|| format!("{}: cannot write the image", path.display()))?;
+        eprintln!("wrote {} ({}x{})", path.display(), image.width, image.height);
+        return Ok(());
+    }
+    let title = args
+        .input
+        .file_name()
+        .map_or_else(|| args.input.display().to_string(), |n| n.to_string_lossy().into());
+    let options = ViewOptions {
+        title,
+        screenshot: job.output.clone(),
+        exit_after_frames: args.exit_after_frames,
+        render: job.options,
+        timings: job.timings,
+    };
+    zline::viewer::window::run(&mut state, &options, &job.pool)
+}

@@ -1,0 +1,536 @@
+//! The viewer's state machine: what `zline view` shows, driven by input
+//! events, with no window in sight (the window is `viewer::window`).
+//!
+//! [`ViewerState`] holds the scene as the command line set it up (the
+//! *home* view), the current camera, the settings the keys switch, the
+//! window's size and the clock; [`ViewerState::handle`] takes one
+//! [`Event`], [`ViewerState::frame_to_render`] says whether a frame is due
+//! and at what resolution ([`FrameRequest`]), and [`ViewerState::scene`]
+//! gives the scene to render for it.
+//!
+//! - **Camera**: a left drag orbits about the target ([`ORBIT_DEGREES_PER_PIXEL`]),
+//!   a right or middle drag (or shift + left) pans in the view plane so the
+//!   point under the target follows the cursor, the wheel zooms by
+//!   [`ZOOM_PER_NOTCH`] a notch, clamped to [`MAX_ZOOM`]× either way from
+//!   the home view. Orbit and zoom are `crate::view::ViewChange`, the
+//!   code of `render`'s camera flags; near and far hug the scene after
+//!   every move.
+//! - **Frames only when something changed.** Each change bumps a version;
+//!   a frame is due when the version shown is older, or when the frame
+//!   shown is a preview and the input has been still for [`REFINE_AFTER`].
+//! - **Previews while moving.** During motion (a drag or wheel within
+//!   [`REFINE_AFTER`]) frames are drawn at 1/`block` of the window's
+//!   resolution without supersampling, `block` chosen so that a frame fits
+//!   [`FRAME_BUDGET`] at the cost per sample measured on the last frames;
+//!   the window scales them up nearest-neighbour. When the input stops, the
+//!   full frame follows (full resolution, the chosen supersampling).
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use glam::Vec3;
+use zline_scene::{
+    Camera, Fog, FogCoordinate, FogMode, Object, Projection, Scene, ShadingMode, ShadowMode, WireframeMode,
+    MAX_SAMPLES, MAX_SSAA,
+};
+
+use crate::view::{hug, ViewChange};
+
+/// The longest a preview frame should take.
+pub const FRAME_BUDGET: Duration = Duration::from_millis(33);
+/// How long the input must be still before the full frame is drawn.
+pub const REFINE_AFTER: Duration = Duration::from_millis(150);
+/// The coarsest preview: one rendered pixel per `MAX_BLOCK`² window pixels.
+pub const MAX_BLOCK: u32 = 8;
+/// Orbit speed of a left drag.
+pub const ORBIT_DEGREES_PER_PIXEL: f32 = 0.4;
+/// Magnification of one wheel notch towards the screen.
+pub const ZOOM_PER_NOTCH: f32 = 1.1;
+/// The zoom stops at this factor from the home view, in and out.
+pub const MAX_ZOOM: f32 = 64.0;
+/// How many of the last frames' costs the preview resolution follows.
+const COST_HISTORY: usize = 4;
+
+/// A mouse button, as the state machine sees it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Button {
+    /// Orbits (pans with shift).
+    Left,
+    /// Pans.
+    Middle,
+    /// Pans.
+    Right,
+}
+
+/// What a key does. The window maps keys to actions (`viewer::window`,
+/// listed in `zline view --help`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Action {
+    /// Shading for objects without their own: flat, Gouraud or Phong (1, 2, 3).
+    Shading(ShadingMode),
+    /// Textures on or off (T).
+    ToggleTextures,
+    /// Fog on or off (F); a scene without fog gets one fitted to its size.
+    ToggleFog,
+    /// Wireframe: none → all → hidden removed → hidden dashed → none (W).
+    CycleWireframe,
+    /// Shadows: none → planar (when the scene has shadow planes) → map → none (M).
+    CycleShadows,
+    /// One more supersampling step per pixel side (+).
+    MoreSamples,
+    /// One fewer (−).
+    FewerSamples,
+    /// The home camera back (R).
+    ResetCamera,
+    /// The frame-time text on or off (H).
+    ToggleOverlay,
+    /// Save the full frame to a PNG (S).
+    Screenshot,
+    /// Close the viewer (Esc, Q).
+    Quit,
+}
+
+/// One input to the state machine.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Event {
+    /// The mouse moved by (dx, dy) window pixels (y down) with `button`
+    /// held; `shift` says whether shift was down.
+    Drag {
+        /// The button held.
+        button: Button,
+        /// Window pixels to the right.
+        dx: f32,
+        /// Window pixels down.
+        dy: f32,
+        /// Shift held: a left drag pans.
+        shift: bool,
+    },
+    /// The wheel turned by this many notches (positive: away from the
+    /// user, zooming in).
+    Wheel(f32),
+    /// A key's action.
+    Key(Action),
+    /// The window's drawable area is now this many pixels.
+    Resize(u32, u32),
+    /// The clock: the time since the viewer started.
+    Tick(Duration),
+    /// A frame for this request was drawn in this time.
+    FrameRendered(FrameRequest, Duration),
+}
+
+/// A frame to draw.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameRequest {
+    /// Window pixels per rendered pixel along each side (1: full resolution).
+    pub block: u32,
+    /// The rendered image's width: the window's divided by `block`, rounded up.
+    pub width: u32,
+    /// The rendered image's height.
+    pub height: u32,
+    /// Supersampling of the frame.
+    pub ssaa: u32,
+    /// True for the full frame (full resolution, the chosen supersampling);
+    /// false for a preview while the camera moves.
+    pub full: bool,
+    /// The state's version the frame shows.
+    pub version: u64,
+}
+
+/// The settings the keys switch; the rest of the scene is as loaded.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Toggles {
+    /// Shading for objects without their own.
+    pub shading: ShadingMode,
+    /// Textures drawn.
+    pub textures: bool,
+    /// Fog drawn.
+    pub fog: bool,
+    /// Wireframe mode.
+    pub wireframe: WireframeMode,
+    /// Shadow method.
+    pub shadows: ShadowMode,
+    /// Supersampling of full frames.
+    pub ssaa: u32,
+}
+
+/// The viewer's state (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct ViewerState {
+    /// The scene as the command line set it up, with the home camera.
+    home: Scene,
+    /// The objects with their diffuse maps removed, made at the first T.
+    untextured: Option<Vec<Object>>,
+    /// The fog F turns on: the scene's, or one fitted to its bounds.
+    fog: Fog,
+    camera: Camera,
+    toggles: Toggles,
+    window: (u32, u32),
+    overlay: bool,
+    now: Duration,
+    /// When the camera last moved (a drag or the wheel).
+    moved_at: Option<Duration>,
+    version: u64,
+    /// The last frame drawn.
+    shown: Option<FrameRequest>,
+    /// Seconds per sample of the last frames, newest last.
+    costs: Vec<f64>,
+    screenshot: bool,
+    quit: bool,
+}
+
+impl ViewerState {
+    /// The state for `scene` as the command line set it up (size, camera,
+    /// settings); the window starts at the scene's image size.
+    pub fn new(scene: Scene) -> ViewerState {
+        let s = &scene.settings;
+        let toggles = Toggles {
+            shading: s.shading,
+            textures: true,
+            fog: scene.fog.is_some(),
+            wireframe: s.wireframe.mode,
+            shadows: scene.shadows.mode,
+            ssaa: s.ssaa.clamp(1, MAX_SSAA),
+        };
+        let fog = scene.fog.unwrap_or_else(|| fitted_fog(&scene));
+        ViewerState {
+            untextured: None,
+            fog,
+            camera: scene.camera,
+            toggles,
+            window: (s.width.max(1), s.height.max(1)),
+            overlay: true,
+            now: Duration::ZERO,
+            moved_at: None,
+            version: 0,
+            shown: None,
+            costs: Vec::new(),
+            screenshot: false,
+            quit: false,
+            home: scene,
+        }
+    }
+
+    /// Takes one event.
+    pub fn handle(&mut self, event: Event) {
+        match event {
+            Event::Drag { button, dx, dy, shift } => {
+                if dx == 0.0 && dy == 0.0 || !(dx.is_finite() && dy.is_finite()) {
+                    return;
+                }
+                match (button, shift) {
+                    (Button::Left, false) => self.orbit(dx, dy),
+                    _ => self.pan(dx, dy),
+                }
+                self.moved();
+            }
+            Event::Wheel(notches) => {
+                if notches != 0.0 && notches.is_finite() {
+                    self.zoom(ZOOM_PER_NOTCH.powf(notches));
+                    self.moved();
+                }
+            }
+            Event::Key(action) => self.act(action),
+            Event::Resize(w, h) => {
+                let size = (w.max(1), h.max(1));
+                if size != self.window {
+                    self.window = size;
+                    self.toggles.ssaa = self.toggles.ssaa.min(self.max_ssaa());
+                    self.version += 1;
+                }
+            }
+            Event::Tick(now) => self.now = self.now.max(now),
+            Event::FrameRendered(request, took) => {
+                let samples = f64::from(request.width)
+                    * f64::from(request.height)
+                    * f64::from(request.ssaa * request.ssaa);
+                if samples > 0.0 {
+                    if self.costs.len() == COST_HISTORY {
+                        self.costs.remove(0);
+                    }
+                    self.costs.push(took.as_secs_f64() / samples);
+                }
+                self.shown = Some(request);
+            }
+        }
+    }
+
+    /// The frame due now, if any: nothing changed and the full frame shown
+    /// gives `None`.
+    pub fn frame_to_render(&self) -> Option<FrameRequest> {
+        let moving = self.moving();
+        let wanted = if moving { self.preview_request() } else { self.full_request() };
+        match self.shown {
+            Some(shown) if shown.version == self.version && (shown.full || moving) => None,
+            _ => Some(wanted),
+        }
+    }
+
+    /// The full frame of the current view: full resolution, the chosen
+    /// supersampling.
+    pub fn full_request(&self) -> FrameRequest {
+        self.request(1, self.toggles.ssaa, true)
+    }
+
+    /// The scene to render for `request`: the home scene with the current
+    /// camera, the toggled settings and the request's size.
+    pub fn scene(&self, request: &FrameRequest) -> Scene {
+        let mut scene = self.home.clone();
+        scene.camera = self.camera;
+        let s = &mut scene.settings;
+        (s.width, s.height, s.ssaa) = (request.width, request.height, request.ssaa);
+        s.shading = self.toggles.shading;
+        s.wireframe.mode = self.toggles.wireframe;
+        scene.shadows.mode = self.toggles.shadows;
+        scene.fog = self.toggles.fog.then_some(self.fog);
+        if !self.toggles.textures {
+            if let Some(objects) = &self.untextured {
+                scene.objects.clone_from(objects);
+            }
+        }
+        scene
+    }
+
+    /// The current camera.
+    pub fn camera(&self) -> Camera {
+        self.camera
+    }
+
+    /// The home camera (the command line's; R brings it back).
+    pub fn home_camera(&self) -> Camera {
+        self.home.camera
+    }
+
+    /// The settings the keys switch.
+    pub fn toggles(&self) -> Toggles {
+        self.toggles
+    }
+
+    /// The window's size.
+    pub fn window(&self) -> (u32, u32) {
+        self.window
+    }
+
+    /// Whether the frame-time text is drawn.
+    pub fn overlay(&self) -> bool {
+        self.overlay
+    }
+
+    /// True once Esc or Q asked to close.
+    pub fn quit(&self) -> bool {
+        self.quit
+    }
+
+    /// True once after S: the caller saves the full frame.
+    pub fn take_screenshot(&mut self) -> bool {
+        std::mem::take(&mut self.screenshot)
+    }
+
+    /// The settings in a few words, for the overlay.
+    pub fn describe(&self) -> String {
+        let t = &self.toggles;
+        let shading = match t.shading {
+            ShadingMode::Flat => "flat",
+            ShadingMode::Gouraud => "gouraud",
+            ShadingMode::Phong => "phong",
+        };
+        let on = |b: bool| if b { "on" } else { "off" };
+        format!(
+            "{shading}  tex {}  fog {}  wire {}  shadows {}  ssaa {}",
+            on(t.textures),
+            on(t.fog),
+            t.wireframe.name(),
+            t.shadows.name(),
+            t.ssaa
+        )
+    }
+
+    fn moving(&self) -> bool {
+        self.moved_at.is_some_and(|t| self.now.saturating_sub(t) < REFINE_AFTER)
+    }
+
+    fn moved(&mut self) {
+        self.moved_at = Some(self.now);
+        self.version += 1;
+    }
+
+    fn request(&self, block: u32, ssaa: u32, full: bool) -> FrameRequest {
+        let (w, h) = self.window;
+        FrameRequest {
+            block,
+            width: w.div_ceil(block),
+            height: h.div_ceil(block),
+            ssaa,
+            full,
+            version: self.version,
+        }
+    }
+
+    /// A preview: the finest block whose frame fits the budget at the
+    /// slowest of the last frames' costs per sample.
+    fn preview_request(&self) -> FrameRequest {
+        let cost = self.costs.iter().copied().fold(0.0, f64::max);
+        let (w, h) = self.window;
+        let full = cost * f64::from(w) * f64::from(h);
+        let ratio = full / FRAME_BUDGET.as_secs_f64();
+        // Blocks of b × b pixels take 1/b² of the time.
+        let block = if ratio.is_finite() && ratio > 1.0 { ratio.sqrt().ceil() as u32 } else { 1 };
+        self.request(block.clamp(1, MAX_BLOCK), 1, false)
+    }
+
+    /// The largest supersampling the window allows within [`MAX_SAMPLES`].
+    fn max_ssaa(&self) -> u32 {
+        let pixels = u64::from(self.window.0) * u64::from(self.window.1);
+        (1..=MAX_SSAA).rev().find(|n| pixels * u64::from(n * n) <= MAX_SAMPLES).unwrap_or(1)
+    }
+
+    fn act(&mut self, action: Action) {
+        let before = (self.toggles, self.camera);
+        match action {
+            Action::Shading(mode) => self.toggles.shading = mode,
+            Action::ToggleTextures => {
+                if self.untextured.is_none() {
+                    self.untextured = Some(untextured(&self.home.objects));
+                }
+                self.toggles.textures = !self.toggles.textures;
+            }
+            Action::ToggleFog => self.toggles.fog = !self.toggles.fog,
+            Action::CycleWireframe => {
+                self.toggles.wireframe = match self.toggles.wireframe {
+                    WireframeMode::None => WireframeMode::All,
+                    WireframeMode::All => WireframeMode::HiddenRemoved,
+                    WireframeMode::HiddenRemoved => WireframeMode::HiddenDashed,
+                    WireframeMode::HiddenDashed => WireframeMode::None,
+                }
+            }
+            Action::CycleShadows => {
+                let planes = !self.home.shadows.planes.is_empty();
+                self.toggles.shadows = match self.toggles.shadows {
+                    ShadowMode::None if planes => ShadowMode::Planar,
+                    ShadowMode::None | ShadowMode::Planar => ShadowMode::Map,
+                    ShadowMode::Map => ShadowMode::None,
+                }
+            }
+            Action::MoreSamples => self.toggles.ssaa = (self.toggles.ssaa + 1).min(self.max_ssaa()),
+            Action::FewerSamples => self.toggles.ssaa = self.toggles.ssaa.saturating_sub(1).max(1),
+            Action::ResetCamera => {
+                self.camera = self.home.camera;
+                self.moved_at = None;
+            }
+            Action::ToggleOverlay => {
+                self.overlay = !self.overlay;
+                // The overlay is drawn over the frame: the frame is drawn again.
+                self.version += 1;
+            }
+            Action::Screenshot => self.screenshot = true,
+            Action::Quit => self.quit = true,
+        }
+        if (self.toggles, self.camera) != before {
+            self.version += 1;
+        }
+    }
+
+    /// The home scene with the current camera, for `ViewChange` and `hug`.
+    fn with_camera(&self) -> Scene {
+        Scene { camera: self.camera, ..self.home.clone() }
+    }
+
+    fn aspect(&self) -> f32 {
+        self.window.0 as f32 / self.window.1 as f32
+    }
+
+    fn orbit(&mut self, dx: f32, dy: f32) {
+        let change = ViewChange {
+            azimuth: Some(-dx * ORBIT_DEGREES_PER_PIXEL),
+            elevation: Some(dy * ORBIT_DEGREES_PER_PIXEL),
+            ..ViewChange::default()
+        };
+        let mut scene = self.with_camera();
+        change.apply(&mut scene, self.aspect(), false);
+        self.camera = scene.camera;
+    }
+
+    /// Moves eye and target in the view plane: the point at the target's
+    /// depth under the cursor stays under it.
+    fn pan(&mut self, dx: f32, dy: f32) {
+        let c = &mut self.camera;
+        let forward = (c.target - c.eye).normalize_or(Vec3::NEG_Z);
+        let right = forward.cross(c.up).normalize_or(Vec3::X);
+        let up = right.cross(forward);
+        let view_height = match c.projection {
+            Projection::Perspective { fovy_degrees, .. } => {
+                2.0 * (c.target - c.eye).length() * (fovy_degrees.to_radians() / 2.0).tan()
+            }
+            Projection::Orthographic { height, .. } => height,
+        };
+        let per_pixel = view_height / self.window.1 as f32;
+        let shift = (-right * dx + up * dy) * per_pixel;
+        if shift.is_finite() {
+            c.eye += shift;
+            c.target += shift;
+        }
+        let scene = self.with_camera();
+        hug(&mut self.camera, &scene);
+    }
+
+    /// Magnifies by `factor`, within [`MAX_ZOOM`] of the home view.
+    fn zoom(&mut self, factor: f32) {
+        let now = magnification(&self.camera, &self.home.camera);
+        let clamped = (now * factor).clamp(1.0 / MAX_ZOOM, MAX_ZOOM) / now;
+        if !clamped.is_finite() || clamped == 1.0 {
+            return;
+        }
+        let mut scene = self.with_camera();
+        ViewChange { zoom: Some(clamped), ..ViewChange::default() }.apply(&mut scene, self.aspect(), false);
+        self.camera = scene.camera;
+    }
+}
+
+/// How much `camera` magnifies against `home`: the ratio of their eye
+/// distances (perspective) or view heights (orthographic).
+pub fn magnification(camera: &Camera, home: &Camera) -> f32 {
+    match (camera.projection, home.projection) {
+        (Projection::Orthographic { height, .. }, Projection::Orthographic { height: home, .. }) => {
+            home / height
+        }
+        _ => (home.eye - home.target).length() / (camera.eye - camera.target).length(),
+    }
+}
+
+/// The objects with no diffuse map (their meshes copied once).
+fn untextured(objects: &[Object]) -> Vec<Object> {
+    objects
+        .iter()
+        .map(|o| {
+            let mesh = if o.mesh.diffuse_map.is_some() {
+                Arc::new(zline_scene::Mesh { diffuse_map: None, ..(*o.mesh).clone() })
+            } else {
+                o.mesh.clone()
+            };
+            Object { mesh, ..o.clone() }
+        })
+        .collect()
+}
+
+/// A linear fog in the background's colour for a scene without one: clear
+/// at the near side of the scene's bounding sphere seen from the home eye,
+/// full two radii behind its far side.
+fn fitted_fog(scene: &Scene) -> Fog {
+    let (mut min, mut max) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+    for o in &scene.objects {
+        for p in &o.mesh.positions {
+            let w = o.world_from_object.transform_point3(*p);
+            if w.is_finite() {
+                (min, max) = (min.min(w), max.max(w));
+            }
+        }
+    }
+    let (center, radius) = ((min + max) / 2.0, (max - min).length() / 2.0);
+    let d = (scene.camera.eye - center).length();
+    let (start, end) = ((d - radius).max(0.0), d + 3.0 * radius);
+    let mode = if start.is_finite() && end.is_finite() && start < end {
+        FogMode::Linear { start, end }
+    } else {
+        FogMode::Exponential { density: 0.1 }
+    };
+    Fog { mode, color: scene.background, coordinate: FogCoordinate::EyePlane }
+}

@@ -1,0 +1,354 @@
+//! The window of `zline view`: minifb on X11, with libX11 loaded when the
+//! window opens (nothing is linked at build time, and no other command
+//! touches a display). It turns mouse and keys into `viewer::state`
+//! events, renders the frames the state asks for and presents them.
+//!
+//! The loop polls input about every 10 ms and sleeps in between when no
+//! frame is due: an idle viewer renders nothing. Frames are drawn on the
+//! caller's rayon pool while the loop waits; a preview is scaled up into a
+//! window-sized buffer (`viewer::overlay`), the frame time drawn over it,
+//! and the buffer handed to the X server.
+
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+use std::time::{Duration, Instant};
+
+use anyhow::{anyhow, Context, Result};
+use minifb::{InputCallback, Key, MouseButton, MouseMode, ScaleMode, UseGPU, Window, WindowOptions};
+use zline_pipeline::{Image, RenderOptions, Renderer};
+use zline_scene::ShadingMode;
+
+use super::overlay::{draw_text, upscale};
+use super::state::{Action, Button, Event, FrameRequest, ViewerState};
+
+/// How `zline view` runs its window.
+#[derive(Clone, Debug)]
+pub struct ViewOptions {
+    /// The window title's first part (the input's name).
+    pub title: String,
+    /// S saves to this path with a number added: `view.png` gives
+    /// `view-1.png`, `view-2.png`, … (the first free name).
+    pub screenshot: PathBuf,
+    /// Close after this many frames were presented (frames are presented
+    /// again while idle when this is set), for scripts and tests.
+    pub exit_after_frames: Option<u64>,
+    /// The renderer's options.
+    pub render: RenderOptions,
+    /// Print a line per frame drawn to stderr (`--timings`): its size,
+    /// whether it is a preview, and its time.
+    pub timings: bool,
+}
+
+/// The keys and what they do, as `zline view --help` lists them.
+pub fn action_for(key: Key) -> Option<Action> {
+    Some(match key {
+        Key::Key1 | Key::NumPad1 => Action::Shading(ShadingMode::Flat),
+        Key::Key2 | Key::NumPad2 => Action::Shading(ShadingMode::Gouraud),
+        Key::Key3 | Key::NumPad3 => Action::Shading(ShadingMode::Phong),
+        Key::T => Action::ToggleTextures,
+        Key::F => Action::ToggleFog,
+        Key::W => Action::CycleWireframe,
+        Key::M => Action::CycleShadows,
+        Key::Equal | Key::NumPadPlus => Action::MoreSamples,
+        Key::Minus | Key::NumPadMinus => Action::FewerSamples,
+        Key::R => Action::ResetCamera,
+        Key::H => Action::ToggleOverlay,
+        Key::S => Action::Screenshot,
+        Key::Escape | Key::Q => Action::Quit,
+        _ => return None,
+    })
+}
+
+/// Opens the window at the state's size and runs until it is closed, Esc
+/// or Q is pressed, or `exit_after_frames` frames were presented. Fails
+/// when no window can be opened (no X display); a screenshot that cannot
+/// be written is an `error:` line on stderr, and the window stays.
+pub fn run(state: &mut ViewerState, options: &ViewOptions, pool: &rayon::ThreadPool) -> Result<()> {
+    let (w, h) = state.window();
+    let mut window = Window::new(
+        &format!("{} — zline view", options.title),
+        w as usize,
+        h as usize,
+        WindowOptions {
+            resize: true,
+            scale_mode: ScaleMode::UpperLeft,
+            use_gpu: UseGPU::Disabled,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| {
+        let display = std::env::var("DISPLAY").unwrap_or_else(|_| "unset".into());
+        anyhow!("cannot open a window (DISPLAY={display}): {e}; `zline view` needs an X server (or XWayland)")
+    })?;
+    // The loop paces itself.
+    window.set_target_fps(0);
+    let presses = Presses::default();
+    window.set_input_callback(Box::new(presses.clone()));
+    let mut frames =
+        Frames { renderer: Renderer::default(), image: Image::empty(), buffer: Vec::new(), presented: 0 };
+    let start = Instant::now();
+    let mut mouse: Option<(f32, f32)> = None;
+    let mut last_time: Option<Duration> = None;
+    while window.is_open() && !state.quit() {
+        // The clock first: input events are stamped with it.
+        state.handle(Event::Tick(start.elapsed()));
+        input(&window, state, &mut mouse, &presses);
+        if state.take_screenshot() {
+            // A failed save is reported; the window stays.
+            match screenshot(state, options, pool, &mut frames.renderer) {
+                Ok(path) => println!("saved {}", path.display()),
+                Err(e) => eprintln!("error: {e:#}"),
+            }
+        }
+        let size = window.get_size();
+        if let Some(request) = state.frame_to_render() {
+            let took = frames.render(state, &request, options, pool);
+            state.handle(Event::FrameRendered(request, took));
+            last_time = Some(took);
+            if options.timings {
+                eprintln!("{}", frame_line(&request, took));
+            }
+            frames.compose(state, &request, size, took);
+            window.set_title(&title(&options.title, took));
+            frames.present(&mut window, size)?;
+        } else if options.exit_after_frames.is_some() && last_time.is_some() {
+            // Scripts wait for frames: present the last one again.
+            std::thread::sleep(Duration::from_millis(10));
+            frames.present(&mut window, size)?;
+        } else {
+            std::thread::sleep(Duration::from_millis(10));
+            window.update();
+        }
+        if options.exit_after_frames.is_some_and(|n| frames.presented >= n) {
+            break;
+        }
+    }
+    Ok(())
+}
+
+/// The renderer's buffers from frame to frame.
+struct Frames {
+    renderer: Renderer,
+    image: Image,
+    buffer: Vec<u32>,
+    presented: u64,
+}
+
+impl Frames {
+    fn render(
+        &mut self,
+        state: &ViewerState,
+        request: &FrameRequest,
+        options: &ViewOptions,
+        pool: &rayon::ThreadPool,
+    ) -> Duration {
+        let scene = state.scene(request);
+        let t = Instant::now();
+        pool.install(|| self.renderer.render_into(&scene, &options.render, &mut self.image));
+        t.elapsed()
+    }
+
+    /// The window's pixels: the frame scaled up, the overlay over it.
+    fn compose(
+        &mut self,
+        state: &ViewerState,
+        request: &FrameRequest,
+        (w, h): (usize, usize),
+        took: Duration,
+    ) {
+        upscale(&self.image, request.block, w, h, &mut self.buffer);
+        if state.overlay() {
+            let ms = took.as_secs_f64() * 1e3;
+            let resolution = if request.block == 1 {
+                format!("{}x{}", request.width, request.height)
+            } else {
+                format!("{}x{} (1/{})", request.width, request.height, request.block)
+            };
+            let first = format!("{ms:.1} ms  {:.0} fps  {resolution}", 1e3 / ms.max(1e-3));
+            draw_text(&mut self.buffer, w, &[&first, &state.describe()]);
+        }
+    }
+
+    fn present(&mut self, window: &mut Window, (w, h): (usize, usize)) -> Result<()> {
+        if self.buffer.len() != w * h {
+            // Resized since the frame was composed: the next frame fits.
+            window.update();
+            return Ok(());
+        }
+        window
+            .update_with_buffer(&self.buffer, w, h)
+            .map_err(|e| anyhow!("cannot draw in the window: {e}"))?;
+        self.presented += 1;
+        Ok(())
+    }
+}
+
+/// A `--timings` line: `full 640x480 ssaa 2: 12.3 ms` or
+/// `preview 320x240 (1/2): 4.1 ms`.
+pub fn frame_line(request: &FrameRequest, took: Duration) -> String {
+    let ms = took.as_secs_f64() * 1e3;
+    if request.full {
+        format!("full {}x{} ssaa {}: {ms:.1} ms", request.width, request.height, request.ssaa)
+    } else {
+        format!("preview {}x{} (1/{}): {ms:.1} ms", request.width, request.height, request.block)
+    }
+}
+
+/// The window title: the input and the last frame's time.
+fn title(name: &str, took: Duration) -> String {
+    let ms = took.as_secs_f64() * 1e3;
+    format!("{name} — {ms:.1} ms ({:.0} fps) — zline view", 1e3 / ms.max(1e-3))
+}
+
+/// The keys pressed since the last poll, in order, as the X events came:
+/// a press and its release within one poll (a quick tap, or a script's)
+/// still counts, and a held key's auto-repeat does not.
+#[derive(Clone, Default)]
+struct Presses {
+    keys: Rc<RefCell<(Vec<Key>, Vec<Key>)>>,
+}
+
+impl Presses {
+    /// The presses since the last call.
+    fn take(&self) -> Vec<Key> {
+        std::mem::take(&mut self.keys.borrow_mut().0)
+    }
+}
+
+impl InputCallback for Presses {
+    fn add_char(&mut self, _: u32) {}
+
+    fn set_key_state(&mut self, key: Key, down: bool) {
+        let (pressed, held) = &mut *self.keys.borrow_mut();
+        if !down {
+            held.retain(|k| *k != key);
+        } else if !held.contains(&key) {
+            held.push(key);
+            pressed.push(key);
+        }
+    }
+}
+
+/// Mouse and keys since the last poll, as events.
+fn input(window: &Window, state: &mut ViewerState, mouse: &mut Option<(f32, f32)>, presses: &Presses) {
+    let (w, h) = window.get_size();
+    state.handle(Event::Resize(w as u32, h as u32));
+    let position = window.get_mouse_pos(MouseMode::Pass);
+    let button = if window.get_mouse_down(MouseButton::Left) {
+        Some(Button::Left)
+    } else if window.get_mouse_down(MouseButton::Right) {
+        Some(Button::Right)
+    } else if window.get_mouse_down(MouseButton::Middle) {
+        Some(Button::Middle)
+    } else {
+        None
+    };
+    let shift = window.is_key_down(Key::LeftShift) || window.is_key_down(Key::RightShift);
+    if let (Some(button), Some((x, y)), Some((x0, y0))) = (button, position, *mouse) {
+        state.handle(Event::Drag { button, dx: x - x0, dy: y - y0, shift });
+    }
+    *mouse = position;
+    if let Some((_, notches)) = window.get_scroll_wheel() {
+        state.handle(Event::Wheel(notches));
+    }
+    for key in presses.take() {
+        if let Some(action) = action_for(key) {
+            state.handle(Event::Key(action));
+        }
+    }
+}
+
+/// Renders the full frame of the current view and writes it to the first
+/// free numbered name.
+fn screenshot(
+    state: &ViewerState,
+    options: &ViewOptions,
+    pool: &rayon::ThreadPool,
+    renderer: &mut Renderer,
+) -> Result<PathBuf> {
+    let path = numbered(&options.screenshot);
+    let scene = state.scene(&state.full_request());
+    let mut image = Image::empty();
+    pool.install(|| renderer.render_into(&scene, &options.render, &mut image));
+    crate::save_image(&image, &path)
+        .with_context(|| format!("{}: cannot write the screenshot", path.display()))?;
+    Ok(path)
+}
+
+/// `base` with `-1`, `-2`, … before its extension: the first that does not
+/// exist.
+pub fn numbered(base: &Path) -> PathBuf {
+    let stem = base.file_stem().map_or_else(|| "zline-view".into(), |s| s.to_string_lossy().into_owned());
+    let ext = base.extension().map_or_else(|| "png".into(), |e| e.to_string_lossy().into_owned());
+    (1u64..)
+        .map(|n| base.with_file_name(format!("{stem}-{n}.{ext}")))
+        .find(|p| !p.exists())
+        .expect("some number is free")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_action_has_its_key() {
+        let keys = [
+            (Key::Key1, Action::Shading(ShadingMode::Flat)),
+            (Key::Key2, Action::Shading(ShadingMode::Gouraud)),
+            (Key::Key3, Action::Shading(ShadingMode::Phong)),
+            (Key::T, Action::ToggleTextures),
+            (Key::F, Action::ToggleFog),
+            (Key::W, Action::CycleWireframe),
+            (Key::M, Action::CycleShadows),
+            (Key::Equal, Action::MoreSamples),
+            (Key::NumPadPlus, Action::MoreSamples),
+            (Key::Minus, Action::FewerSamples),
+            (Key::R, Action::ResetCamera),
+            (Key::H, Action::ToggleOverlay),
+            (Key::S, Action::Screenshot),
+            (Key::Escape, Action::Quit),
+            (Key::Q, Action::Quit),
+        ];
+        for (key, action) in keys {
+            assert_eq!(action_for(key), Some(action), "{key:?}");
+        }
+        assert_eq!(action_for(Key::Space), None);
+    }
+
+    #[test]
+    fn a_quick_tap_counts_once_and_auto_repeat_not_at_all() {
+        let mut presses = Presses::default();
+        // Press and release within one poll; then a held key repeating.
+        presses.set_key_state(Key::S, true);
+        presses.set_key_state(Key::S, false);
+        presses.set_key_state(Key::W, true);
+        presses.set_key_state(Key::W, true);
+        assert_eq!(presses.take(), vec![Key::S, Key::W]);
+        presses.set_key_state(Key::W, true);
+        assert_eq!(presses.take(), vec![]);
+        presses.set_key_state(Key::W, false);
+        presses.set_key_state(Key::W, true);
+        assert_eq!(presses.take(), vec![Key::W]);
+    }
+
+    #[test]
+    fn screenshots_take_the_first_free_number() {
+        let dir = tempfile::tempdir().unwrap();
+        let base = dir.path().join("shot.png");
+        assert_eq!(numbered(&base), dir.path().join("shot-1.png"));
+        std::fs::write(dir.path().join("shot-1.png"), b"").unwrap();
+        std::fs::write(dir.path().join("shot-2.png"), b"").unwrap();
+        assert_eq!(numbered(&base), dir.path().join("shot-3.png"));
+        assert_eq!(numbered(&dir.path().join("x.jpg")), dir.path().join("x-1.jpg"));
+    }
+
+    #[test]
+    fn a_timings_line_says_preview_or_full() {
+        let request =
+            |block, full| FrameRequest { block, width: 400, height: 300, ssaa: 2, full, version: 0 };
+        let ms = Duration::from_micros(16_250);
+        assert_eq!(frame_line(&request(2, false), ms), "preview 400x300 (1/2): 16.2 ms");
+        assert_eq!(frame_line(&request(1, true), ms), "full 400x300 ssaa 2: 16.2 ms");
+    }
+}
