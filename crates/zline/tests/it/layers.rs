@@ -1,7 +1,10 @@
 //! `--transparent`, `--depth-image` and `--normal-image`: what the files
 //! hold, and the usage errors.
 
-use crate::{check_error_line, check_png, zline};
+use zline::io::load_scene;
+use zline::pipeline::{render, RenderOptions};
+
+use crate::{check_error_line, check_png, repo, zline};
 
 #[test]
 fn demo_writes_rgba_depth_and_normals() {
@@ -64,4 +67,36 @@ fn transparent_jpeg_and_non_png_layers_are_refused_before_rendering() {
     let missing = dir.path().join("no/such/n.png");
     let run = zline(&["demo", "-o", png.to_str().unwrap(), "--normal-image", missing.to_str().unwrap()]);
     check_error_line(&run, 1, &["n.png", "does not exist"]);
+}
+
+#[test]
+fn scene_files_set_a_transparent_background() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = repo().join("tests/scenes/wireframe_cube_dashed.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let file = dir.path().join("t.toml");
+    std::fs::write(&file, text.replace("[render]\n", "[render]\ntransparent_background = true\n")).unwrap();
+    let loaded = load_scene(&file).unwrap();
+    assert!(loaded.settings.transparent_background);
+    let image = render(&loaded, &RenderOptions::default()).0;
+    assert!(image.transparent);
+    assert_eq!(image.alpha(0, 0), 0);
+    // The same frame opaque: every pixel with any alpha keeps its colour
+    // where the alpha is 255 (drawn without a partial cover).
+    let opaque = render(&load_scene(&scene).unwrap(), &RenderOptions::default()).0;
+    for y in 0..image.height {
+        for x in 0..image.width {
+            if image.alpha(x, y) == 255 {
+                assert_eq!(image.pixel(x, y), opaque.pixel(x, y), "({x}, {y})");
+            }
+        }
+    }
+    std::fs::write(&file, text.replace("[render]\n", "[render]\ntransparent_background = 1\n")).unwrap();
+    let err = load_scene(&file).unwrap_err().to_string();
+    assert!(err.contains("boolean") && err.contains("t.toml") && err.contains("line 6"), "{err}");
+    // The setting with JPEG output: refused when writing, naming the reason.
+    let jpg = dir.path().join("t.jpg");
+    std::fs::write(&file, text.replace("[render]\n", "[render]\ntransparent_background = true\n")).unwrap();
+    let run = zline(&["render", file.to_str().unwrap(), "-o", jpg.to_str().unwrap()]);
+    check_error_line(&run, 1, &["t.jpg", "alpha"]);
 }
