@@ -41,6 +41,10 @@ impl TileTarget {
                 };
                 let p = |plane: &[f32x8]| empty.blend(f32x8::ZERO, load(plane, i));
                 let px = pack_straight([p(red), p(green), p(blue)], alpha);
+                if x >= self.rect.x0 && x + LANES as i32 <= self.rect.x1 {
+                    out[x as usize..x as usize + LANES].copy_from_slice(&px);
+                    continue;
+                }
                 for (k, &p) in px.iter().enumerate() {
                     let c = x + k as i32;
                     if (self.rect.x0..self.rect.x1).contains(&c) {
