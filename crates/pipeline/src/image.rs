@@ -4,8 +4,11 @@ use glam::Vec4;
 use wide::{f32x4, f32x8, CmpEq};
 
 /// An 8-bit image, rows top to bottom, one packed RGBA word per pixel
-/// (bytes R, G, B, A in memory order via `u32::to_le_bytes`; alpha always
-/// 255), so the resolve step writes whole words; the PNG writer drops alpha.
+/// (bytes R, G, B, A in memory order via `u32::to_le_bytes`), so the
+/// resolve step writes whole words. Alpha is 255 everywhere unless
+/// [`Image::transparent`] (`RenderSettings::transparent_background`): then
+/// it is each pixel's coverage and R, G, B are straight (not premultiplied)
+/// colour, 0 where alpha is 0. PNG writers keep alpha only then.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Image {
     /// Width in pixels.
@@ -14,18 +17,32 @@ pub struct Image {
     pub height: u32,
     /// Pixels, `width · height` words.
     pub pixels: Vec<u32>,
+    /// True when the alpha bytes are coverage (a transparent background);
+    /// false when they are all 255.
+    pub transparent: bool,
 }
 
 impl Image {
     /// An image with no pixels, to be filled by a renderer.
     pub fn empty() -> Image {
-        Image { width: 0, height: 0, pixels: Vec::new() }
+        Image { width: 0, height: 0, pixels: Vec::new(), transparent: false }
     }
 
     /// The colour of pixel (x, y) as RGB bytes.
     pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
         let [r, g, b, _] = self.pixels[y as usize * self.width as usize + x as usize].to_le_bytes();
         [r, g, b]
+    }
+
+    /// The alpha of pixel (x, y): 255 unless the image is
+    /// [`Image::transparent`].
+    pub fn alpha(&self, x: u32, y: u32) -> u8 {
+        self.pixels[y as usize * self.width as usize + x as usize].to_le_bytes()[3]
+    }
+
+    /// The pixels as packed RGBA bytes (4 per pixel), for encoders.
+    pub fn to_rgba(&self) -> Vec<u8> {
+        self.pixels.iter().flat_map(|p| p.to_le_bytes()).collect()
     }
 
     /// The pixels as packed RGB bytes (3 per pixel), for encoders.

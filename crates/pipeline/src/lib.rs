@@ -23,8 +23,10 @@
 pub mod adaptive;
 pub mod bin;
 pub mod clip;
+mod coverage;
 pub mod fog;
 pub mod image;
+pub mod layers;
 pub mod lines;
 mod normal_map;
 mod render;
@@ -37,4 +39,5 @@ pub mod vertex;
 pub mod volume;
 
 pub use image::Image;
+pub use layers::{render_depth, render_normals, DepthImage, DepthRange};
 pub use render::{render, RenderOptions, RenderStats, Renderer};

@@ -4,6 +4,7 @@
 //! setup per object), binning, and [`Renderer::draw_tiles`] (the tiles in
 //! parallel, each: opaque pass → fog → transparency pass → resolve).
 
+use rayon::iter::Either;
 use rayon::prelude::*;
 use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
@@ -100,6 +101,8 @@ pub struct Renderer {
     maps: Option<ShadowMaps>,
     /// The frame's lines (`RenderSettings::wireframe`).
     lines: Lines,
+    /// This frame is the normals frame (`Renderer::render_normals_into`).
+    pub(crate) normals: bool,
 }
 
 /// The frame's lights, materials and textures, indexed by the primitives.
@@ -131,10 +134,10 @@ struct BandBuffers {
 }
 
 /// What the whole frame shares: sizes, matrices, depth encoding.
-struct Frame {
+pub(crate) struct Frame {
     /// The image in pixels.
-    width: u32,
-    height: u32,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
     /// Samples per pixel along each axis (supersampling).
     n: u32,
     /// The window in samples.
@@ -192,6 +195,21 @@ impl Renderer {
     /// Renders `scene` into `image` (resized as needed) with the current
     /// rayon thread pool.
     pub fn render_into(&mut self, scene: &Scene, options: &RenderOptions, image: &mut Image) -> RenderStats {
+        self.normals = false;
+        self.render_frame(scene, options, image, None)
+    }
+
+    /// [`Self::render_into`], and when `depth` is given, each pixel's
+    /// nearest stored depth (the raw depth-buffer value, the far value
+    /// where nothing was drawn; see `crate::layers`) into it, resized to
+    /// the image.
+    pub(crate) fn render_frame(
+        &mut self,
+        scene: &Scene,
+        options: &RenderOptions,
+        image: &mut Image,
+        depth: Option<&mut Vec<f32>>,
+    ) -> RenderStats {
         let start = Instant::now();
         let frame = Frame::new(scene);
         self.prepare_tables(scene, &frame);
@@ -225,7 +243,7 @@ impl Renderer {
         stats.binning = start.elapsed();
 
         let start = Instant::now();
-        stats.fragments = self.draw_tiles(scene, &frame, &grid, image);
+        stats.fragments = self.draw_tiles(scene, &frame, &grid, (image, depth));
         stats.raster = start.elapsed();
         stats
     }
@@ -289,13 +307,20 @@ impl Renderer {
         // A surface that receives planar shadows is lit per sample, where
         // the tile's shadow mask says which lights each sample sees.
         let receives = scene.shadows.receives(index) && !scene.lights.is_empty();
-        let shading =
+        let mut shading =
             if receives { ShadingMode::Phong } else { object.shading.unwrap_or(scene.settings.shading) };
-        let (texture, blends) = match self.tables.object_textures[index] {
+        let (mut texture, blends) = match self.tables.object_textures[index] {
             Some((texture, blends)) => (Some(texture), blends),
             None => (None, false),
         };
-        let vertex_colors = if mesh.colors.is_empty() { VertexColors::Absent } else { VertexColors::Present };
+        let mut vertex_colors =
+            if mesh.colors.is_empty() { VertexColors::Absent } else { VertexColors::Present };
+        if self.normals {
+            // Normals: flat objects keep their face normal, every other is
+            // interpolated per sample; no texture, no vertex colour.
+            shading = if shading == ShadingMode::Flat { ShadingMode::Flat } else { ShadingMode::Phong };
+            (texture, vertex_colors) = (None, VertexColors::Absent);
+        }
         let vertex_lighting =
             VertexLighting::choose(shading, texture.is_some(), vertex_colors == VertexColors::Present);
         let normal_map = self.tables.object_maps[index]
@@ -322,9 +347,12 @@ impl Renderer {
             texture,
             vertex_colors,
             normal_map,
+            normals: self.normals,
         };
         let opacity = material.material.opacity;
-        let pass = if opacity < 1.0 || blends {
+        let pass = if self.normals {
+            PassKind::Opaque
+        } else if opacity < 1.0 || blends {
             PassKind::Transparent { kt: 1.0 - opacity }
         } else {
             PassKind::Opaque
@@ -383,6 +411,7 @@ impl Renderer {
                 texture: None,
                 vertex_colors: VertexColors::Absent,
                 normal_map: None,
+                normals: false,
             };
             let transforms = ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, Mat4::IDENTITY);
             let out = (&mut self.vertices, &mut self.chunks, &mut self.used);
@@ -412,11 +441,19 @@ impl Renderer {
     /// Every tile, bands of tiles in parallel: each tile clears its depth,
     /// draws its opaque bin, fogs, draws its transparent bin and resolves
     /// into the image rows it owns. Returns the samples shaded.
-    fn draw_tiles(&mut self, scene: &Scene, frame: &Frame, grid: &TileGrid, image: &mut Image) -> u64 {
+    fn draw_tiles(
+        &mut self,
+        scene: &Scene,
+        frame: &Frame,
+        grid: &TileGrid,
+        (image, depth): (&mut Image, Option<&mut Vec<f32>>),
+    ) -> u64 {
         let (width, n) = (frame.width, frame.n);
         let tile_size = grid.tile_size / n;
+        let coverage = scene.settings.transparent_background;
         image.width = width;
         image.height = frame.height;
+        image.transparent = coverage;
         image.pixels.resize(width as usize * frame.height as usize, 0);
         let band_len = width as usize * tile_size as usize;
         let threads = rayon::current_num_threads().max(1);
@@ -428,6 +465,7 @@ impl Renderer {
         let transparent = self.bins.transparent.iter().map(Vec::len).max().unwrap_or(0);
         for b in buffers {
             let mut guard = b.lock().unwrap_or_else(PoisonError::into_inner);
+            guard.target.set_coverage(coverage);
             guard.target.reserve(grid.tile_size, shadows);
             let order = &mut guard.order;
             order.reserve(transparent.saturating_sub(order.len()));
@@ -438,6 +476,7 @@ impl Renderer {
             materials: &t.materials,
             textures: &t.textures,
             maps: self.maps.as_ref(),
+            normals: self.normals,
         };
         let (bins, chunks) = (&self.bins, &self.chunks[..self.used]);
         let (vw, vh) = (frame.viewport.width, frame.viewport.height);
@@ -446,15 +485,31 @@ impl Renderer {
             DepthEncoding::Normalized => DEPTH_CLEAR,
             DepthEncoding::Reversed { .. } => DEPTH_CLEAR_REVERSED,
         };
-        let background = quantize_rgba(scene.background.extend(1.0));
+        // A transparent background is black (the colour planes then hold
+        // premultiplied colour: `crate::coverage`) with alpha 0.
+        let (background_color, background) = match coverage {
+            false => (scene.background, quantize_rgba(scene.background.extend(1.0))),
+            true => (Vec3::ZERO, 0),
+        };
+        let far_pixel = clear;
+        let depth_bands = match depth {
+            Some(d) => {
+                d.clear();
+                d.resize(image.pixels.len(), far_pixel);
+                Either::Left(d.par_chunks_mut(band_len).map(Some))
+            }
+            None => Either::Right((0..image.pixels.len().div_ceil(band_len)).into_par_iter().map(|_| None)),
+        };
+        let export_depth = matches!(depth_bands, Either::Left(_));
         let painter = scene.settings.visibility == Visibility::Painter;
         let wireframe = scene.settings.wireframe;
         let lines = wireframe.drawn().then_some(&self.lines);
         image
             .pixels
             .par_chunks_mut(band_len)
+            .zip(depth_bands)
             .enumerate()
-            .map(|(row, band)| {
+            .map(|(row, (band, mut depth_band))| {
                 // Only this thread takes its own buffers: the lock is never
                 // contended (and a poisoned one holds plain buffers).
                 let thread = rayon::current_thread_index().unwrap_or(0) % threads;
@@ -471,7 +526,7 @@ impl Renderer {
                         fill_rect(band, width as usize, pixels_of(rect, n), background);
                         continue;
                     }
-                    target.clear(rect, scene.background, clear);
+                    target.clear(rect, background_color, clear);
                     if wireframe.only && lines.is_some() {
                         // Lines alone: the surfaces only decide which lines are hidden.
                         target.depth_only_pass(chunks, opaque_primitives(chunks, opaque, transparent));
@@ -479,7 +534,7 @@ impl Renderer {
                     } else if painter {
                         target.shadow_pass(chunks, &bins.shadow[tile]);
                         shaded += target.painter_pass(chunks, transparent, &shade, fog.as_ref(), order);
-                        if lines.is_some_and(|l| l.mode.hides() && !line_bin.is_empty()) {
+                        if export_depth || lines.is_some_and(|l| l.mode.hides() && !line_bin.is_empty()) {
                             target.depth_only_pass(chunks, opaque_primitives(chunks, opaque, transparent));
                         }
                     } else {
@@ -496,10 +551,14 @@ impl Renderer {
                     if let Some(lines) = lines {
                         target.line_pass(lines, line_bin, n);
                     }
-                    if n == 1 {
-                        target.resolve(band, width as usize);
-                    } else {
-                        target.resolve_supersampled(band, width as usize, n);
+                    if let Some(depth_band) = depth_band.as_deref_mut() {
+                        target.export_depth(depth_band, width as usize, n);
+                    }
+                    match (coverage, n) {
+                        (false, 1) => target.resolve(band, width as usize),
+                        (false, _) => target.resolve_supersampled(band, width as usize, n),
+                        (true, 1) => target.resolve_coverage(band, width as usize),
+                        (true, _) => target.resolve_coverage_supersampled(band, width as usize, n),
                     }
                 }
                 shaded

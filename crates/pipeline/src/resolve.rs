@@ -80,14 +80,18 @@ impl TileTarget {
 /// [0.5, 255.5] after the clamp, where truncation is the floor.
 #[inline(always)]
 fn pack_rgba(r: f32x8, g: f32x8, b: f32x8) -> [u32; LANES] {
-    let q = |c: f32x8| {
-        let c = c.cmp_eq(c).blend(c, f32x8::ZERO);
-        (c.fast_max(f32x8::ZERO).fast_min(f32x8::ONE) * f32x8::splat(255.0) + f32x8::splat(0.5))
-            .fast_trunc_int()
-    };
+    let q = quantize_x8;
     let alpha = i32x8::splat(0xFF << 24);
     let packed = q(r) | (q(g) * i32x8::splat(1 << 8)) | (q(b) * i32x8::splat(1 << 16)) | alpha;
     bytemuck::cast(packed)
+}
+
+/// SPEC §10 for one channel of eight pixels: clamped (NaN to 0), scaled,
+/// rounded half up, as an integer in 0..=255 per lane.
+#[inline(always)]
+pub(crate) fn quantize_x8(c: f32x8) -> i32x8 {
+    let c = c.cmp_eq(c).blend(c, f32x8::ZERO);
+    (c.fast_max(f32x8::ZERO).fast_min(f32x8::ONE) * f32x8::splat(255.0) + f32x8::splat(0.5)).fast_trunc_int()
 }
 
 #[cfg(test)]

@@ -280,6 +280,12 @@ pub struct RenderSettings {
     pub visibility: crate::visibility::Visibility,
     /// Mesh edges drawn as lines.
     pub wireframe: crate::visibility::Wireframe,
+    /// A transparent background: the frame's background is (0, 0, 0) with
+    /// alpha 0, every pixel's alpha is its coverage (the share of its
+    /// samples drawn, with transparent surfaces counting 1 − kt), and the
+    /// image holds straight (not premultiplied) colour. Off: the scene's
+    /// background, alpha 255 everywhere.
+    pub transparent_background: bool,
 }
 
 /// Where untextured Gouraud shading clamps the lit colour to [0, 1] (SPEC
@@ -376,6 +382,7 @@ impl Default for RenderSettings {
             lighting_sides: LightingSides::TwoSided,
             visibility: crate::visibility::Visibility::ZBuffer,
             wireframe: crate::visibility::Wireframe::default(),
+            transparent_background: false,
         }
     }
 }

@@ -15,6 +15,7 @@ use std::io::{Error, ErrorKind, Write};
 use std::path::Path;
 
 pub mod info;
+pub mod layers;
 pub mod view;
 pub mod viewer;
 
@@ -24,6 +25,12 @@ pub use zline_raster as raster;
 pub use zline_scene as scene;
 pub use zline_scenes as scenes;
 pub use zline_shading as shading;
+
+/// Whether `path` names a JPEG output (`.jpg` or `.jpeg`, any case), which
+/// cannot hold a transparent image.
+pub fn is_jpeg(path: &Path) -> bool {
+    format_of(path) == Some(ImageFormat::Jpeg)
+}
 
 /// Checks, before any rendering, that an image can be written at `path`:
 /// its extension is `.png`, `.jpg` or `.jpeg` (in any case; see
@@ -53,7 +60,8 @@ pub fn check_output(path: &Path) -> std::io::Result<()> {
     })
 }
 
-/// Writes an image as an 8-bit RGB PNG, atomically: the PNG is encoded to a
+/// Writes an image as an 8-bit RGB PNG (RGBA when the image is
+/// [`transparent`](pipeline::Image::transparent)), atomically: the PNG is encoded to a
 /// temporary file in `path`'s folder, flushed to disk, and renamed over
 /// `path` only when whole. A failed or interrupted write leaves an existing
 /// file at `path` as it was (and a failed one removes the temporary file).
@@ -93,7 +101,10 @@ fn format_of(path: &Path) -> Option<ImageFormat> {
 
 /// Writes `image` as PNG or JPEG by `path`'s extension (`.png`, `.jpg`,
 /// `.jpeg`, any case; anything else is PNG), atomically as
-/// [`save_png`] does. JPEG is baseline at quality [`JPEG_QUALITY`].
+/// [`save_png`] does. JPEG is baseline at quality [`JPEG_QUALITY`]. A
+/// [`transparent`](pipeline::Image::transparent) image is written as RGBA
+/// PNG; JPEG has no alpha, so it is refused as JPEG (before any file is
+/// touched).
 pub fn save_image(image: &pipeline::Image, path: &Path) -> Result<(), image::ImageError> {
     save_as(image, path, format_of(path).unwrap_or(ImageFormat::Png))
 }
@@ -102,8 +113,15 @@ fn save_as(image: &pipeline::Image, path: &Path, format: ImageFormat) -> Result<
     use image::codecs::jpeg::JpegEncoder;
     use image::codecs::png::{CompressionType, FilterType, PngEncoder};
     use image::ImageEncoder;
-    let rgb = image.to_rgb();
-    let (w, h, rgb8) = (image.width, image.height, image::ExtendedColorType::Rgb8);
+    if image.transparent && format == ImageFormat::Jpeg {
+        let why = "JPEG has no alpha channel: write a transparent image as .png";
+        return Err(image::ImageError::IoError(Error::new(ErrorKind::InvalidInput, why)));
+    }
+    let (rgb, rgb8) = match image.transparent {
+        false => (image.to_rgb(), image::ExtendedColorType::Rgb8),
+        true => (image.to_rgba(), image::ExtendedColorType::Rgba8),
+    };
+    let (w, h) = (image.width, image.height);
     // The encoder's own error, kept apart from the file's I/O errors.
     let mut encoding = Ok(());
     let written = write_atomically(path, |out| {
@@ -120,6 +138,19 @@ fn save_as(image: &pipeline::Image, path: &Path, format: ImageFormat) -> Result<
     });
     encoding?;
     written.map_err(image::ImageError::IoError)
+}
+
+/// Writes a depth image as a 16-bit greyscale PNG
+/// ([`layers::encode_depth_png`]: nearest drawn pixel 65535, farthest 1,
+/// nothing drawn 0, the mapping in a tEXt chunk), atomically as
+/// [`save_image`] does. Returns the mapping.
+pub fn save_depth_png(
+    depth: &pipeline::DepthImage,
+    path: &Path,
+) -> std::io::Result<Option<pipeline::DepthRange>> {
+    let (png, range) = layers::encode_depth_png(depth)?;
+    write_atomically(path, |out| out.write_all(&png))?;
+    Ok(range)
 }
 
 /// Writes a file atomically: `write` fills a temporary file in `path`'s
@@ -192,7 +223,7 @@ mod tests {
     use super::*;
 
     fn image() -> pipeline::Image {
-        pipeline::Image { width: 3, height: 2, pixels: vec![0x00ff_8040; 6] }
+        pipeline::Image { width: 3, height: 2, pixels: vec![0x00ff_8040; 6], transparent: false }
     }
 
     fn names(dir: &Path) -> Vec<String> {

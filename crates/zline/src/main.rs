@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 mod cli {
+    pub(crate) mod layers;
     pub(crate) mod load;
     pub(crate) mod parse;
     pub(crate) mod visibility;
@@ -21,8 +22,8 @@ use anyhow::{anyhow, bail, Context, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
 use zline::io::LoadOptions;
+use zline::pipeline::RenderOptions;
 use zline::pipeline::RenderStats;
-use zline::pipeline::{render, RenderOptions};
 use zline::scene::{
     DepthMode, Fog, FogCoordinate, FogMode, GouraudClamp, Interpolation, LightingSides, RenderSettings,
     Scene, ShadingMode, ShadowMode, MAX_SAMPLES, MAX_SHADOW_MAP_SIZE, MAX_THREADS, MAX_TILE_SIZE,
@@ -256,6 +257,8 @@ struct Common {
     tile_size: u32,
     #[command(flatten)]
     visibility: cli::visibility::VisibilityArgs,
+    #[command(flatten)]
+    layers: cli::layers::LayerArgs,
 }
 
 /// The built-in scenes of `zline demo --scene`.
@@ -444,10 +447,12 @@ fn run(cli: Cli) -> Result<()> {
             (Some(heights), BuiltIn::Demo, false, common, Some(terrain))
         }
         Command::Turntable { turntable, common } => {
+            common.layers.refuse("turntable")?;
             let allow_outside = turntable.allow_paths_outside;
             return turntable::run(&turntable, &job(&common, allow_outside)?);
         }
         Command::Batch { batch, common } => {
+            common.layers.refuse("batch")?;
             let allow_outside = batch.allow_paths_outside;
             return batch::run(&batch, &job(&common, allow_outside)?);
         }
@@ -459,6 +464,7 @@ fn run(cli: Cli) -> Result<()> {
     // Everything that can be checked without the scene is checked before
     // loading it: a bad output path or thread count fails at once.
     zline::check_output(&common.output).map_err(|e| anyhow!("{}: {e}", common.output.display()))?;
+    common.layers.check(&common.output)?;
     let threads = thread_count(common.threads)?;
     if let (Some((w, h)), Some(n)) = (common.size, common.ssaa) {
         // Both from the flags: no need to load the scene to refuse them.
@@ -483,7 +489,7 @@ fn run(cli: Cli) -> Result<()> {
     let loaded = loading.elapsed();
     let options = RenderOptions { tile_size: common.tile_size };
     let start = Instant::now();
-    let (image, stats) = pool.install(|| render(&scene, &options));
+    let (image, stats, depth) = pool.install(|| common.layers.render(&scene, &options));
     let elapsed = start.elapsed();
     let saving = Instant::now();
     zline::save_image(&image, &common.output)
@@ -500,6 +506,7 @@ fn run(cli: Cli) -> Result<()> {
         count(stats.fragments, "sample", "samples"),
         elapsed.as_secs_f64() * 1e3
     );
+    common.layers.write(&scene, &options, &pool, depth)?;
     if let Some(why) = blank_image(&scene, &stats) {
         let name = input.as_deref().map_or_else(|| built_in.name().into(), |p| p.display().to_string());
         eprintln!("warning: {name}: the image is blank: {why}");
@@ -764,6 +771,7 @@ fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
         };
     }
     common.visibility.apply(settings);
+    common.layers.apply(settings);
 }
 
 #[cfg(test)]

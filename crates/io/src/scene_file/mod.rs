@@ -77,6 +77,7 @@ use render::{settings, shadows, RenderDef, ShadingDef};
 /// wireframe = "none"                # none (default) | all | hidden-removed | hidden-dashed: mesh edges as lines
 /// wireframe_only = false            # true: the lines alone on the background
 /// feature_angle = 30                # degrees in [0, 180]: only borders, silhouettes, sharper creases; default every edge
+/// transparent_background = false    # true: RGBA output, alpha 0 where nothing is drawn, alpha = coverage
 ///
 /// [camera]                          # omitted: the scene is framed
 /// eye = [0, 1, 5]                   # required

@@ -39,6 +39,7 @@ pub(super) struct RenderDef {
     wireframe: Option<WireframeName>,
     wireframe_only: Option<bool>,
     feature_angle: Option<S<f32>>,
+    transparent_background: Option<bool>,
 }
 
 /// A shading mode: `[render] shading` and an object's `shading`.
@@ -211,6 +212,9 @@ pub(super) fn settings(check: &Checker, render: Option<RenderDef>) -> Result<Ren
         feature_angle: &render.feature_angle,
     };
     super::visibility::apply(check, def, &mut settings)?;
+    if let Some(t) = render.transparent_background {
+        settings.transparent_background = t;
+    }
     Ok(settings)
 }
 

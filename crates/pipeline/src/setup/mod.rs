@@ -164,6 +164,9 @@ pub struct SetupContext<'a> {
     /// The object's bump or normal map, when it is drawn: Phong shading,
     /// texture coordinates and tangents, no vertex colours.
     pub normal_map: Option<NormalMapUse>,
+    /// The normals frame: flat shading's colour is the encoded face
+    /// normal (n + 1)/2, facing the viewer, instead of the lit colour.
+    pub normals: bool,
 }
 
 /// Sets up one triangle (vertices in the mesh's order) and appends 0 or more
@@ -241,6 +244,10 @@ fn flat_parts(tri: &[&ClipVertex; 3], back: bool, ctx: &SetupContext<'_>) -> Lit
     let mut normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero().as_vec3();
     if back {
         normal = -normal;
+    }
+    if ctx.normals {
+        let encoded = (normal + Vec3::ONE) * 0.5;
+        return LitParts { ambient_diffuse: encoded, specular: Vec3::ZERO };
     }
     let centroid = ((p[0] + p[1] + p[2]) / 3.0).as_vec3();
     let mut parts = ctx.lighting.shade_parts(ctx.material.0, centroid, normal, Vec3::ZERO);

@@ -291,6 +291,13 @@ fn phong_point<const N: usize, I: Interp>(a: &[f32x8; N]) -> (f32x8, Vec3x8, Vec
     (w, triple(a, phong::EYE, w), triple(a, phong::NORMAL, w).normalize_or_zero())
 }
 
+/// A unit normal as a colour: (n + 1)/2 per axis (the normals frame).
+#[inline(always)]
+pub(super) fn encode_normal(n: Vec3x8) -> Vec3x8 {
+    let (half, one) = (f32x8::splat(0.5), f32x8::ONE);
+    Vec3x8 { x: (n.x + one) * half, y: (n.y + one) * half, z: (n.z + one) * half }
+}
+
 /// Three consecutive planes from `i`, each times `w`.
 #[inline(always)]
 pub(super) fn triple<const N: usize>(a: &[f32x8; N], i: usize, w: f32x8) -> Vec3x8 {
@@ -342,6 +349,8 @@ impl TileTarget {
         let origin = self.origin;
         let opacity = pass.opacity();
         let (zbuf, [red, green, blue], shadow) = (&mut self.depth, &mut self.rgb, &self.shadow);
+        // The alpha plane, blended like a colour of 1 (coverage only).
+        let mut coverage = (P::BLENDS && self.coverage).then_some(&mut self.alpha);
         let mut n = 0;
         for_each_block(depth, attrs, span, |b| {
             let i = row + (b.x - origin) as usize;
@@ -368,6 +377,10 @@ impl TileTarget {
                 for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
                     let old = load_for_blend(plane, i);
                     store(plane, i, live.blend(v * keep + old * behind, old));
+                }
+                if let Some(alpha) = coverage.as_deref_mut() {
+                    let old = load_for_blend(alpha, i);
+                    store(alpha, i, live.blend(keep + old * behind, old));
                 }
             } else {
                 store(zbuf, i, live.blend(z, stored));
@@ -407,6 +420,11 @@ impl TileTarget {
     ) -> u64 {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
+        if ctx.normals {
+            return self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
+                (encode_normal(phong_point::<_, I>(a).2), f32x8::ONE)
+            });
+        }
         if let Some(maps) = ctx.maps {
             return self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
                 let (_, eye, normal) = phong_point::<_, I>(a);

@@ -46,6 +46,9 @@ impl TileTarget {
                 store(plane, i, f32x8::splat(c));
             }
         }
+        if self.coverage {
+            self.alpha.iter_mut().for_each(|a| *a = f32x8::ZERO);
+        }
         self.colors_valid = true;
     }
 
@@ -119,6 +122,9 @@ impl TileTarget {
                 if drawn {
                     for (plane, c) in self.rgb.iter_mut().zip([color.x, color.y, color.z]) {
                         bytemuck::cast_slice_mut::<f32x8, f32>(plane)[i] = c;
+                    }
+                    if self.coverage {
+                        bytemuck::cast_slice_mut::<f32x8, f32>(&mut self.alpha)[i] = 1.0;
                     }
                 }
             }

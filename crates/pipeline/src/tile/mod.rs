@@ -150,6 +150,13 @@ impl TileTarget {
                 store(plane, i, empty.blend(c, old));
             }
         }
+        if self.coverage {
+            // Drawn samples are opaque (alpha 1), undrawn ones empty (0).
+            for i in (0..self.depth.len() * LANES).step_by(LANES) {
+                let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
+                store(&mut self.alpha, i, empty.blend(f32x8::ZERO, f32x8::ONE));
+            }
+        }
         self.colors_valid = true;
     }
 

@@ -18,8 +18,8 @@ use zline_scene::{Interpolation, NormalEncoding};
 use zline_shading::{Filter, Sampler, Texture, Vec3x8};
 
 use super::kernel::{
-    triple, Alpha, BaseLod, DerivativeLod, IgnoreAlpha, Interp, Linear, Lod, MaskAlpha, Pass, Perspective,
-    TextureAlpha,
+    encode_normal, triple, Alpha, BaseLod, DerivativeLod, IgnoreAlpha, Interp, Linear, Lod, MaskAlpha, Pass,
+    Perspective, TextureAlpha,
 };
 use super::target::{FrameTexture, ShadeContext, TileTarget};
 use crate::setup::layout::perturbed::{BITANGENT, EYE, NORMAL, Q, S, T, TANGENT};
@@ -194,6 +194,11 @@ impl TileTarget {
     ) -> u64 {
         let (m, l, maps) = (&ctx.materials[p.shader.material as usize], ctx.lighting, ctx.maps);
         let map = MapReader::new(&ctx.textures[p.shader.map as usize], p.shader.scale);
+        if ctx.normals {
+            return self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, _| {
+                (encode_normal(perturbed_point::<E>(&map, a, I::w(a[Q])).1), f32x8::ONE)
+            });
+        }
         self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, mask| {
             let (eye, normal) = perturbed_point::<E>(&map, a, I::w(a[Q]));
             let (ambient_diffuse, specular) = match maps {

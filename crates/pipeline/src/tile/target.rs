@@ -38,6 +38,10 @@ pub struct ShadeContext<'a> {
     /// The frame's shadow maps (`ShadowMode::Map`): every Phong kernel
     /// scales each light by the share of it its sample sees.
     pub maps: Option<&'a crate::shadow_map::ShadowMaps>,
+    /// The normals frame (`Renderer::render_normals_into`): every Phong
+    /// kernel writes the encoded eye-space normal (n + 1)/2 instead of
+    /// lighting. Decided once per primitive, never per sample.
+    pub normals: bool,
 }
 
 /// A tile's depth buffer and colour planes, one value per sample, covering
@@ -62,6 +66,13 @@ pub struct TileTarget {
     /// per sample, eight samples a vector (see [`TileTarget::shadow_pass`]);
     /// empty when no shadow falls on the tile, which reads as all lit.
     pub(crate) shadow: Vec<i32x8>,
+    /// Coverage (`RenderSettings::transparent_background`): the alpha plane
+    /// is kept, written wherever colour is blended or replaced outside the
+    /// opaque pass; off, it is never allocated or touched.
+    pub(crate) coverage: bool,
+    /// Alpha per sample, valid where `colors_valid` (before that, a sample
+    /// is 1 when drawn and 0 when not, read from the depth buffer).
+    pub(crate) alpha: Vec<f32x8>,
 }
 
 impl TileTarget {
@@ -89,6 +100,15 @@ impl TileTarget {
         for plane in &mut self.rgb {
             plane.resize(n / LANES, f32x8::ZERO);
         }
+        if self.coverage {
+            self.alpha.resize(n / LANES, f32x8::ZERO);
+        }
+    }
+
+    /// Turns the alpha plane on or off for the frame's tiles (see
+    /// [`zline_scene::RenderSettings::transparent_background`]).
+    pub fn set_coverage(&mut self, on: bool) {
+        self.coverage = on;
     }
 
     /// Makes room for a tile of `side` × `side` samples (and its shadow
@@ -102,6 +122,9 @@ impl TileTarget {
         let grow = |v: &mut Vec<f32x8>| v.reserve(blocks.saturating_sub(v.len()));
         grow(&mut self.depth);
         self.rgb.iter_mut().for_each(grow);
+        if self.coverage {
+            grow(&mut self.alpha);
+        }
         if shadows {
             self.shadow.reserve(blocks.saturating_sub(self.shadow.len()));
         }

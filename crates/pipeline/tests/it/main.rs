@@ -4,12 +4,15 @@
 mod adaptive;
 mod clipping;
 mod conventions;
+mod coverage;
+mod depth_image;
 mod depth_modes;
 mod determinism;
 mod fog;
 mod interpolation;
 mod lines;
 mod lit_square;
+mod normal_image;
 mod normal_map;
 mod painter;
 mod shadows;

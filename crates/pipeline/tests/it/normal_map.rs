@@ -162,3 +162,19 @@ fn seen_from_behind_the_perturbed_normal_turns_around() {
     assert_eq!(back.pixel(32, 30), [want; 3]);
     assert_eq!(front.pixel(32, 30), [want; 3]);
 }
+
+#[test]
+fn the_normals_image_shows_the_perturbed_normal() {
+    // The ramp with k = 1 tilts the normal to (−260/255, 0, 1), normalized:
+    // the normals frame writes it encoded (n + 1)/2.
+    let n = DVec3::new(-260.0 / 255.0, 0.0, 1.0).normalize();
+    let want = ((n + DVec3::ONE) * 0.5).to_array().map(|c| (c * 255.0 + 0.5).floor() as u8);
+    let s = lit(square(Some((ramp(), NormalEncoding::Height, 1.0))), ShadingMode::Phong, DVec3::Z);
+    let image = zline_pipeline::render_normals(&s, &zline_pipeline::RenderOptions::default()).0;
+    for (x, y) in [(32, 30), (24, 40), (40, 22)] {
+        assert_eq!(image.pixel(x, y), want, "pixel ({x}, {y})");
+    }
+    let plain = lit(square(None), ShadingMode::Phong, DVec3::Z);
+    let image = zline_pipeline::render_normals(&plain, &zline_pipeline::RenderOptions::default()).0;
+    assert_eq!(image.pixel(32, 30), [128, 128, 255]);
+}

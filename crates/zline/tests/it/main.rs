@@ -9,6 +9,7 @@ mod cli;
 mod formats;
 mod hard_cases;
 mod hostile;
+mod layers;
 mod terrain;
 mod turntable;
 mod view;

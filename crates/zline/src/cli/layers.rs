@@ -1,0 +1,131 @@
+//! The command line's extra outputs, flattened into the common options:
+//! `--transparent` (RGBA output with alpha = coverage), `--depth-image`
+//! (the z-buffer as a 16-bit PNG) and `--normal-image` (eye-space normals
+//! as RGB).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{anyhow, bail, Context, Result};
+use clap::Args;
+use zline::pipeline::{DepthImage, Image, RenderOptions, RenderStats, Renderer};
+use zline::scene::{RenderSettings, Scene};
+
+/// The options.
+#[derive(Args, Debug, Clone)]
+pub(crate) struct LayerArgs {
+    /// RGBA PNG output with a transparent background: alpha 0 where nothing
+    /// is drawn, otherwise the pixel's coverage (the share of its samples
+    /// drawn, a transparent surface over nothing counting its opacity
+    /// 1 − kt), colour straight (not premultiplied). Composited over a
+    /// background B it gives the render on B within one step per channel.
+    /// Replaces `[render] transparent_background`. Not with JPEG output.
+    #[arg(long)]
+    transparent: bool,
+    /// Also write the z-buffer as a 16-bit greyscale PNG: eye-space depth
+    /// (distance to the eye plane) of the nearest opaque surface, linear,
+    /// the nearest drawn pixel 65535 (white), the farthest drawn 1, nothing
+    /// drawn 0; the mapping is printed and stored in a tEXt chunk. With
+    /// --ssaa: the nearest of the pixel's samples.
+    #[arg(long, value_name = "PATH.png")]
+    depth_image: Option<PathBuf>,
+    /// Also write the eye-space shading normals as an RGB PNG, (n + 1)/2
+    /// per axis (x right, y up, z toward the viewer), interpolated per
+    /// sample as Phong does (flat-shaded objects: their face normal; bump
+    /// and normal maps applied), turned toward the viewer; background
+    /// (0, 0, 0), or transparent with --transparent.
+    #[arg(long, value_name = "PATH.png")]
+    normal_image: Option<PathBuf>,
+}
+
+impl LayerArgs {
+    /// Checks the options against the main output before anything is
+    /// loaded: JPEG output with --transparent is a usage error (exit code
+    /// 2, as clap's); the extra images must be writable `.png` files.
+    pub(crate) fn check(&self, output: &Path) -> Result<()> {
+        if self.transparent && zline::is_jpeg(output) {
+            clap::Error::raw(
+                clap::error::ErrorKind::ArgumentConflict,
+                format!(
+                    "--transparent needs PNG output (JPEG has no alpha channel), got -o {}\n",
+                    output.display()
+                ),
+            )
+            .exit();
+        }
+        for (flag, path) in self.extra() {
+            let png =
+                path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("png"));
+            if !png {
+                bail!("{}: {flag} writes a PNG: the file must end in .png", path.display());
+            }
+            zline::check_output(path).map_err(|e| anyhow!("{}: {e}", path.display()))?;
+        }
+        Ok(())
+    }
+
+    /// Refuses the options where only one image per render is written
+    /// (`turntable`, `batch`).
+    pub(crate) fn refuse(&self, command: &str) -> Result<()> {
+        if self.transparent || self.depth_image.is_some() || self.normal_image.is_some() {
+            bail!("--transparent, --depth-image and --normal-image are options of render, demo and terrain, not of {command}");
+        }
+        Ok(())
+    }
+
+    /// Replaces the settings the options give.
+    pub(crate) fn apply(&self, settings: &mut RenderSettings) {
+        if self.transparent {
+            settings.transparent_background = true;
+        }
+    }
+
+    fn extra(&self) -> impl Iterator<Item = (&'static str, &PathBuf)> {
+        let depth = self.depth_image.as_ref().map(|p| ("--depth-image", p));
+        depth.into_iter().chain(self.normal_image.as_ref().map(|p| ("--normal-image", p)))
+    }
+
+    /// Renders the image, and the depth image when asked for (in the same
+    /// frame).
+    pub(crate) fn render(
+        &self,
+        scene: &Scene,
+        options: &RenderOptions,
+    ) -> (Image, RenderStats, Option<DepthImage>) {
+        let mut image = Image::empty();
+        let mut renderer = Renderer::default();
+        if self.depth_image.is_none() {
+            let stats = renderer.render_into(scene, options, &mut image);
+            return (image, stats, None);
+        }
+        let mut depth = DepthImage::default();
+        let stats = renderer.render_with_depth(scene, options, &mut image, &mut depth);
+        (image, stats, Some(depth))
+    }
+
+    /// Writes the depth image and renders and writes the normals image,
+    /// each with a line on stderr.
+    pub(crate) fn write(
+        &self,
+        scene: &Scene,
+        options: &RenderOptions,
+        pool: &rayon::ThreadPool,
+        depth: Option<DepthImage>,
+    ) -> Result<()> {
+        if let (Some(path), Some(depth)) = (&self.depth_image, depth) {
+            let range = zline::save_depth_png(&depth, path)
+                .with_context(|| format!("{}: cannot write the depth image", path.display()))?;
+            eprintln!(
+                "wrote {} (depth, 16-bit grey: {})",
+                path.display(),
+                zline::layers::describe_depth_range(range)
+            );
+        }
+        if let Some(path) = &self.normal_image {
+            let (normals, _) = pool.install(|| zline::pipeline::render_normals(scene, options));
+            zline::save_image(&normals, path)
+                .with_context(|| format!("{}: cannot write the normal image", path.display()))?;
+            eprintln!("wrote {} (eye-space normals, RGB = (n + 1)/2)", path.display());
+        }
+        Ok(())
+    }
+}
