@@ -457,6 +457,7 @@ fn run(cli: Cli) -> Result<()> {
             return batch::run(&batch, &job(&common, allow_outside)?);
         }
         Command::View { view, common } => {
+            common.layers.refuse("view")?;
             let allow_outside = view.allow_paths_outside;
             return view_command::run(&view, &job(&common, allow_outside)?);
         }

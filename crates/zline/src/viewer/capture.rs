@@ -119,7 +119,7 @@ pub fn under_xvfb(
 fn read_png(path: &Path) -> Result<Image> {
     let rgb = image::open(path).with_context(|| format!("cannot read {}", path.display()))?.to_rgb8();
     let pixels = rgb.pixels().map(|p| u32::from_le_bytes([p[0], p[1], p[2], 0])).collect();
-    Ok(Image { width: rgb.width(), height: rgb.height(), pixels })
+    Ok(Image { width: rgb.width(), height: rgb.height(), pixels, transparent: false })
 }
 
 /// A running Xvfb, stopped when dropped.

@@ -85,8 +85,12 @@ mod tests {
     fn a_preview_is_scaled_up_by_repeating_pixels() {
         // 2×2 image, block 3, into a 5×4 window: the last column and row
         // are cut.
-        let image =
-            Image { width: 2, height: 2, pixels: vec![0x0000_00ff, 0x0000_ff00, 0x00ff_0000, 0x0001_0203] };
+        let image = Image {
+            width: 2,
+            height: 2,
+            pixels: vec![0x0000_00ff, 0x0000_ff00, 0x00ff_0000, 0x0001_0203],
+            transparent: false,
+        };
         let mut buffer = Vec::new();
         upscale(&image, 3, 5, 4, &mut buffer);
         let (red, green, blue) = (0x00ff_0000, 0x0000_ff00, 0x0000_00ff);

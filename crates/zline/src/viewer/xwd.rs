@@ -70,7 +70,7 @@ pub fn read(bytes: &[u8]) -> Result<Image, String> {
             pixels.push(u32::from_le_bytes([r, g, b, 0]));
         }
     }
-    Ok(Image { width, height, pixels })
+    Ok(Image { width, height, pixels, transparent: false })
 }
 
 /// The channel under `mask`, scaled to 8 bits.
