@@ -17,7 +17,7 @@
 use wide::{f32x8, i32x8, CmpEq, CmpGt};
 use zline_raster::LANES;
 
-use crate::resolve::quantize_x8;
+use crate::resolve::{quantize_x8, store_block};
 use crate::tile::{load, sample, TileTarget};
 
 impl TileTarget {
@@ -41,16 +41,7 @@ impl TileTarget {
                 };
                 let p = |plane: &[f32x8]| empty.blend(f32x8::ZERO, load(plane, i));
                 let px = pack_straight([p(red), p(green), p(blue)], alpha);
-                if x >= self.rect.x0 && x + LANES as i32 <= self.rect.x1 {
-                    out[x as usize..x as usize + LANES].copy_from_slice(&px);
-                    continue;
-                }
-                for (k, &p) in px.iter().enumerate() {
-                    let c = x + k as i32;
-                    if (self.rect.x0..self.rect.x1).contains(&c) {
-                        out[c as usize] = p;
-                    }
-                }
+                store_block(out, x, &self.rect, &px);
             }
         }
     }

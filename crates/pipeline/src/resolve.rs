@@ -18,7 +18,6 @@ impl TileTarget {
         if self.stride == 0 {
             return;
         }
-        let lanes = LANES as i32;
         let [red, green, blue] = &self.rgb;
         let bg = Vec3x8::splat(self.background);
         for row in 0..self.rect.height() as usize {
@@ -33,16 +32,7 @@ impl TileTarget {
                 };
                 let c = |plane: &[f32x8], b: f32x8| empty.blend(b, load(plane, i));
                 let px = pack_rgba(c(red, bg.x), c(green, bg.y), c(blue, bg.z));
-                if x >= self.rect.x0 && x + lanes <= self.rect.x1 {
-                    out[x as usize..x as usize + LANES].copy_from_slice(&px);
-                } else {
-                    for (k, &p) in px.iter().enumerate() {
-                        let c = x + k as i32;
-                        if (self.rect.x0..self.rect.x1).contains(&c) {
-                            out[c as usize] = p;
-                        }
-                    }
-                }
+                store_block(out, x, &self.rect, &px);
             }
         }
     }
@@ -71,6 +61,22 @@ impl TileTarget {
                 }
                 out[px as usize] = crate::image::quantize_rgba((sum * scale).extend(1.0));
             }
+        }
+    }
+}
+
+/// Writes the eight pixels `px` of columns `x..x + 8` into the image row
+/// `out`, those inside `rect`'s columns only (whole when the block is).
+#[inline(always)]
+pub(crate) fn store_block(out: &mut [u32], x: i32, rect: &zline_raster::Rect, px: &[u32; LANES]) {
+    if x >= rect.x0 && x + LANES as i32 <= rect.x1 {
+        out[x as usize..x as usize + LANES].copy_from_slice(px);
+        return;
+    }
+    for (k, &p) in px.iter().enumerate() {
+        let c = x + k as i32;
+        if (rect.x0..rect.x1).contains(&c) {
+            out[c as usize] = p;
         }
     }
 }
