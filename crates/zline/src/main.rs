@@ -6,12 +6,16 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 mod cli {
+    pub(crate) mod choices;
     pub(crate) mod layers;
     pub(crate) mod load;
     pub(crate) mod parse;
     pub(crate) mod visibility;
 }
 
+use cli::choices::{
+    BuiltIn, Clamp, Depth, FogCoord, Interp, Shading, ShadowFilter, Shadows, Sides, TexFilter,
+};
 use cli::load::{info, load_input};
 use cli::parse::{
     parse_angle, parse_color, parse_direction, parse_fog, parse_fov, parse_positive, parse_size,
@@ -19,7 +23,7 @@ use cli::parse::{
 };
 
 use anyhow::{anyhow, bail, Context, Result};
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand};
 use glam::Vec3;
 use zline::io::LoadOptions;
 use zline::pipeline::RenderOptions;
@@ -259,119 +263,6 @@ struct Common {
     visibility: cli::visibility::VisibilityArgs,
     #[command(flatten)]
     layers: cli::layers::LayerArgs,
-}
-
-/// The built-in scenes of `zline demo --scene`.
-#[derive(Clone, Copy, PartialEq, Eq, Debug, ValueEnum)]
-enum BuiltIn {
-    /// The demo scene (the default).
-    Demo,
-    /// The room lit by a lamp, with planar shadows on the floor.
-    Room,
-}
-
-impl BuiltIn {
-    fn scene(self) -> Scene {
-        match self {
-            BuiltIn::Demo => zline::scenes::demo_scene(),
-            BuiltIn::Room => zline::scenes::room_scene(),
-        }
-    }
-
-    fn name(self) -> &'static str {
-        match self {
-            BuiltIn::Demo => "demo",
-            BuiltIn::Room => "room",
-        }
-    }
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum Shading {
-    Flat,
-    Gouraud,
-    Phong,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum TexFilter {
-    /// The nearest texel.
-    Nearest,
-    /// Bilinear on the full-size texture.
-    Bilinear,
-    /// Bilinear on the two nearest mip levels, blended.
-    Trilinear,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum FogCoord {
-    /// −z in eye space (the default).
-    EyePlane,
-    /// |p| in eye space.
-    Radial,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum Depth {
-    /// Normalized depth in [−1, 1], as OpenGL's classic depth buffer (the default).
-    Normalized,
-    /// Reversed depth in f32: far more precise far from the camera.
-    Reversed,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum Clamp {
-    /// At each vertex, then interpolated (fixed-function GL; the default).
-    Vertex,
-    /// The unclamped colour interpolated, clamped per sample.
-    Sample,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum Sides {
-    /// Normals turned towards the viewer (the default).
-    TwoSided,
-    /// Normals as given.
-    OneSided,
-}
-
-/// The names are [`ShadowMode::name`]'s.
-#[derive(Clone, Copy, ValueEnum)]
-enum Shadows {
-    /// No shadows (the default).
-    None,
-    /// Projected onto the scene's shadow planes from each light.
-    Planar,
-    /// Shadow maps: a depth image from each light; every object casts and
-    /// receives.
-    Map,
-}
-
-/// `--shadow-filter`: [`zline::scene::Shadows::pcf`].
-#[derive(Clone, Copy, ValueEnum)]
-enum ShadowFilter {
-    /// 3×3 percentage-closer filtering: soft-edged (the default).
-    Pcf,
-    /// The one nearest texel: hard-edged.
-    Nearest,
-}
-
-impl From<Shadows> for ShadowMode {
-    fn from(s: Shadows) -> ShadowMode {
-        match s {
-            Shadows::None => ShadowMode::None,
-            Shadows::Planar => ShadowMode::Planar,
-            Shadows::Map => ShadowMode::Map,
-        }
-    }
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum Interp {
-    /// Perspective-correct (a/w and 1/w).
-    Perspective,
-    /// Screen-linear: attributes interpolated in the window without perspective correction.
-    Linear,
 }
 
 fn main() -> ExitCode {

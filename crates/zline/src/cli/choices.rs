@@ -1,0 +1,119 @@
+//! The named choices of the command line's flags (`--shading`,
+//! `--filter`, `--shadows`, …) as clap value enums, and the built-in
+//! scenes of `zline demo`.
+
+use clap::ValueEnum;
+use zline::scene::{Scene, ShadowMode};
+
+/// The built-in scenes of `zline demo --scene`.
+#[derive(Clone, Copy, PartialEq, Eq, Debug, ValueEnum)]
+pub(crate) enum BuiltIn {
+    /// The demo scene (the default).
+    Demo,
+    /// The room lit by a lamp, with planar shadows on the floor.
+    Room,
+}
+
+impl BuiltIn {
+    pub(crate) fn scene(self) -> Scene {
+        match self {
+            BuiltIn::Demo => zline::scenes::demo_scene(),
+            BuiltIn::Room => zline::scenes::room_scene(),
+        }
+    }
+
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            BuiltIn::Demo => "demo",
+            BuiltIn::Room => "room",
+        }
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum Shading {
+    Flat,
+    Gouraud,
+    Phong,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum TexFilter {
+    /// The nearest texel.
+    Nearest,
+    /// Bilinear on the full-size texture.
+    Bilinear,
+    /// Bilinear on the two nearest mip levels, blended.
+    Trilinear,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum FogCoord {
+    /// −z in eye space (the default).
+    EyePlane,
+    /// |p| in eye space.
+    Radial,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum Depth {
+    /// Normalized depth in [−1, 1], as OpenGL's classic depth buffer (the default).
+    Normalized,
+    /// Reversed depth in f32: far more precise far from the camera.
+    Reversed,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum Clamp {
+    /// At each vertex, then interpolated (fixed-function GL; the default).
+    Vertex,
+    /// The unclamped colour interpolated, clamped per sample.
+    Sample,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum Sides {
+    /// Normals turned towards the viewer (the default).
+    TwoSided,
+    /// Normals as given.
+    OneSided,
+}
+
+/// The names are [`ShadowMode::name`]'s.
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum Shadows {
+    /// No shadows (the default).
+    None,
+    /// Projected onto the scene's shadow planes from each light.
+    Planar,
+    /// Shadow maps: a depth image from each light; every object casts and
+    /// receives.
+    Map,
+}
+
+/// `--shadow-filter`: [`zline::scene::Shadows::pcf`].
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum ShadowFilter {
+    /// 3×3 percentage-closer filtering: soft-edged (the default).
+    Pcf,
+    /// The one nearest texel: hard-edged.
+    Nearest,
+}
+
+impl From<Shadows> for ShadowMode {
+    fn from(s: Shadows) -> ShadowMode {
+        match s {
+            Shadows::None => ShadowMode::None,
+            Shadows::Planar => ShadowMode::Planar,
+            Shadows::Map => ShadowMode::Map,
+        }
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum Interp {
+    /// Perspective-correct (a/w and 1/w).
+    Perspective,
+    /// Screen-linear: attributes interpolated in the window without perspective correction.
+    Linear,
+}
