@@ -14,7 +14,7 @@
 //! Compositing it over a background B gives P + (1 − α)·B: the frame drawn
 //! on B, up to the two quantizations.
 
-use wide::{f32x8, i32x8, CmpEq, CmpGt};
+use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 use zline_raster::LANES;
 
 use crate::resolve::{quantize_x8, store_block};
@@ -86,12 +86,12 @@ impl TileTarget {
 /// RGBA words: straight colour p/α (0 where α is not above 0) and α, each
 /// quantized by SPEC §10.
 #[inline(always)]
-pub(crate) fn pack_straight(p: [f32x8; 3], alpha: f32x8) -> [u32; LANES] {
+pub(crate) fn pack_straight<S: Level>(p: [f32x8; 3], alpha: f32x8<S>) -> [u32; LANES] {
     let covered = alpha.cmp_gt(f32x8::ZERO);
     let safe = covered.blend(alpha, f32x8::ONE);
-    let straight = |c: f32x8| covered.blend(c / safe, f32x8::ZERO);
+    let straight = |c: f32x8<S>| covered.blend(c / safe, f32x8::ZERO);
     let [r, g, b] = p.map(straight);
-    let packed: i32x8 =
+    let packed: i32x8<S> =
         quantize_x8(r) | (quantize_x8(g) << 8) | (quantize_x8(b) << 16) | (quantize_x8(alpha) << 24);
     bytemuck::cast(packed)
 }

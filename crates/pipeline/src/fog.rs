@@ -20,7 +20,7 @@
 use std::marker::PhantomData;
 
 use glam::{Mat4, Vec4};
-use wide::{f32x8, CmpEq, CmpLt};
+use zline_simd::lanes::{f32x8, Baseline, Level};
 use zline_scene::{Fog, FogCoordinate, FogMode};
 
 use crate::setup::DepthEncoding;
@@ -63,10 +63,10 @@ impl FogPass {
     /// stored depths `z` (the coordinate and mode chosen per call; a pass
     /// over many blocks uses [`Self::specialized`] instead).
     #[inline]
-    pub fn factors(&self, x: i32, y: i32, z: f32x8) -> f32x8 {
+    pub fn factors<S: Level>(&self, x: i32, y: i32, z: f32x8<S>) -> f32x8<S> {
         match (self.fog.coordinate, self.fog.mode) {
-            (FogCoordinate::EyePlane, mode) => self.factors_with::<EyePlane>(Falloffs::new(mode), x, y, z),
-            (FogCoordinate::Radial, mode) => self.factors_with::<Radial>(Falloffs::new(mode), x, y, z),
+            (FogCoordinate::EyePlane, mode) => self.factors_with::<EyePlane, _>(Falloffs::new(mode), x, y, z),
+            (FogCoordinate::Radial, mode) => self.factors_with::<Radial, _>(Falloffs::new(mode), x, y, z),
         }
     }
 
@@ -100,7 +100,7 @@ impl FogPass {
 
     /// The factors with the coordinate `C` and the falloff `falloff`.
     #[inline(always)]
-    fn factors_with<C: Coordinate>(&self, falloff: impl Falloff, x: i32, y: i32, z: f32x8) -> f32x8 {
+    fn factors_with<C: Coordinate, S: Level>(&self, falloff: impl Falloff, x: i32, y: i32, z: f32x8<S>) -> f32x8<S> {
         let (sx, ox, sy, oy) = self.scale;
         let lanes = f32x8::from([0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
         let xn = (f32x8::splat(x as f32) + lanes) * f32x8::splat(sx) + f32x8::splat(ox);
@@ -118,7 +118,7 @@ impl FogPass {
 /// Fog factors with the coordinate and mode fixed by type.
 pub trait FogFactors {
     /// Factors for eight samples of row `y` from column `x` with depths `z`.
-    fn at(&self, x: i32, y: i32, z: f32x8) -> f32x8;
+    fn at<S: Level>(&self, x: i32, y: i32, z: f32x8<S>) -> f32x8<S>;
 }
 
 /// Work generic over a fog's [`FogFactors`] (see [`FogPass::specialized`]).
@@ -138,15 +138,15 @@ struct Specialized<'a, C, M> {
 
 impl<C: Coordinate, M: Falloff> FogFactors for Specialized<'_, C, M> {
     #[inline(always)]
-    fn at(&self, x: i32, y: i32, z: f32x8) -> f32x8 {
-        self.pass.factors_with::<C>(self.falloff, x, y, z)
+    fn at<S: Level>(&self, x: i32, y: i32, z: f32x8<S>) -> f32x8<S> {
+        self.pass.factors_with::<C, _>(self.falloff, x, y, z)
     }
 }
 
 /// How the fog coordinate comes from the recovered eye position.
 trait Coordinate {
     /// The distance, given the rows of eye_from_clip and `row(r)` = r·(x, y, z, 1).
-    fn distance(rows: &[Vec4; 4], row: impl Fn(Vec4) -> f32x8) -> f32x8;
+    fn distance<S: Level>(rows: &[Vec4; 4], row: impl Fn(Vec4) -> f32x8<S>) -> f32x8<S>;
 }
 
 /// The eye-plane distance −z_eye.
@@ -157,7 +157,7 @@ struct Radial;
 
 impl Coordinate for EyePlane {
     #[inline(always)]
-    fn distance(rows: &[Vec4; 4], row: impl Fn(Vec4) -> f32x8) -> f32x8 {
+    fn distance<S: Level>(rows: &[Vec4; 4], row: impl Fn(Vec4) -> f32x8<S>) -> f32x8<S> {
         let w = row(rows[3]);
         -row(rows[2]) / w
     }
@@ -165,7 +165,7 @@ impl Coordinate for EyePlane {
 
 impl Coordinate for Radial {
     #[inline(always)]
-    fn distance(rows: &[Vec4; 4], row: impl Fn(Vec4) -> f32x8) -> f32x8 {
+    fn distance<S: Level>(rows: &[Vec4; 4], row: impl Fn(Vec4) -> f32x8<S>) -> f32x8<S> {
         let w = row(rows[3]);
         let (ex, ey, ez) = (row(rows[0]), row(rows[1]), row(rows[2]));
         (ex * ex + ey * ey + ez * ez).sqrt() / w.abs()
@@ -174,7 +174,7 @@ impl Coordinate for Radial {
 
 /// The fog factor as a function of distance (SPEC §8), before the clamp.
 trait Falloff: Copy {
-    fn factor(self, distance: f32x8) -> f32x8;
+    fn factor<S: Level>(self, distance: f32x8<S>) -> f32x8<S>;
 }
 
 /// Linear fog with start = end: a step.
@@ -225,28 +225,28 @@ impl Falloffs {
 
 impl Falloff for Step {
     #[inline(always)]
-    fn factor(self, distance: f32x8) -> f32x8 {
+    fn factor<S: Level>(self, distance: f32x8<S>) -> f32x8<S> {
         distance.cmp_lt(f32x8::splat(self.start)).blend(f32x8::ONE, f32x8::ZERO)
     }
 }
 
 impl Falloff for Linear {
     #[inline(always)]
-    fn factor(self, distance: f32x8) -> f32x8 {
+    fn factor<S: Level>(self, distance: f32x8<S>) -> f32x8<S> {
         (f32x8::splat(self.end) - distance) / f32x8::splat(self.end - self.start)
     }
 }
 
 impl Falloff for Exp {
     #[inline(always)]
-    fn factor(self, distance: f32x8) -> f32x8 {
+    fn factor<S: Level>(self, distance: f32x8<S>) -> f32x8<S> {
         (-f32x8::splat(self.density) * distance).exp()
     }
 }
 
 impl Falloff for Exp2 {
     #[inline(always)]
-    fn factor(self, distance: f32x8) -> f32x8 {
+    fn factor<S: Level>(self, distance: f32x8<S>) -> f32x8<S> {
         let d = f32x8::splat(self.density) * distance;
         (-(d * d)).exp()
     }
@@ -254,7 +254,7 @@ impl Falloff for Exp2 {
 
 impl Falloff for Falloffs {
     #[inline(always)]
-    fn factor(self, distance: f32x8) -> f32x8 {
+    fn factor<S: Level>(self, distance: f32x8<S>) -> f32x8<S> {
         match self {
             Falloffs::Step(f) => f.factor(distance),
             Falloffs::Linear(f) => f.factor(distance),

@@ -1,7 +1,8 @@
 //! The output image: 8-bit RGB, top row first (SPEC §10).
 
 use glam::Vec4;
-use wide::{f32x4, f32x8, CmpEq};
+use wide::{f32x4, CmpEq};
+use zline_simd::lanes::{f32x8, Baseline};
 
 /// An 8-bit image, rows top to bottom, one packed RGBA word per pixel
 /// (bytes R, G, B, A in memory order via `u32::to_le_bytes`), so the
@@ -92,7 +93,7 @@ pub fn quantize_rgba(c: Vec4) -> u32 {
 #[inline]
 pub fn quantize_rgba_pair(a: Vec4, b: Vec4) -> [u32; 2] {
     let (a, b) = (a.to_array(), b.to_array());
-    let v = f32x8::from([a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]);
+    let v = f32x8::<Baseline>::from([a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]);
     let v = v.cmp_eq(v).blend(v, f32x8::ZERO);
     let v = v.fast_max(f32x8::ZERO).fast_min(f32x8::ONE) * f32x8::splat(255.0) + f32x8::splat(0.5);
     // Each lane holds a value in 0..=255: its low byte, picked by a shuffle.

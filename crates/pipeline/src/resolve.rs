@@ -4,7 +4,7 @@
 //! background here, since tiles never clear their colour planes.
 
 use glam::Vec3;
-use wide::{f32x8, i32x8, CmpEq};
+use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 use zline_raster::LANES;
 use zline_shading::Vec3x8;
 
@@ -15,11 +15,17 @@ impl TileTarget {
     /// it (`band` starts at the tile's first row; `width` is the image width
     /// in pixels).
     pub fn resolve(&self, band: &mut [u32], width: usize) {
+        zline_simd::vectorize(Resolve { target: self, band, width });
+    }
+
+    /// [`Self::resolve`] at level `S`.
+    #[inline(always)]
+    fn resolve_at<S: Level>(&self, band: &mut [u32], width: usize) {
         if self.stride == 0 {
             return;
         }
         let [red, green, blue] = &self.rgb;
-        let bg = Vec3x8::splat(self.background);
+        let bg = Vec3x8::<S>::splat(self.background);
         for row in 0..self.rect.height() as usize {
             let line = row * self.stride;
             let out = &mut band[row * width..(row + 1) * width];
@@ -30,7 +36,7 @@ impl TileTarget {
                 } else {
                     load(&self.depth, i).cmp_eq(f32x8::splat(self.far))
                 };
-                let c = |plane: &[f32x8], b: f32x8| empty.blend(b, load(plane, i));
+                let c = |plane: &[f32x8], b: f32x8<S>| empty.blend(b, load(plane, i));
                 let px = pack_rgba(c(red, bg.x), c(green, bg.y), c(blue, bg.z));
                 store_block(out, x, &self.rect, &px);
             }
@@ -81,11 +87,27 @@ pub(crate) fn store_block(out: &mut [u32], x: i32, rect: &zline_raster::Rect, px
     }
 }
 
+/// [`TileTarget::resolve`] as a job of [`zline_simd::vectorize`].
+struct Resolve<'a> {
+    target: &'a TileTarget,
+    band: &'a mut [u32],
+    width: usize,
+}
+
+impl zline_simd::Vectorized for Resolve<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<S: Level>(self) {
+        self.target.resolve_at::<S>(self.band, self.width);
+    }
+}
+
 /// SPEC §10 for eight pixels: each channel clamped (NaN to 0), scaled,
 /// rounded half up, packed as in [`crate::Image`]. c·255 + 0.5 lies in
 /// [0.5, 255.5] after the clamp, where truncation is the floor.
 #[inline(always)]
-fn pack_rgba(r: f32x8, g: f32x8, b: f32x8) -> [u32; LANES] {
+fn pack_rgba<S: Level>(r: f32x8<S>, g: f32x8<S>, b: f32x8<S>) -> [u32; LANES] {
     let q = quantize_x8;
     let alpha = i32x8::splat(0xFF << 24);
     let packed = q(r) | (q(g) * i32x8::splat(1 << 8)) | (q(b) * i32x8::splat(1 << 16)) | alpha;
@@ -95,7 +117,7 @@ fn pack_rgba(r: f32x8, g: f32x8, b: f32x8) -> [u32; LANES] {
 /// SPEC §10 for one channel of eight pixels: clamped (NaN to 0), scaled,
 /// rounded half up, as an integer in 0..=255 per lane.
 #[inline(always)]
-pub(crate) fn quantize_x8(c: f32x8) -> i32x8 {
+pub(crate) fn quantize_x8<S: Level>(c: f32x8<S>) -> i32x8<S> {
     let c = c.cmp_eq(c).blend(c, f32x8::ZERO);
     (c.fast_max(f32x8::ZERO).fast_min(f32x8::ONE) * f32x8::splat(255.0) + f32x8::splat(0.5)).fast_trunc_int()
 }

@@ -20,7 +20,7 @@
 
 use glam::{Mat4, Vec3};
 use rayon::prelude::*;
-use wide::f32x8;
+use zline_simd::lanes::{f32x8, Baseline, Level};
 use zline_raster::{DepthPlane, EdgeTable, FixedPoint, PlaneBasis, Rect};
 use zline_scene::{Light, Scene};
 use zline_shading::Vec3x8;
@@ -149,7 +149,7 @@ impl ShadowMaps {
 
     /// The share of light `k` that reaches each lane's eye-space `point`
     /// with unit `normal`: 0 (hidden) to 1 (seen).
-    pub fn visibility_x8(&self, k: u32, point: Vec3x8, normal: Vec3x8) -> f32x8 {
+    pub fn visibility_x8<S: Level>(&self, k: u32, point: Vec3x8<S>, normal: Vec3x8<S>) -> f32x8<S> {
         let Some(map) = self.lights.get(k as usize) else {
             return f32x8::ONE;
         };
@@ -232,7 +232,7 @@ impl ShadowMaps {
 }
 
 /// [`slope_bias`] per lane, with the same operations.
-fn slope_bias_x8(n_dot_l: f32x8) -> f32x8 {
+fn slope_bias_x8<S: Level>(n_dot_l: f32x8<S>) -> f32x8<S> {
     let c = n_dot_l.abs().max(f32x8::splat(0.0995));
     let tan = (f32x8::ONE - c * c).max(f32x8::ZERO).sqrt() / c;
     f32x8::splat(1.5) + f32x8::splat(2.0) * tan.min(f32x8::splat(10.0))

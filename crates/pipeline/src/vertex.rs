@@ -11,7 +11,7 @@
 
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use rayon::prelude::*;
-use wide::f32x8;
+use zline_simd::lanes::{f32x8, Baseline, Level};
 use zline_raster::FixedPoint;
 use zline_scene::{GouraudClamp, Mesh};
 use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode, Vec3x8};
@@ -247,11 +247,39 @@ fn light_vertices(
     material: &PreparedMaterial,
     clamp: GouraudClamp,
 ) {
+    zline_simd::vectorize(LightVertices { vertices, lights, material, clamp });
+}
+
+/// [`light_vertices`] as a job of [`zline_simd::vectorize`].
+struct LightVertices<'a> {
+    vertices: &'a mut [ClipVertex],
+    lights: &'a PreparedLights,
+    material: &'a PreparedMaterial,
+    clamp: GouraudClamp,
+}
+
+impl zline_simd::Vectorized for LightVertices<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<S: Level>(self) {
+        light_vertices_at::<S>(self.vertices, self.lights, self.material, self.clamp);
+    }
+}
+
+/// [`light_vertices`] at level `S`.
+#[inline(always)]
+fn light_vertices_at<S: Level>(
+    vertices: &mut [ClipVertex],
+    lights: &PreparedLights,
+    material: &PreparedMaterial,
+    clamp: GouraudClamp,
+) {
     for group in vertices.chunks_mut(8) {
         let lane = |k: usize| &group[k.min(group.len() - 1)];
         let gather = |f: fn(&ClipVertex) -> Vec3| {
             let v: [Vec3; 8] = std::array::from_fn(|k| f(lane(k)));
-            Vec3x8 {
+            Vec3x8::<S> {
                 x: f32x8::from(v.map(|p| p.x)),
                 y: f32x8::from(v.map(|p| p.y)),
                 z: f32x8::from(v.map(|p| p.z)),

@@ -11,60 +11,60 @@
 
 use std::ops::{Add, Mul};
 
-use wide::{f32x8, i32x8, CmpEq, CmpGt, CmpLe};
+use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 
 use crate::prepared::{pow_by_squaring, PreparedLights, PreparedMaterial, Shininess};
 
 /// Three coordinates of eight vectors.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Vec3x8 {
+pub struct Vec3x8<L: Level = Baseline> {
     /// x of each lane.
-    pub x: f32x8,
+    pub x: f32x8<L>,
     /// y of each lane.
-    pub y: f32x8,
+    pub y: f32x8<L>,
     /// z of each lane.
-    pub z: f32x8,
+    pub z: f32x8<L>,
 }
 
-impl Vec3x8 {
+impl<L: Level> Vec3x8<L> {
     /// Every lane set to `v`.
     #[inline]
-    pub fn splat(v: glam::Vec3) -> Vec3x8 {
+    pub fn splat(v: glam::Vec3) -> Vec3x8<L> {
         Vec3x8 { x: f32x8::splat(v.x), y: f32x8::splat(v.y), z: f32x8::splat(v.z) }
     }
 
     #[inline]
-    fn dot(self, o: Vec3x8) -> f32x8 {
+    fn dot(self, o: Vec3x8<L>) -> f32x8<L> {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 
     #[inline]
-    fn scale(self, s: f32x8) -> Vec3x8 {
+    fn scale(self, s: f32x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x * s, y: self.y * s, z: self.z * s }
     }
 
     /// Every lane clamped to [0, 1] (NaN becomes 0, as `Vec3::clamp` after
     /// `max`).
     #[inline]
-    pub fn clamp01(self) -> Vec3x8 {
-        let clamp = |c: f32x8| c.max(f32x8::ZERO).min(f32x8::ONE);
+    pub fn clamp01(self) -> Vec3x8<L> {
+        let clamp = |c: f32x8<L>| c.max(f32x8::ZERO).min(f32x8::ONE);
         Vec3x8 { x: clamp(self.x), y: clamp(self.y), z: clamp(self.z) }
     }
 
     #[inline]
-    fn sub(self, o: Vec3x8) -> Vec3x8 {
+    fn sub(self, o: Vec3x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x - o.x, y: self.y - o.y, z: self.z - o.z }
     }
 
     #[inline]
-    fn div(self, s: f32x8) -> Vec3x8 {
+    fn div(self, s: f32x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x / s, y: self.y / s, z: self.z / s }
     }
 
     /// glam's `normalize_or_zero`: v / |v|, or 0 where 1/|v| is not a
     /// finite positive number.
     #[inline]
-    pub fn normalize_or_zero(self) -> Vec3x8 {
+    pub fn normalize_or_zero(self) -> Vec3x8<L> {
         let rcp = f32x8::ONE / self.dot(self).sqrt();
         let ok = rcp.is_finite() & rcp.cmp_gt(f32x8::ZERO);
         let n = self.scale(rcp);
@@ -73,7 +73,7 @@ impl Vec3x8 {
 
     /// `where mask { self } else { 0 }` per lane.
     #[inline]
-    fn keep(self, mask: f32x8) -> Vec3x8 {
+    fn keep(self, mask: f32x8<L>) -> Vec3x8<L> {
         Vec3x8 {
             x: mask.blend(self.x, f32x8::ZERO),
             y: mask.blend(self.y, f32x8::ZERO),
@@ -88,22 +88,22 @@ impl Vec3x8 {
     }
 }
 
-impl Add for Vec3x8 {
-    type Output = Vec3x8;
+impl<L: Level> Add for Vec3x8<L> {
+    type Output = Vec3x8<L>;
 
     /// Lane-wise sum.
     #[inline]
-    fn add(self, o: Vec3x8) -> Vec3x8 {
+    fn add(self, o: Vec3x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x + o.x, y: self.y + o.y, z: self.z + o.z }
     }
 }
 
-impl Mul for Vec3x8 {
-    type Output = Vec3x8;
+impl<L: Level> Mul for Vec3x8<L> {
+    type Output = Vec3x8<L>;
 
     /// Lane-wise product.
     #[inline]
-    fn mul(self, o: Vec3x8) -> Vec3x8 {
+    fn mul(self, o: Vec3x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x * o.x, y: self.y * o.y, z: self.z * o.z }
     }
 }
@@ -111,7 +111,7 @@ impl Mul for Vec3x8 {
 impl Shininess {
     /// [`Shininess::pow`] per lane.
     #[inline]
-    fn pow_x8(self, x: f32x8) -> f32x8 {
+    fn pow_x8<L: Level>(self, x: f32x8<L>) -> f32x8<L> {
         match self {
             Shininess::Whole(n) => pow_by_squaring(x, f32x8::ONE, n),
             Shininess::Real(ns) => f32x8::from(x.to_array().map(|v| v.powf(ns))),
@@ -123,7 +123,7 @@ impl PreparedLights {
     /// [`PreparedLights::shade`] for eight samples: clamped colours at
     /// `point` with unit `normal`, the eye at the origin.
     #[inline]
-    pub fn shade_x8(&self, m: &PreparedMaterial, point: Vec3x8, normal: Vec3x8) -> Vec3x8 {
+    pub fn shade_x8<L: Level>(&self, m: &PreparedMaterial, point: Vec3x8<L>, normal: Vec3x8<L>) -> Vec3x8<L> {
         let (ambient_diffuse, specular) = self.shade_parts_x8(m, point, normal);
         ambient_diffuse.add(specular).clamp01()
     }
@@ -131,7 +131,7 @@ impl PreparedLights {
     /// [`PreparedLights::shade_parts`] for eight samples: the unclamped
     /// ambient+diffuse and specular parts, for texturing (SPEC §7).
     #[inline]
-    pub fn shade_parts_x8(&self, m: &PreparedMaterial, point: Vec3x8, normal: Vec3x8) -> (Vec3x8, Vec3x8) {
+    pub fn shade_parts_x8<L: Level>(&self, m: &PreparedMaterial, point: Vec3x8<L>, normal: Vec3x8<L>) -> (Vec3x8<L>, Vec3x8<L>) {
         self.parts_x8(m, point, normal, |_| all_lanes(), |_| None)
     }
 
@@ -140,13 +140,13 @@ impl PreparedLights {
     /// [0, 1] of its intensity (shadow maps: the fraction of the filter's
     /// texels that see it).
     #[inline]
-    pub fn shade_parts_x8_shared(
+    pub fn shade_parts_x8_shared<L: Level>(
         &self,
         m: &PreparedMaterial,
-        point: Vec3x8,
-        normal: Vec3x8,
-        share: impl Fn(u32, Vec3x8, Vec3x8) -> f32x8,
-    ) -> (Vec3x8, Vec3x8) {
+        point: Vec3x8<L>,
+        normal: Vec3x8<L>,
+        share: impl Fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>,
+    ) -> (Vec3x8<L>, Vec3x8<L>) {
         self.parts_x8(m, point, normal, |_| all_lanes(), |k| Some(share(k, point, normal)))
     }
 
@@ -155,13 +155,13 @@ impl PreparedLights {
     /// `mask` has bit `m.shadow_bits + k` set. Bits past 31, and every bit
     /// for a material without `shadow_bits`, leave the light lit.
     #[inline]
-    pub fn shade_x8_shadowed(
+    pub fn shade_x8_shadowed<L: Level>(
         &self,
         m: &PreparedMaterial,
-        point: Vec3x8,
-        normal: Vec3x8,
-        mask: i32x8,
-    ) -> Vec3x8 {
+        point: Vec3x8<L>,
+        normal: Vec3x8<L>,
+        mask: i32x8<L>,
+    ) -> Vec3x8<L> {
         let (ambient_diffuse, specular) = self.shade_parts_x8_shadowed(m, point, normal, mask);
         ambient_diffuse.add(specular).clamp01()
     }
@@ -169,18 +169,18 @@ impl PreparedLights {
     /// [`Self::shade_parts_x8`] with hidden lights (see
     /// [`Self::shade_x8_shadowed`]).
     #[inline]
-    pub fn shade_parts_x8_shadowed(
+    pub fn shade_parts_x8_shadowed<L: Level>(
         &self,
         m: &PreparedMaterial,
-        point: Vec3x8,
-        normal: Vec3x8,
-        mask: i32x8,
-    ) -> (Vec3x8, Vec3x8) {
+        point: Vec3x8<L>,
+        normal: Vec3x8<L>,
+        mask: i32x8<L>,
+    ) -> (Vec3x8<L>, Vec3x8<L>) {
         let first = m.shadow_bits.unwrap_or(u32::MAX);
         let visible = |k: u32| match first.checked_add(k).filter(|&b| b < 32) {
             Some(b) => {
                 let bit = i32x8::splat(1 << b);
-                bytemuck::cast::<i32x8, f32x8>((mask & bit).cmp_eq(i32x8::ZERO))
+                bytemuck::cast::<i32x8<L>, f32x8<L>>((mask & bit).cmp_eq(i32x8::ZERO))
             }
             None => all_lanes(),
         };
@@ -191,14 +191,14 @@ impl PreparedLights {
     /// `visible(k)` sets, with its intensity scaled by `share(k)` when
     /// that is given.
     #[inline(always)]
-    fn parts_x8(
+    fn parts_x8<L: Level>(
         &self,
         m: &PreparedMaterial,
-        point: Vec3x8,
-        normal: Vec3x8,
-        visible: impl Fn(u32) -> f32x8,
-        share: impl Fn(u32) -> Option<f32x8>,
-    ) -> (Vec3x8, Vec3x8) {
+        point: Vec3x8<L>,
+        normal: Vec3x8<L>,
+        visible: impl Fn(u32) -> f32x8<L>,
+        share: impl Fn(u32) -> Option<f32x8<L>>,
+    ) -> (Vec3x8<L>, Vec3x8<L>) {
         let view = Vec3x8::default().sub(point).normalize_or_zero();
         let mut sum = SumsX8::default();
         for (to_light, color, k) in self.directional_lights() {
@@ -233,27 +233,27 @@ impl PreparedLights {
 
 /// A mask with every lane set.
 #[inline]
-fn all_lanes() -> f32x8 {
+fn all_lanes<L: Level>() -> f32x8<L> {
     f32x8::from([f32::from_bits(u32::MAX); 8])
 }
 
 /// Running sums over the lights, per lane (see `prepared::Sums`).
 #[derive(Default)]
-struct SumsX8 {
-    diffuse: Vec3x8,
-    specular: Vec3x8,
+struct SumsX8<L: Level = Baseline> {
+    diffuse: Vec3x8<L>,
+    specular: Vec3x8<L>,
 }
 
-impl SumsX8 {
+impl<L: Level> SumsX8<L> {
     #[inline(always)]
     fn add(
         &mut self,
         m: &PreparedMaterial,
-        normal: Vec3x8,
-        view: Vec3x8,
-        to_light: Vec3x8,
-        intensity: Vec3x8,
-        active: f32x8,
+        normal: Vec3x8<L>,
+        view: Vec3x8<L>,
+        to_light: Vec3x8<L>,
+        intensity: Vec3x8<L>,
+        active: f32x8<L>,
     ) {
         let n_dot_l = normal.dot(to_light);
         // The scalar path skips a light when N·L ≤ 0 (so NaN stays lit).
@@ -313,7 +313,7 @@ mod tests {
             }
             normals[7] = Vec3::ZERO; // a degenerate normal
             points[6] = Vec3::new(1.0, 2.0, 0.5); // on a point light
-            let gather = |v: &[Vec3; 8]| Vec3x8 {
+            let gather = |v: &[Vec3; 8]| Vec3x8::<Baseline> {
                 x: f32x8::from(v.map(|p| p.x)),
                 y: f32x8::from(v.map(|p| p.y)),
                 z: f32x8::from(v.map(|p| p.z)),

@@ -42,7 +42,43 @@ pub(crate) fn detect() -> Option<Avx2> {
     std::is_x86_feature_detected!("avx2").then_some(Avx2(()))
 }
 
+/// Proof that the CPU has the x86-64-v3 features [`run_v3`] enables.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct V3Token(());
+
+/// The token when [`Isa::current`] chose AVX2 and the CPU also has FMA.
+#[inline(always)]
+pub(crate) fn v3_token() -> Option<V3Token> {
+    (token().is_some() && std::is_x86_feature_detected!("fma")).then_some(V3Token(()))
+}
+
+/// `job.run()` at the x86-64-v3 level, compiled for its instructions:
+/// everything inlined into it may use AVX2 and FMA (FMA is never formed on
+/// its own: Rust does not contract a·b + c).
+///
+/// # Safety
+/// The CPU has AVX2 and FMA.
+#[target_feature(enable = "avx2,fma")]
+unsafe fn run_v3<V: crate::Vectorized>(job: V) -> V::Output {
+    job.run::<crate::lanes::private::V3>()
+}
+
+impl V3Token {
+    /// [`crate::vectorize`] on this CPU.
+    #[inline(always)]
+    pub(crate) fn vectorize<V: crate::Vectorized>(self, job: V) -> V::Output {
+        // SAFETY: the token exists only when the CPU has AVX2 and FMA.
+        unsafe { run_v3(job) }
+    }
+}
+
 impl Avx2 {
+    /// The token inside a job at the x86-64-v3 level (whose CPU has AVX2).
+    #[inline(always)]
+    pub(crate) fn at_v3() -> Avx2 {
+        Avx2(())
+    }
+
     /// [`crate::gather_texels_x8`].
     #[inline(always)]
     pub(crate) fn gather_texels_x8(self, texels: &[[f32; 4]], idx: [i32; 8]) -> [[f32; 8]; 4] {

@@ -38,6 +38,8 @@
 mod avx2;
 mod bounds;
 mod isa;
+#[allow(unsafe_code, reason = "the x86-64-v3 lanes call std::arch intrinsics (see the module)")]
+pub mod lanes;
 #[allow(
     unsafe_code,
     reason = "one volatile read that keeps LLVM from forming masked stores (see the module)"
@@ -110,6 +112,37 @@ pub fn gather_adjacent_texels_x8(texels: &[[f32; 4]], a: [i32; 8]) -> [[f32; 8];
     )
 }
 
+/// [`gather_texels_x8`] at level `L` (the AVX2 loads, inlined, at the
+/// x86-64-v3 level).
+#[inline(always)]
+pub fn gather_texels_x8_at<L: lanes::Level>(texels: &[[f32; 4]], idx: [i32; 8]) -> [[f32; 8]; 4] {
+    #[cfg(target_arch = "x86_64")]
+    if L::V3 {
+        return avx2::Avx2::at_v3().gather_texels_x8(texels, idx);
+    }
+    gather_texels_x8(texels, idx)
+}
+
+/// [`gather_texel_pairs_x8`] at level `L`.
+#[inline(always)]
+pub fn gather_texel_pairs_x8_at<L: lanes::Level>(texels: &[[f32; 4]], a: [i32; 8], b: [i32; 8]) -> [[f32; 8]; 8] {
+    #[cfg(target_arch = "x86_64")]
+    if L::V3 {
+        return avx2::Avx2::at_v3().gather_texel_pairs_x8(texels, a, b);
+    }
+    gather_texel_pairs_x8(texels, a, b)
+}
+
+/// [`gather_adjacent_texels_x8`] at level `L`.
+#[inline(always)]
+pub fn gather_adjacent_texels_x8_at<L: lanes::Level>(texels: &[[f32; 4]], a: [i32; 8]) -> [[f32; 8]; 8] {
+    #[cfg(target_arch = "x86_64")]
+    if L::V3 {
+        return avx2::Avx2::at_v3().gather_adjacent_texels_x8(texels, a);
+    }
+    gather_adjacent_texels_x8(texels, a)
+}
+
 /// A path that is rare in this build (forced by `ZLINE_SIMD` on x86-64),
 /// kept out of line so callers keep the usual path's results in
 /// registers; inline where the scalar twin is the only path.
@@ -117,6 +150,43 @@ pub fn gather_adjacent_texels_x8(texels: &[[f32; 4]], a: [i32; 8]) -> [[f32; 8];
 #[cfg_attr(not(target_arch = "x86_64"), inline(always))]
 fn out_of_line<T>(twin: impl FnOnce() -> T) -> T {
     twin()
+}
+
+/// A job whose body [`vectorize`] compiles for the best level the CPU has.
+///
+/// [`Vectorized::run`] is generic over the [`lanes::Level`] its lane types
+/// use; implementations mark it `#[inline(always)]`, and everything hot
+/// that it calls `#[inline]` or `#[inline(always)]`: only what is inlined
+/// into the job's body is compiled with the level's instructions (a
+/// function called out of line is compiled for the build's baseline and
+/// reaches the level's lane operations through calls, correct but slow).
+pub trait Vectorized {
+    /// What the job returns.
+    type Output;
+    /// The job's body at level `L`.
+    fn run<L: lanes::Level>(self) -> Self::Output;
+}
+
+/// Runs `job` at the x86-64-v3 level (AVX2, FMA) when the CPU has it and
+/// [`Isa::current`] allows AVX2 (`ZLINE_SIMD` may lower it), else at
+/// [`lanes::Baseline`]. The two give the same results bit for bit.
+#[inline(always)]
+pub fn vectorize<V: Vectorized>(job: V) -> V::Output {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(v3) = avx2::v3_token() {
+        return v3.vectorize(job);
+    }
+    job.run::<lanes::Baseline>()
+}
+
+/// The x86-64-v3 level when [`vectorize`] would choose it (for tests and
+/// reports).
+pub fn v3_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if avx2::v3_token().is_some() {
+        return true;
+    }
+    false
 }
 
 pub use isa::Isa;

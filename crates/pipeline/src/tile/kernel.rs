@@ -17,7 +17,7 @@
 //!
 //! [`Kernel`]: crate::setup::Kernel
 
-use wide::{f32x8, i32x8, CmpEq, CmpGe, CmpLt};
+use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, Span, LANES};
 use zline_shading::Vec3x8;
 
@@ -31,9 +31,9 @@ pub(crate) trait Interp {
     /// True for perspective-correct planes (a/w and 1/w).
     const PERSPECTIVE: bool;
     /// The factor that turns a plane value into the attribute: 1/(1/w) or 1.
-    fn w(q: f32x8) -> f32x8;
+    fn w<S: Level>(q: f32x8<S>) -> f32x8<S>;
     /// `v` over `q` (perspective) or `v` itself.
-    fn divide(v: f32x8, q: f32x8) -> f32x8;
+    fn divide<S: Level>(v: f32x8<S>, q: f32x8<S>) -> f32x8<S>;
 }
 
 /// Perspective-correct interpolation: planes hold a/w and 1/w.
@@ -45,11 +45,11 @@ pub(crate) struct Linear;
 impl Interp for Perspective {
     const PERSPECTIVE: bool = true;
     #[inline(always)]
-    fn w(q: f32x8) -> f32x8 {
+    fn w<S: Level>(q: f32x8<S>) -> f32x8<S> {
         f32x8::ONE / q
     }
     #[inline(always)]
-    fn divide(v: f32x8, q: f32x8) -> f32x8 {
+    fn divide<S: Level>(v: f32x8<S>, q: f32x8<S>) -> f32x8<S> {
         v / q
     }
 }
@@ -57,11 +57,11 @@ impl Interp for Perspective {
 impl Interp for Linear {
     const PERSPECTIVE: bool = false;
     #[inline(always)]
-    fn w(_: f32x8) -> f32x8 {
+    fn w<S: Level>(_: f32x8<S>) -> f32x8<S> {
         f32x8::ONE
     }
     #[inline(always)]
-    fn divide(v: f32x8, _: f32x8) -> f32x8 {
+    fn divide<S: Level>(v: f32x8<S>, _: f32x8<S>) -> f32x8<S> {
         v
     }
 }
@@ -70,7 +70,7 @@ impl Interp for Linear {
 /// (`zline_scene::GouraudClamp`).
 pub(crate) trait Clamp {
     /// The colour drawn.
-    fn clamp(c: Vec3x8) -> Vec3x8;
+    fn clamp<S: Level>(c: Vec3x8<S>) -> Vec3x8<S>;
 }
 
 /// The vertex colours were clamped to [0, 1]: their interpolation is used
@@ -82,14 +82,14 @@ pub(crate) struct ClampPerSample;
 
 impl Clamp for ClampedAtVertices {
     #[inline(always)]
-    fn clamp(c: Vec3x8) -> Vec3x8 {
+    fn clamp<S: Level>(c: Vec3x8<S>) -> Vec3x8<S> {
         c
     }
 }
 
 impl Clamp for ClampPerSample {
     #[inline(always)]
-    fn clamp(c: Vec3x8) -> Vec3x8 {
+    fn clamp<S: Level>(c: Vec3x8<S>) -> Vec3x8<S> {
         c.clamp01()
     }
 }
@@ -100,63 +100,63 @@ pub(crate) trait Pass {
     /// is only tested and the colour blended over the stored one.
     const BLENDS: bool;
     /// The surface's weight 1 − kt in the blend.
-    fn opacity(&self) -> f32x8;
+    fn opacity<S: Level>(&self) -> f32x8<S>;
     /// The fragment's colour after fog (blending passes fog per sample; the
     /// opaque pass leaves fog to [`TileTarget::fog_pass`]).
-    fn fog(&self, c: Vec3x8, x: i32, y: i32, z: f32x8) -> Vec3x8;
+    fn fog<S: Level>(&self, c: Vec3x8<S>, x: i32, y: i32, z: f32x8<S>) -> Vec3x8<S>;
 }
 
 /// The opaque pass.
 pub(crate) struct Opaque;
 
 /// The transparency pass without fog.
-pub(crate) struct Blend {
+pub(crate) struct Blend<S: Level = Baseline> {
     /// 1 − kt.
-    pub(crate) opacity: f32x8,
+    pub(crate) opacity: f32x8<S>,
 }
 
 /// The transparency pass with fog.
-pub(crate) struct BlendFogged<'a> {
+pub(crate) struct BlendFogged<'a, S: Level = Baseline> {
     /// 1 − kt.
-    pub(crate) opacity: f32x8,
+    pub(crate) opacity: f32x8<S>,
     /// The frame's fog.
     pub(crate) fog: &'a FogPass,
     /// Its colour.
-    pub(crate) color: Vec3x8,
+    pub(crate) color: Vec3x8<S>,
 }
 
 impl Pass for Opaque {
     const BLENDS: bool = false;
     #[inline(always)]
-    fn opacity(&self) -> f32x8 {
+    fn opacity<S: Level>(&self) -> f32x8<S> {
         f32x8::ONE
     }
     #[inline(always)]
-    fn fog(&self, c: Vec3x8, _: i32, _: i32, _: f32x8) -> Vec3x8 {
+    fn fog<S: Level>(&self, c: Vec3x8<S>, _: i32, _: i32, _: f32x8<S>) -> Vec3x8<S> {
         c
     }
 }
 
-impl Pass for Blend {
+impl<S: Level> Pass for Blend<S> {
     const BLENDS: bool = true;
     #[inline(always)]
-    fn opacity(&self) -> f32x8 {
+    fn opacity(&self) -> f32x8<S> {
         self.opacity
     }
     #[inline(always)]
-    fn fog(&self, c: Vec3x8, _: i32, _: i32, _: f32x8) -> Vec3x8 {
+    fn fog(&self, c: Vec3x8<S>, _: i32, _: i32, _: f32x8<S>) -> Vec3x8<S> {
         c
     }
 }
 
-impl Pass for BlendFogged<'_> {
+impl<S: Level> Pass for BlendFogged<'_, S> {
     const BLENDS: bool = true;
     #[inline(always)]
-    fn opacity(&self) -> f32x8 {
+    fn opacity(&self) -> f32x8<S> {
         self.opacity
     }
     #[inline(always)]
-    fn fog(&self, c: Vec3x8, x: i32, y: i32, z: f32x8) -> Vec3x8 {
+    fn fog(&self, c: Vec3x8<S>, x: i32, y: i32, z: f32x8<S>) -> Vec3x8<S> {
         let (f, fc) = (self.fog.factors(x, y, z), self.color);
         let g = f32x8::ONE - f;
         Vec3x8 { x: c.x * f + fc.x * g, y: c.y * f + fc.y * g, z: c.z * f + fc.z * g }
@@ -170,12 +170,12 @@ pub(crate) trait Alpha: Sized {
     fn new(texture: &FrameTexture) -> Self;
     /// The lanes still live after the alpha test.
     #[inline(always)]
-    fn test(&self, live: f32x8, _alpha: f32x8) -> f32x8 {
+    fn test<S: Level>(&self, live: f32x8<S>, _alpha: f32x8<S>) -> f32x8<S> {
         live
     }
     /// The factor on the pass's opacity.
     #[inline(always)]
-    fn weight(_alpha: f32x8) -> f32x8 {
+    fn weight<S: Level>(_alpha: f32x8<S>) -> f32x8<S> {
         f32x8::ONE
     }
 }
@@ -185,7 +185,7 @@ pub(crate) struct IgnoreAlpha;
 
 /// Samples whose alpha is below the cutoff are discarded before they write
 /// depth; the rest are drawn opaque.
-pub(crate) struct MaskAlpha(f32x8);
+pub(crate) struct MaskAlpha(f32x8<S>);
 
 /// The alpha multiplies the pass's opacity.
 pub(crate) struct TextureAlpha;
@@ -203,7 +203,7 @@ impl Alpha for MaskAlpha {
         MaskAlpha(f32x8::splat(texture.cutoff))
     }
     #[inline(always)]
-    fn test(&self, live: f32x8, alpha: f32x8) -> f32x8 {
+    fn test<S: Level>(&self, live: f32x8<S>, alpha: f32x8<S>) -> f32x8<S> {
         live & alpha.cmp_ge(self.0)
     }
 }
@@ -214,7 +214,7 @@ impl Alpha for TextureAlpha {
         TextureAlpha
     }
     #[inline(always)]
-    fn weight(alpha: f32x8) -> f32x8 {
+    fn weight<S: Level>(alpha: f32x8<S>) -> f32x8<S> {
         alpha
     }
 }
@@ -223,18 +223,18 @@ impl Alpha for TextureAlpha {
 pub(crate) trait Lod {
     /// The levels of eight samples at (s, t), from the plane gradients
     /// `dx`, `dy` (planes Q, S, T) and `inv` (the [`Interp::w`] factor).
-    fn lods<I: Interp>(d: &Derivatives, s: f32x8, t: f32x8, inv: f32x8) -> f32x8;
+    fn lods<I: Interp, S: Level>(d: &Derivatives<S>, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S>;
 }
 
 /// The plane gradients a [`DerivativeLod`] reads, in texels.
-pub(crate) struct Derivatives {
+pub(crate) struct Derivatives<S: Level = Baseline> {
     dx: [f32; 3],
     dy: [f32; 3],
-    size: (f32x8, f32x8),
+    size: (f32x8<S>, f32x8<S>),
 }
 
-impl Derivatives {
-    fn new<const N: usize>(planes: &AttributePlanes<N>, texture: &FrameTexture) -> Derivatives {
+impl<S: Level> Derivatives<S> {
+    fn new<const N: usize>(planes: &AttributePlanes<N>, texture: &FrameTexture) -> Derivatives<S> {
         let (dx, dy) = (planes.dx(), planes.dy());
         let (q, s, t) = (textured::Q, textured::S, textured::T);
         let (w, h) = (texture.texture.width(), texture.texture.height());
@@ -254,7 +254,7 @@ pub(crate) struct DerivativeLod;
 
 impl Lod for BaseLod {
     #[inline(always)]
-    fn lods<I: Interp>(_: &Derivatives, _: f32x8, _: f32x8, _: f32x8) -> f32x8 {
+    fn lods<I: Interp, S: Level>(_: &Derivatives<S>, _: f32x8<S>, _: f32x8<S>, _: f32x8<S>) -> f32x8<S> {
         f32x8::ZERO
     }
 }
@@ -265,9 +265,9 @@ impl Lod for DerivativeLod {
     /// eight of libm's, which measured ~12 % of a textured frame). Zero or
     /// NaN footprints read level 0.
     #[inline(always)]
-    fn lods<I: Interp>(d: &Derivatives, s: f32x8, t: f32x8, inv: f32x8) -> f32x8 {
+    fn lods<I: Interp, S: Level>(d: &Derivatives<S>, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S> {
         // s = S/Q with S = s/w and Q = 1/w planes: ∂s/∂x = (∂S/∂x − s·∂Q/∂x)/Q.
-        let derivative = |ds: f32, dq: f32, v: f32x8| {
+        let derivative = |ds: f32, dq: f32, v: f32x8<S>| {
             if I::PERSPECTIVE {
                 (f32x8::splat(ds) - v * f32x8::splat(dq)) * inv
             } else {
@@ -286,21 +286,21 @@ impl Lod for DerivativeLod {
 /// What both Phong kernels recover per sample ([`phong`] layout): the
 /// factor w, the eye position and the re-normalized normal.
 #[inline(always)]
-fn phong_point<const N: usize, I: Interp>(a: &[f32x8; N]) -> (f32x8, Vec3x8, Vec3x8) {
+fn phong_point<const N: usize, I: Interp, S: Level>(a: &[f32x8<S>; N]) -> (f32x8<S>, Vec3x8<S>, Vec3x8<S>) {
     let w = I::w(a[phong::Q]);
     (w, triple(a, phong::EYE, w), triple(a, phong::NORMAL, w).normalize_or_zero())
 }
 
 /// A unit normal as a colour: (n + 1)/2 per axis (the normals frame).
 #[inline(always)]
-pub(super) fn encode_normal(n: Vec3x8) -> Vec3x8 {
+pub(super) fn encode_normal<S: Level>(n: Vec3x8<S>) -> Vec3x8<S> {
     let (half, one) = (f32x8::splat(0.5), f32x8::ONE);
     Vec3x8 { x: (n.x + one) * half, y: (n.y + one) * half, z: (n.z + one) * half }
 }
 
 /// Three consecutive planes from `i`, each times `w`.
 #[inline(always)]
-pub(super) fn triple<const N: usize>(a: &[f32x8; N], i: usize, w: f32x8) -> Vec3x8 {
+pub(super) fn triple<const N: usize, S: Level>(a: &[f32x8<S>; N], i: usize, w: f32x8<S>) -> Vec3x8<S> {
     Vec3x8 { x: a[i] * w, y: a[i + 1] * w, z: a[i + 2] * w }
 }
 
@@ -314,13 +314,13 @@ impl TileTarget {
     /// block: 6 % more instructions in the Phong kernel, measured with
     /// callgrind).
     #[inline(always)]
-    pub(super) fn scan<const N: usize, P: Pass, A: Alpha>(
+    pub(super) fn scan<const N: usize, P: Pass, A: Alpha, S: Level>(
         &mut self,
         (edges, depth): (&EdgeTable, &DepthPlane),
         planes: &AttributePlanes<N>,
         pass: &P,
         alpha: &A,
-        shade: impl Fn(&[f32x8; N], i32x8) -> (Vec3x8, f32x8) + Copy,
+        shade: impl Fn(&[f32x8<S>; N], i32x8<S>) -> (Vec3x8<S>, f32x8<S>) + Copy,
     ) -> u64 {
         let (depth, planes) = (*depth, *planes);
         let mut n = 0;
@@ -336,14 +336,14 @@ impl TileTarget {
     /// (opaque) or fogs and blends the colour without writing depth
     /// (transparent). Returns the samples that passed.
     #[inline(always)]
-    fn blocks<const N: usize, P: Pass, A: Alpha>(
+    fn blocks<const N: usize, P: Pass, A: Alpha, S: Level>(
         &mut self,
         depth: &DepthPlane,
         attrs: &AttributePlanes<N>,
         span: Span,
         pass: &P,
         alpha_use: &A,
-        shade: impl Fn(&[f32x8; N], i32x8) -> (Vec3x8, f32x8),
+        shade: impl Fn(&[f32x8<S>; N], i32x8<S>) -> (Vec3x8<S>, f32x8<S>),
     ) -> u64 {
         let row = self.index(self.origin, span.y);
         let origin = self.origin;
@@ -481,12 +481,12 @@ impl TileTarget {
     /// `L` finds, and c = texel ⊙ (ambient+diffuse) + specular, clamped,
     /// with the parts from `parts(attributes, w)`.
     #[inline(always)]
-    pub(super) fn textured<const N: usize, I: Interp, L: Lod, P: Pass, A: Alpha>(
+    pub(super) fn textured<const N: usize, I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
         map: &FrameTexture,
         pass: &P,
-        parts: impl Fn(&[f32x8; N], f32x8, i32x8) -> (Vec3x8, Vec3x8) + Copy,
+        parts: impl Fn(&[f32x8<S>; N], f32x8<S>, i32x8<S>) -> (Vec3x8<S>, Vec3x8<S>) + Copy,
     ) -> u64 {
         let derivatives = Derivatives::new(planes, map);
         let (texture, sampler) = (&*map.texture, &map.sampler);
@@ -587,7 +587,7 @@ impl TileTarget {
 
 /// An all-ones lane for each set bit of `bits`.
 #[inline(always)]
-fn lane_mask(bits: u8) -> f32x8 {
+fn lane_mask<S: Level>(bits: u8) -> f32x8<S> {
     let lane_bits = i32x8::from([1, 2, 4, 8, 16, 32, 64, 128]);
     let set = (i32x8::splat(i32::from(bits)) & lane_bits).cmp_eq(lane_bits);
     bytemuck::cast(set)

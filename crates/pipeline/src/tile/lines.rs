@@ -2,7 +2,7 @@
 //! depth-only pass that decides which lines are hidden when surfaces are
 //! not drawn (lines alone) or leave no depth (the painter's algorithm).
 
-use wide::f32x8;
+use zline_simd::lanes::{f32x8, Baseline, Level};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, LANES};
 use zline_scene::WireframeMode;
 

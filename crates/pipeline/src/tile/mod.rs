@@ -27,7 +27,7 @@ mod target;
 pub(crate) use target::{load, load_for_blend, sample, store};
 pub use target::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 
-use wide::{f32x8, CmpEq, CmpLt};
+use zline_simd::lanes::{f32x8, Baseline, Level};
 use zline_raster::LANES;
 use zline_scene::{GouraudClamp, Interpolation};
 use zline_shading::Vec3x8;
@@ -324,12 +324,12 @@ struct TexturedChoice {
 }
 
 /// The fog pass over one tile, generic over the fog's factors.
-struct FogTile<'a> {
+struct FogTile<'a, S: Level = Baseline> {
     target: &'a mut TileTarget,
-    color: Vec3x8,
+    color: Vec3x8<S>,
 }
 
-impl FogVisitor for FogTile<'_> {
+impl<S: Level> FogVisitor for FogTile<'_, S> {
     type Output = ();
 
     fn visit<F: FogFactors>(self, factors: F) {

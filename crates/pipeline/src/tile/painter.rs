@@ -25,7 +25,7 @@
 //! zline-pipeline --release --test it painter` prints the share of wrong
 //! pixels).
 
-use wide::f32x8;
+use zline_simd::lanes::{f32x8, Baseline, Level};
 use zline_shading::Vec3x8;
 
 use super::kernel::{Blend, BlendFogged};

@@ -13,7 +13,7 @@
 //!
 //! [`Kernel::Perturbed`]: crate::setup::Kernel::Perturbed
 
-use wide::f32x8;
+use zline_simd::lanes::{f32x8, Baseline, Level};
 use zline_scene::{Interpolation, NormalEncoding};
 use zline_shading::{Filter, Sampler, Texture, Vec3x8};
 
@@ -26,21 +26,21 @@ use crate::setup::layout::perturbed::{BITANGENT, EYE, NORMAL, Q, S, T, TANGENT};
 use crate::setup::{AlphaUse, LevelOfDetail, Perturbed, Primitive};
 
 /// A map as the kernel reads it.
-pub(crate) struct MapReader<'a> {
+pub(crate) struct MapReader<'a, S: Level = Baseline> {
     texture: &'a Texture,
     /// The map's sampler, trilinear read as bilinear: at level 0 they are
     /// the same filter (`Texture::sample` with a level of detail ≤ 0), and
     /// the bilinear path skips the per-lane level choice.
     sampler: Sampler,
     /// k.
-    scale: f32x8,
+    scale: f32x8<S>,
     /// One texel in s and t: 1/W, 1/H.
-    step: (f32x8, f32x8),
+    step: (f32x8<S>, f32x8<S>),
     /// W/2, H/2: the central differences' divisor 2/W, 2/H inverted.
-    half: (f32x8, f32x8),
+    half: (f32x8<S>, f32x8<S>),
 }
 
-impl<'a> MapReader<'a> {
+impl<'a, S: Level> MapReader<'a, S> {
     fn new(map: &'a FrameTexture, scale: f32) -> MapReader<'a> {
         let (w, h) = (map.texture.width() as f32, map.texture.height() as f32);
         MapReader {
@@ -57,7 +57,7 @@ impl<'a> MapReader<'a> {
 
     /// The map's texel at (s, t), level 0.
     #[inline(always)]
-    fn read(&self, s: f32x8, t: f32x8) -> [f32x8; 4] {
+    fn read(&self, s: f32x8<S>, t: f32x8<S>) -> [f32x8<S>; 4] {
         self.texture.sample_x8(&self.sampler, s, t, f32x8::ZERO)
     }
 }
@@ -65,7 +65,7 @@ impl<'a> MapReader<'a> {
 /// What a map's texels hold: the tangent-space normal m at (s, t).
 pub(crate) trait Encoding {
     /// m = (x, y, z) in the frame (T, B, N).
-    fn tangent_normal(map: &MapReader<'_>, s: f32x8, t: f32x8) -> Vec3x8;
+    fn tangent_normal<S: Level>(map: &MapReader<'_>, s: f32x8<S>, t: f32x8<S>) -> Vec3x8<S>;
 }
 
 /// A height map: m = (−k·∂h/∂s, −k·∂h/∂t, 1), central differences one
@@ -77,7 +77,7 @@ pub(crate) struct TangentNormal;
 
 impl Encoding for Height {
     #[inline(always)]
-    fn tangent_normal(map: &MapReader<'_>, s: f32x8, t: f32x8) -> Vec3x8 {
+    fn tangent_normal<S: Level>(map: &MapReader<'_>, s: f32x8<S>, t: f32x8<S>) -> Vec3x8<S> {
         let ((ds, dt), (hw, hh)) = (map.step, map.half);
         let h = |s, t| map.read(s, t)[0];
         let dh_ds = (h(s + ds, t) - h(s - ds, t)) * hw;
@@ -88,7 +88,7 @@ impl Encoding for Height {
 
 impl Encoding for TangentNormal {
     #[inline(always)]
-    fn tangent_normal(map: &MapReader<'_>, s: f32x8, t: f32x8) -> Vec3x8 {
+    fn tangent_normal<S: Level>(map: &MapReader<'_>, s: f32x8<S>, t: f32x8<S>) -> Vec3x8<S> {
         let [r, g, b, _] = map.read(s, t);
         let (one, two) = (f32x8::ONE, f32x8::splat(2.0));
         Vec3x8 { x: (two * r - one) * map.scale, y: (two * g - one) * map.scale, z: two * b - one }
@@ -97,14 +97,14 @@ impl Encoding for TangentNormal {
 
 /// `v` times the lanes of `f`.
 #[inline(always)]
-fn scaled(v: Vec3x8, f: f32x8) -> Vec3x8 {
+fn scaled<S: Level>(v: Vec3x8<S>, f: f32x8<S>) -> Vec3x8<S> {
     Vec3x8 { x: v.x * f, y: v.y * f, z: v.z * f }
 }
 
 /// The eye position and the perturbed normal
 /// normalize(m.x·T + m.y·B + m.z·normalize(N)) of eight samples.
 #[inline(always)]
-fn perturbed_point<E: Encoding>(map: &MapReader<'_>, a: &[f32x8; 15], w: f32x8) -> (Vec3x8, Vec3x8) {
+fn perturbed_point<E: Encoding, S: Level>(map: &MapReader<'_>, a: &[f32x8<S>; 15], w: f32x8<S>) -> (Vec3x8<S>, Vec3x8<S>) {
     let (s, t) = (a[S] * w, a[T] * w);
     let n = triple(a, NORMAL, w).normalize_or_zero();
     let m = E::tangent_normal(map, s, t);

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use glam::Vec3;
-use wide::{f32x8, i32x8};
+use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 use zline_raster::{Rect, LANES};
 use zline_shading::{PreparedLights, PreparedMaterial, Sampler, Texture};
 
@@ -138,26 +138,26 @@ impl TileTarget {
 
 /// Samples `i..i + 8` of a buffer (`i` a multiple of [`LANES`]).
 #[inline(always)]
-pub(crate) fn load(buf: &[f32x8], i: usize) -> f32x8 {
-    buf[i / LANES]
+pub(crate) fn load<S: Level>(buf: &[f32x8], i: usize) -> f32x8<S> {
+    buf[i / LANES].at()
 }
 
 /// [`load`] for a block that is then written back blended: read so that
 /// the compiler keeps a plain load, blend and store instead of forming a
 /// masked store (microcoded and slow on AMD cores; `zline_simd::read_opaque`).
 #[inline(always)]
-pub(crate) fn load_for_blend(buf: &[f32x8], i: usize) -> f32x8 {
-    zline_simd::read_opaque(&buf[i / LANES])
+pub(crate) fn load_for_blend<S: Level>(buf: &[f32x8], i: usize) -> f32x8<S> {
+    zline_simd::read_opaque(&buf[i / LANES]).at()
 }
 
 /// Writes samples `i..i + 8` of a buffer (`i` a multiple of [`LANES`]).
 #[inline(always)]
-pub(crate) fn store(buf: &mut [f32x8], i: usize, v: f32x8) {
-    buf[i / LANES] = v;
+pub(crate) fn store<S: Level>(buf: &mut [f32x8], i: usize, v: f32x8<S>) {
+    buf[i / LANES] = v.at();
 }
 
 /// Sample `i` of a buffer.
 #[inline(always)]
 pub(crate) fn sample(buf: &[f32x8], i: usize) -> f32 {
-    bytemuck::cast_slice::<f32x8, f32>(buf)[i]
+    bytemuck::cast_slice::<f32x8<S>, f32>(buf)[i]
 }

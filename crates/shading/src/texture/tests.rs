@@ -474,26 +474,49 @@ proptest! {
         s in prop::array::uniform8(any_coordinate()), t in prop::array::uniform8(any_coordinate()),
         lod in prop::array::uniform8(any_lod()),
     ) {
-        use wide::f32x8;
         let sm = Sampler { filter, wrap_s, wrap_t };
-        let got = tex.sample_x8(&sm, f32x8::from(s), f32x8::from(t), f32x8::from(lod)).map(|c| c.to_array());
-        for k in 0..8 {
-            let want = tex.sample(&sm, s[k], t[k], lod[k]).to_array().map(f32::to_bits);
-            let lane = [got[0][k], got[1][k], got[2][k], got[3][k]].map(f32::to_bits);
-            prop_assert_eq!(lane, want, "lane {} of {:?}: s {}, t {}, lod {}", k, sm, s[k], t[k], lod[k]);
+        for (level, got) in sample_x8_at_each_level(&tex, &sm, s, t, lod).iter().enumerate() {
+            for k in 0..8 {
+                let want = tex.sample(&sm, s[k], t[k], lod[k]).to_array().map(f32::to_bits);
+                let lane = [got[0][k], got[1][k], got[2][k], got[3][k]].map(f32::to_bits);
+                prop_assert_eq!(lane, want, "level {}, lane {} of {:?}: s {}, t {}, lod {}", level, k, sm, s[k], t[k], lod[k]);
+            }
         }
     }
 }
 
-/// Every lane of `sample_x8` against `sample`, bit for bit.
+/// `sample_x8` at the baseline level and at the best level the CPU has
+/// (`zline_simd::vectorize`; the same level twice on a CPU without AVX2).
+fn sample_x8_at_each_level(
+    tex: &Texture,
+    sm: &Sampler,
+    s: [f32; 8],
+    t: [f32; 8],
+    lod: [f32; 8],
+) -> [[[f32; 8]; 4]; 2] {
+    use zline_simd::lanes::{f32x8, Baseline, Level};
+    struct Job<'a>(&'a Texture, &'a Sampler, [f32; 8], [f32; 8], [f32; 8]);
+    impl zline_simd::Vectorized for &Job<'_> {
+        type Output = [[f32; 8]; 4];
+        #[inline(always)]
+        fn run<L: Level>(self) -> [[f32; 8]; 4] {
+            let v = |a: [f32; 8]| f32x8::<L>::from(a);
+            self.0.sample_x8(self.1, v(self.2), v(self.3), v(self.4)).map(|c| c.to_array())
+        }
+    }
+    let job = Job(tex, sm, s, t, lod);
+    [zline_simd::Vectorized::run::<Baseline>(&job), zline_simd::vectorize(&job)]
+}
+
+/// Every lane of `sample_x8` against `sample`, bit for bit, at each level.
 #[track_caller]
 fn check_lanes(tex: &Texture, sm: Sampler, s: [f32; 8], t: [f32; 8], lod: [f32; 8]) {
-    use wide::f32x8;
-    let got = tex.sample_x8(&sm, f32x8::from(s), f32x8::from(t), f32x8::from(lod)).map(|c| c.to_array());
-    for k in 0..8 {
-        let want = tex.sample(&sm, s[k], t[k], lod[k]).to_array().map(f32::to_bits);
-        let lane = [got[0][k], got[1][k], got[2][k], got[3][k]].map(f32::to_bits);
-        assert_eq!(lane, want, "lane {k} of {sm:?}: s {}, t {}, lod {}", s[k], t[k], lod[k]);
+    for (level, got) in sample_x8_at_each_level(tex, &sm, s, t, lod).iter().enumerate() {
+        for k in 0..8 {
+            let want = tex.sample(&sm, s[k], t[k], lod[k]).to_array().map(f32::to_bits);
+            let lane = [got[0][k], got[1][k], got[2][k], got[3][k]].map(f32::to_bits);
+            assert_eq!(lane, want, "level {level}, lane {k} of {sm:?}: s {}, t {}, lod {}", s[k], t[k], lod[k]);
+        }
     }
 }
 
@@ -507,15 +530,15 @@ fn eight_lanes_read_the_first_and_last_texels_of_the_buffer() {
     let clamp = |filter| sampler(filter, Wrap::ClampToEdge);
     let corners = ([0.0, 0.99, 0.0, 0.99, 0.1, 0.9, 0.2, 0.8], [0.0, 0.99, 0.99, 0.0, 0.1, 0.9, 0.9, 0.1]);
     check_lanes(&tex, clamp(Filter::Nearest), corners.0, corners.1, [0.0; 8]);
-    let nearest = tex.sample_x8(&clamp(Filter::Nearest), corners.0.into(), corners.1.into(), 0.0.into());
-    assert_eq!((nearest[2].to_array()[0], nearest[2].to_array()[1]), (bottom(0).z, top(3).z));
+    let nearest = sample_x8_at_each_level(&tex, &clamp(Filter::Nearest), corners.0, corners.1, [0.0; 8])[1];
+    assert_eq!((nearest[2][0], nearest[2][1]), (bottom(0).z, top(3).z));
     // Columns 2–3 of the top row (the last pair of level 0) in every lane,
     // then columns 0–1 of the bottom row (the first pair).
     let s_right = [0.63, 0.65, 0.7, 0.75, 0.8, 0.85, 0.87, 0.874];
     check_lanes(&tex, clamp(Filter::Bilinear), s_right, [0.9; 8], [0.0; 8]);
     check_lanes(&tex, clamp(Filter::Bilinear), s_right.map(|s| s - 0.5), [0.1; 8], [0.0; 8]);
-    let beyond = tex.sample_x8(&clamp(Filter::Trilinear), 0.3.into(), 0.6.into(), 9.0.into());
-    assert_eq!(beyond.map(|c| c.to_array()[5]), tex.texel(2, 0, 0).to_array());
+    let beyond = sample_x8_at_each_level(&tex, &clamp(Filter::Trilinear), [0.3; 8], [0.6; 8], [9.0; 8])[1];
+    assert_eq!(beyond.map(|c| c[5]), tex.texel(2, 0, 0).to_array());
     for wrap in [Wrap::Repeat, Wrap::ClampToEdge] {
         let lods = [9.0, 2.0, 1.5, 1.0, 0.5, 0.0, -1.0, f32::NAN];
         check_lanes(&tex, sampler(Filter::Trilinear, wrap), corners.0, corners.1, lods);

@@ -39,24 +39,24 @@
 //! 25.0 to 23.0 ms (0.92). AVX2's `vgatherdps`, one gather per channel,
 //! measured 2–3× slower than these loads and transposes.
 
-use wide::{f32x8, i32x8, CmpEq, CmpGe, CmpGt, CmpLt};
+use zline_simd::lanes::{f32x8, i32x8, Baseline, Level as LaneLevel};
 
 use super::{Filter, Level, Sampler, Texture, Wrap};
 
 /// One mip level per lane: size as integers and floats, and first texel.
 #[derive(Clone, Copy)]
-struct Levels {
-    offset: i32x8,
-    width: i32x8,
-    height: i32x8,
-    width_f: f32x8,
-    height_f: f32x8,
+struct Levels<L: LaneLevel = Baseline> {
+    offset: i32x8<L>,
+    width: i32x8<L>,
+    height: i32x8<L>,
+    width_f: f32x8<L>,
+    height_f: f32x8<L>,
 }
 
-impl Levels {
+impl<L: LaneLevel> Levels<L> {
     /// The same level in every lane.
     #[inline]
-    fn splat(lv: Level) -> Levels {
+    fn splat(lv: Level) -> Levels<L> {
         // Sizes are at most MAX_TEXTURE_SIZE and the whole chain fits in
         // i32 (16384² · 4/3 texels), so these casts are exact.
         let (w, h) = (lv.width as i32, lv.height as i32);
@@ -71,7 +71,7 @@ impl Levels {
 
     /// Level `index[k]` in lane k.
     #[inline]
-    fn gather(levels: &[Level], index: [i32; 8]) -> Levels {
+    fn gather(levels: &[Level], index: [i32; 8]) -> Levels<L> {
         let lv = index.map(|i| levels[i as usize]);
         Levels {
             offset: i32x8::from(lv.map(|l| l.offset as i32)),
@@ -87,7 +87,7 @@ impl Texture {
     /// [`Texture::sample`] for eight lanes: lane k of the result (R, G, B,
     /// A) is bit for bit `self.sample(sampler, s[k], t[k], lod[k])`.
     #[inline]
-    pub fn sample_x8(&self, sampler: &Sampler, s: f32x8, t: f32x8, lod: f32x8) -> [f32x8; 4] {
+    pub fn sample_x8<L: LaneLevel>(&self, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>, lod: f32x8<L>) -> [f32x8<L>; 4] {
         match sampler.filter {
             Filter::Nearest => self.nearest_x8(Levels::splat(self.levels[0]), sampler, s, t),
             Filter::Bilinear => self.bilinear_x8(Levels::splat(self.levels[0]), sampler, s, t),
@@ -96,17 +96,17 @@ impl Texture {
     }
 
     #[inline]
-    fn nearest_x8(&self, lv: Levels, sampler: &Sampler, s: f32x8, t: f32x8) -> [f32x8; 4] {
+    fn nearest_x8<L: LaneLevel>(&self, lv: Levels<L>, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>) -> [f32x8<L>; 4] {
         let x = nearest_index(s, lv.width_f, lv.width, sampler.wrap_s);
         let y = nearest_index(t, lv.height_f, lv.height, sampler.wrap_t);
         let idx = (lv.offset + y * lv.width + x).to_array();
-        let [r, g, b, a] = zline_simd::gather_texels_x8(self.texel_array(), idx);
+        let [r, g, b, a] = zline_simd::gather_texels_x8_at::<L>(self.texel_array(), idx);
         [r.into(), g.into(), b.into(), a.into()]
     }
 
     /// The scalar bilinear's two-step interpolation, per lane.
     #[inline]
-    fn bilinear_x8(&self, lv: Levels, sampler: &Sampler, s: f32x8, t: f32x8) -> [f32x8; 4] {
+    fn bilinear_x8<L: LaneLevel>(&self, lv: Levels<L>, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>) -> [f32x8<L>; 4] {
         let (x0, x1, fs) = linear_taps(s, lv.width_f, lv.width, sampler.wrap_s);
         let (y0, y1, ft) = linear_taps(t, lv.height_f, lv.height, sampler.wrap_t);
         let (row0, row1) = (lv.offset + y0 * lv.width, lv.offset + y1 * lv.width);
@@ -127,16 +127,16 @@ impl Texture {
     /// The texels at buffer indices `a[k]` and `b[k]` of every lane k, as
     /// channel vectors.
     #[inline]
-    fn gather_pair(&self, a: [i32; 8], b: [i32; 8]) -> ([f32x8; 4], [f32x8; 4]) {
-        split(zline_simd::gather_texel_pairs_x8(self.texel_array(), a, b))
+    fn gather_pair<L: LaneLevel>(&self, a: [i32; 8], b: [i32; 8]) -> ([f32x8<L>; 4], [f32x8<L>; 4]) {
+        split(zline_simd::gather_texel_pairs_x8_at::<L>(self.texel_array(), a, b))
     }
 
     /// [`Self::gather_pair`] for b = a + 1: one 8-float load per lane.
     /// Always inlined: the usual case, and out of line (as the compiler
     /// chose once) its eight result vectors went through memory.
     #[inline(always)]
-    fn gather_adjacent(&self, a: [i32; 8]) -> ([f32x8; 4], [f32x8; 4]) {
-        split(zline_simd::gather_adjacent_texels_x8(self.texel_array(), a))
+    fn gather_adjacent<L: LaneLevel>(&self, a: [i32; 8]) -> ([f32x8<L>; 4], [f32x8<L>; 4]) {
+        split(zline_simd::gather_adjacent_texels_x8_at::<L>(self.texel_array(), a))
     }
 
     /// The texel buffer as `zline_simd` reads it.
@@ -150,7 +150,7 @@ impl Texture {
     /// otherwise (NaN included). Every lane computes the finer level; the
     /// coarser one only when some lane blends.
     #[inline]
-    fn trilinear_x8(&self, sampler: &Sampler, s: f32x8, t: f32x8, lod: f32x8) -> [f32x8; 4] {
+    fn trilinear_x8<L: LaneLevel>(&self, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>, lod: f32x8<L>) -> [f32x8<L>; 4] {
         let last = self.levels.len() - 1;
         let beyond = lod.cmp_ge(f32x8::splat(last as f32));
         let between = lod.cmp_gt(f32x8::ZERO) & !beyond;
@@ -170,7 +170,7 @@ impl Texture {
 
     /// The levels `index[k]` per lane, read once when all lanes agree.
     #[inline(always)]
-    fn levels_of(&self, index: i32x8) -> Levels {
+    fn levels_of<L: LaneLevel>(&self, index: i32x8<L>) -> Levels<L> {
         let first = index.to_array()[0];
         if index.cmp_eq(i32x8::splat(first)).all() {
             Levels::splat(self.levels[first as usize])
@@ -186,7 +186,7 @@ impl Texture {
 /// `attrs.map(f32x8::from)` (a 224-byte copy per block), and Phong frames
 /// took 7–16 % longer.
 #[inline(always)]
-fn split(c: [[f32; 8]; 8]) -> ([f32x8; 4], [f32x8; 4]) {
+fn split<L: LaneLevel>(c: [[f32; 8]; 8]) -> ([f32x8<L>; 4], [f32x8<L>; 4]) {
     let [r0, g0, b0, a0, r1, g1, b1, a1] = c;
     ([r0.into(), g0.into(), b0.into(), a0.into()], [r1.into(), g1.into(), b1.into(), a1.into()])
 }
@@ -196,8 +196,8 @@ fn split(c: [[f32; 8]; 8]) -> ([f32x8; 4], [f32x8; 4]) {
 /// x86-64 has none and `wide` then calls libm's `floorf` once per lane:
 /// there [`floor_sse2`] does it with conversions.
 #[inline(always)]
-fn floor(x: f32x8) -> f32x8 {
-    if cfg!(all(target_arch = "x86_64", not(target_feature = "sse4.1"))) {
+fn floor<L: LaneLevel>(x: f32x8<L>) -> f32x8<L> {
+    if !L::V3 && cfg!(all(target_arch = "x86_64", not(target_feature = "sse4.1"))) {
         floor_sse2(x)
     } else {
         x.floor()
@@ -212,7 +212,7 @@ fn floor(x: f32x8) -> f32x8 {
 /// as they are: x itself. (`f32::floor` of a signalling NaN is quiet or not
 /// depending on the build; the sampler discards non-finite lanes anyway.)
 #[inline(always)]
-fn floor_sse2(x: f32x8) -> f32x8 {
+fn floor_sse2<L: LaneLevel>(x: f32x8<L>) -> f32x8<L> {
     let small = x.abs().cmp_lt(f32x8::splat(8_388_608.0)); // 2^23; false for NaN
     let t = f32x8::from_i32x8(x.trunc_int());
     let down = t - (t.cmp_gt(x) & f32x8::ONE);
@@ -232,14 +232,14 @@ fn is_floor_of(got: f32, v: f32) -> bool {
 
 /// a + (b − a)·f per channel, as the scalar `lerp`.
 #[inline]
-fn lerp4(a: [f32x8; 4], b: [f32x8; 4], f: f32x8) -> [f32x8; 4] {
+fn lerp4<L: LaneLevel>(a: [f32x8<L>; 4], b: [f32x8<L>; 4], f: f32x8<L>) -> [f32x8<L>; 4] {
     std::array::from_fn(|c| a[c] + (b[c] - a[c]) * f)
 }
 
 /// The scalar `nearest_index` per lane: ⌊coord·size⌋ wrapped, 0 where
 /// coord·size is not finite.
 #[inline]
-fn nearest_index(coord: f32x8, size_f: f32x8, size: i32x8, wrap: Wrap) -> i32x8 {
+fn nearest_index<L: LaneLevel>(coord: f32x8<L>, size_f: f32x8<L>, size: i32x8<L>, wrap: Wrap) -> i32x8<L> {
     let u = coord * size_f;
     let i = u.is_finite().blend(floor(u), f32x8::ZERO).trunc_int();
     match wrap {
@@ -251,7 +251,7 @@ fn nearest_index(coord: f32x8, size_f: f32x8, size: i32x8, wrap: Wrap) -> i32x8 
 /// The scalar `linear_taps` per lane: the two texels around the sample,
 /// wrapped, and the weight of the second.
 #[inline]
-fn linear_taps(coord: f32x8, size_f: f32x8, size: i32x8, wrap: Wrap) -> (i32x8, i32x8, f32x8) {
+fn linear_taps<L: LaneLevel>(coord: f32x8<L>, size_f: f32x8<L>, size: i32x8<L>, wrap: Wrap) -> (i32x8<L>, i32x8<L>, f32x8<L>) {
     let u = coord * size_f - f32x8::splat(0.5);
     let finite = u.is_finite();
     let below = floor(u);
@@ -275,7 +275,7 @@ fn linear_taps(coord: f32x8, size_f: f32x8, size: i32x8, wrap: Wrap) -> (i32x8, 
 /// sizes mask; other sizes keep indices already inside and take
 /// [`rem_euclid`] only when some lane lies outside.
 #[inline]
-fn repeat(i: i32x8, size: i32x8) -> i32x8 {
+fn repeat<L: LaneLevel>(i: i32x8<L>, size: i32x8<L>) -> i32x8<L> {
     let one = i32x8::splat(1);
     let pow2 = (size & (size - one)).cmp_eq(i32x8::ZERO);
     let inside = !i.cmp_lt(i32x8::ZERO) & i.cmp_lt(size);
@@ -296,9 +296,9 @@ fn repeat(i: i32x8, size: i32x8) -> i32x8 {
 /// the 1/size ≥ 2^-14 between a non-integer quotient and the next integer,
 /// so ⌊r/size⌋ is exact and r − ⌊r/size⌋·size lies in [0, size).
 #[inline]
-fn rem_euclid(i: i32x8, size: i32x8) -> i32x8 {
+fn rem_euclid<L: LaneLevel>(i: i32x8<L>, size: i32x8<L>) -> i32x8<L> {
     let size_f = f32x8::from_i32x8(size);
-    let step = |v: i32x8| {
+    let step = |v: i32x8<L>| {
         let q = floor(f32x8::from_i32x8(v) / size_f).trunc_int();
         v - q * size
     };
@@ -308,6 +308,8 @@ fn rem_euclid(i: i32x8, size: i32x8) -> i32x8 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    type F = f32x8<Baseline>;
+    type I = i32x8<Baseline>;
     use proptest::prelude::*;
 
     #[test]
@@ -318,7 +320,7 @@ mod tests {
             for chunk in values.chunks(8) {
                 let mut lanes = [0; 8];
                 lanes[..chunk.len()].copy_from_slice(chunk);
-                let got = rem_euclid(i32x8::from(lanes), i32x8::splat(size)).to_array();
+                let got = rem_euclid(I::from(lanes), I::splat(size)).to_array();
                 for (k, v) in lanes.iter().enumerate() {
                     assert_eq!(got[k], v.rem_euclid(size), "{v} mod {size}");
                 }
@@ -363,7 +365,7 @@ mod tests {
         for chunk in values.chunks(8) {
             let mut lanes = [0.0; 8];
             lanes[..chunk.len()].copy_from_slice(chunk);
-            let got = floor_sse2(f32x8::from(lanes)).to_array();
+            let got = floor_sse2(F::from(lanes)).to_array();
             for (k, v) in lanes.iter().enumerate() {
                 assert!(is_floor_of(got[k], *v), "floor({v:e}) = {}", got[k]);
             }
@@ -374,14 +376,14 @@ mod tests {
         #[test]
         fn sse2_floor_matches_f32_floor(bits in any::<u32>(), small in -1.0e7f32..1.0e7) {
             for v in [f32::from_bits(bits), small] {
-                let got = floor_sse2(f32x8::splat(v)).to_array()[0];
+                let got = floor_sse2(F::splat(v)).to_array()[0];
                 prop_assert!(is_floor_of(got, v), "floor({:e}) = {}", v, got);
             }
         }
 
         #[test]
         fn rem_euclid_matches_the_scalar_one(i in any::<i32>(), size in 1i32..=16384) {
-            let got = rem_euclid(i32x8::splat(i), i32x8::splat(size)).to_array()[0];
+            let got = rem_euclid(I::splat(i), I::splat(size)).to_array()[0];
             prop_assert_eq!(got, i.rem_euclid(size));
         }
     }
