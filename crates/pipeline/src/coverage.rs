@@ -34,7 +34,7 @@ impl TileTarget {
             for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
                 let i = line + (x - self.origin) as usize;
                 let (empty, alpha) = if self.colors_valid {
-                    (f32x8::ZERO, load(&self.alpha, i))
+                    (f32x8::<Baseline>::ZERO, load(&self.alpha, i))
                 } else {
                     let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
                     (empty, empty.blend(f32x8::ZERO, f32x8::ONE))
@@ -75,7 +75,7 @@ impl TileTarget {
                         sum[3] += alpha;
                     }
                 }
-                let mean = sum.map(|v| f32x8::splat(v * scale));
+                let mean = sum.map(|v| f32x8::<Baseline>::splat(v * scale));
                 out[px as usize] = pack_straight([mean[0], mean[1], mean[2]], mean[3])[0];
             }
         }
@@ -86,7 +86,7 @@ impl TileTarget {
 /// RGBA words: straight colour p/α (0 where α is not above 0) and α, each
 /// quantized by SPEC §10.
 #[inline(always)]
-pub(crate) fn pack_straight<S: Level>(p: [f32x8; 3], alpha: f32x8<S>) -> [u32; LANES] {
+pub(crate) fn pack_straight<S: Level>(p: [f32x8<S>; 3], alpha: f32x8<S>) -> [u32; LANES] {
     let covered = alpha.cmp_gt(f32x8::ZERO);
     let safe = covered.blend(alpha, f32x8::ONE);
     let straight = |c: f32x8<S>| covered.blend(c / safe, f32x8::ZERO);
@@ -105,7 +105,7 @@ mod tests {
     fn straight_colour_is_premultiplied_over_alpha() {
         let a: [f32; 8] = [1.0, 0.75, 0.5, 0.0, 0.25, 1.0, 0.1, f32::NAN];
         let c: [f32; 8] = [0.2, 0.6, 0.9, 0.0, 0.5, 0.0, 0.7, 0.3];
-        let p = f32x8::from(std::array::from_fn::<f32, 8, _>(|k| c[k] * a[k]));
+        let p = f32x8::<Baseline>::from(std::array::from_fn::<f32, 8, _>(|k| c[k] * a[k]));
         let got = pack_straight([p, p, p], f32x8::from(a));
         for k in 0..7 {
             let s = if a[k] > 0.0 { quantize(c[k] * a[k] / a[k]) } else { 0 };

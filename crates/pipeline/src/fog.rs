@@ -20,7 +20,7 @@
 use std::marker::PhantomData;
 
 use glam::{Mat4, Vec4};
-use zline_simd::lanes::{f32x8, Baseline, Level};
+use zline_simd::lanes::{f32x8, Level};
 use zline_scene::{Fog, FogCoordinate, FogMode};
 
 use crate::setup::DepthEncoding;

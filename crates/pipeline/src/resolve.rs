@@ -4,7 +4,7 @@
 //! background here, since tiles never clear their colour planes.
 
 use glam::Vec3;
-use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
+use zline_simd::lanes::{f32x8, i32x8, Level};
 use zline_raster::LANES;
 use zline_shading::Vec3x8;
 
@@ -125,6 +125,7 @@ pub(crate) fn quantize_x8<S: Level>(c: f32x8<S>) -> i32x8<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use zline_simd::lanes::Baseline;
     use crate::image::quantize;
 
     #[test]
@@ -132,7 +133,7 @@ mod tests {
         let r: [f32; 8] = [0.0, 1.0, 0.5, f32::NAN, -2.0, 7.0, 0.2, 100.0 / 255.0];
         let g = r.map(|v| v * 0.7);
         let b = r.map(|v| 1.0 - v);
-        let got = pack_rgba(f32x8::from(r), f32x8::from(g), f32x8::from(b));
+        let got = pack_rgba(f32x8::<Baseline>::from(r), f32x8::from(g), f32x8::from(b));
         for k in 0..8 {
             let want = u32::from_le_bytes([quantize(r[k]), quantize(g[k]), quantize(b[k]), 255]);
             assert_eq!(got[k], want, "lane {k}");

@@ -20,7 +20,7 @@
 
 use glam::{Mat4, Vec3};
 use rayon::prelude::*;
-use zline_simd::lanes::{f32x8, Baseline, Level};
+use zline_simd::lanes::{f32x8, Level};
 use zline_raster::{DepthPlane, EdgeTable, FixedPoint, PlaneBasis, Rect};
 use zline_scene::{Light, Scene};
 use zline_shading::Vec3x8;
@@ -318,6 +318,7 @@ fn clip_near(q: [Vec3; 3], near: f32, mut piece: impl FnMut([Vec3; 3])) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use zline_simd::lanes::Baseline;
 
     #[test]
     fn a_drawn_triangle_keeps_the_nearest_depth() {
@@ -385,7 +386,7 @@ mod tests {
                         Vec3::new(0.1 * f(i as u32 + 1), 1.0, 0.1 * f(i as u32 + 2)).normalize(),
                     )
                 });
-                let lanes = |v: &[Vec3; 8]| Vec3x8 {
+                let lanes = |v: &[Vec3; 8]| Vec3x8::<Baseline> {
                     x: f32x8::from(v.map(|p| p.x)),
                     y: f32x8::from(v.map(|p| p.y)),
                     z: f32x8::from(v.map(|p| p.z)),

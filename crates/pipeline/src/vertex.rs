@@ -11,7 +11,7 @@
 
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use rayon::prelude::*;
-use zline_simd::lanes::{f32x8, Baseline, Level};
+use zline_simd::lanes::{f32x8, Level};
 use zline_raster::FixedPoint;
 use zline_scene::{GouraudClamp, Mesh};
 use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode, Vec3x8};

@@ -27,6 +27,12 @@ pub struct Vec3x8<L: Level = Baseline> {
 }
 
 impl<L: Level> Vec3x8<L> {
+    /// The same lanes at level `M`.
+    #[inline(always)]
+    pub fn at<M: Level>(self) -> Vec3x8<M> {
+        Vec3x8 { x: self.x.at(), y: self.y.at(), z: self.z.at() }
+    }
+
     /// Every lane set to `v`.
     #[inline]
     pub fn splat(v: glam::Vec3) -> Vec3x8<L> {

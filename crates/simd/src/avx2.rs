@@ -64,6 +64,13 @@ unsafe fn run_v3<V: crate::Vectorized>(job: V) -> V::Output {
 }
 
 impl V3Token {
+    /// The token inside code running at the x86-64-v3 level (which
+    /// [`crate::vectorize`] enters only with a token).
+    #[inline(always)]
+    pub(crate) fn within_v3() -> V3Token {
+        V3Token(())
+    }
+
     /// [`crate::vectorize`] on this CPU.
     #[inline(always)]
     pub(crate) fn vectorize<V: crate::Vectorized>(self, job: V) -> V::Output {

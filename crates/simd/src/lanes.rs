@@ -282,6 +282,12 @@ impl<L: Level> f32x8<L> {
         at_level!(_mm256_movemask_ps(self.m()), self.w.move_mask())
     }
 
+    /// log₂ x, `wide`'s polynomial at every level (as [`Self::exp`]).
+    #[inline(always)]
+    pub fn log2(self) -> Self {
+        Self::from_wide(self.w.log2())
+    }
+
     /// eˣ, `wide`'s polynomial at every level (its operations in the
     /// baseline's encoding; one source, so the same bits).
     #[inline(always)]

@@ -179,6 +179,19 @@ pub fn vectorize<V: Vectorized>(job: V) -> V::Output {
     job.run::<lanes::Baseline>()
 }
 
+/// Runs `job` at level `L` itself: a function boundary that keeps the
+/// level's instructions (a job's body is compiled for its level only where
+/// it is inlined; a part kept out of line on purpose, such as a rare
+/// kernel, runs through here instead).
+#[inline(always)]
+pub fn vectorize_at<L: lanes::Level, V: Vectorized>(job: V) -> V::Output {
+    #[cfg(target_arch = "x86_64")]
+    if L::V3 {
+        return avx2::V3Token::within_v3().vectorize(job);
+    }
+    job.run::<lanes::Baseline>()
+}
+
 /// The x86-64-v3 level when [`vectorize`] would choose it (for tests and
 /// reports).
 pub fn v3_available() -> bool {

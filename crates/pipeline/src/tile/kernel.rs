@@ -17,7 +17,7 @@
 //!
 //! [`Kernel`]: crate::setup::Kernel
 
-use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
+use zline_simd::lanes::{f32x8, i32x8, Level};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, Span, LANES};
 use zline_shading::Vec3x8;
 
@@ -110,19 +110,19 @@ pub(crate) trait Pass {
 pub(crate) struct Opaque;
 
 /// The transparency pass without fog.
-pub(crate) struct Blend<S: Level = Baseline> {
+pub(crate) struct Blend {
     /// 1 − kt.
-    pub(crate) opacity: f32x8<S>,
+    pub(crate) opacity: f32x8,
 }
 
 /// The transparency pass with fog.
-pub(crate) struct BlendFogged<'a, S: Level = Baseline> {
+pub(crate) struct BlendFogged<'a> {
     /// 1 − kt.
-    pub(crate) opacity: f32x8<S>,
+    pub(crate) opacity: f32x8,
     /// The frame's fog.
     pub(crate) fog: &'a FogPass,
     /// Its colour.
-    pub(crate) color: Vec3x8<S>,
+    pub(crate) color: Vec3x8,
 }
 
 impl Pass for Opaque {
@@ -137,27 +137,27 @@ impl Pass for Opaque {
     }
 }
 
-impl<S: Level> Pass for Blend<S> {
+impl Pass for Blend {
     const BLENDS: bool = true;
     #[inline(always)]
-    fn opacity(&self) -> f32x8<S> {
-        self.opacity
+    fn opacity<S: Level>(&self) -> f32x8<S> {
+        self.opacity.at()
     }
     #[inline(always)]
-    fn fog(&self, c: Vec3x8<S>, _: i32, _: i32, _: f32x8<S>) -> Vec3x8<S> {
+    fn fog<S: Level>(&self, c: Vec3x8<S>, _: i32, _: i32, _: f32x8<S>) -> Vec3x8<S> {
         c
     }
 }
 
-impl<S: Level> Pass for BlendFogged<'_, S> {
+impl Pass for BlendFogged<'_> {
     const BLENDS: bool = true;
     #[inline(always)]
-    fn opacity(&self) -> f32x8<S> {
-        self.opacity
+    fn opacity<S: Level>(&self) -> f32x8<S> {
+        self.opacity.at()
     }
     #[inline(always)]
-    fn fog(&self, c: Vec3x8<S>, x: i32, y: i32, z: f32x8<S>) -> Vec3x8<S> {
-        let (f, fc) = (self.fog.factors(x, y, z), self.color);
+    fn fog<S: Level>(&self, c: Vec3x8<S>, x: i32, y: i32, z: f32x8<S>) -> Vec3x8<S> {
+        let (f, fc) = (self.fog.factors(x, y, z), self.color.at::<S>());
         let g = f32x8::ONE - f;
         Vec3x8 { x: c.x * f + fc.x * g, y: c.y * f + fc.y * g, z: c.z * f + fc.z * g }
     }
@@ -185,7 +185,7 @@ pub(crate) struct IgnoreAlpha;
 
 /// Samples whose alpha is below the cutoff are discarded before they write
 /// depth; the rest are drawn opaque.
-pub(crate) struct MaskAlpha(f32x8<S>);
+pub(crate) struct MaskAlpha(f32x8);
 
 /// The alpha multiplies the pass's opacity.
 pub(crate) struct TextureAlpha;
@@ -204,7 +204,7 @@ impl Alpha for MaskAlpha {
     }
     #[inline(always)]
     fn test<S: Level>(&self, live: f32x8<S>, alpha: f32x8<S>) -> f32x8<S> {
-        live & alpha.cmp_ge(self.0)
+        live & alpha.cmp_ge(self.0.at())
     }
 }
 
@@ -223,25 +223,25 @@ impl Alpha for TextureAlpha {
 pub(crate) trait Lod {
     /// The levels of eight samples at (s, t), from the plane gradients
     /// `dx`, `dy` (planes Q, S, T) and `inv` (the [`Interp::w`] factor).
-    fn lods<I: Interp, S: Level>(d: &Derivatives<S>, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S>;
+    fn lods<I: Interp, S: Level>(d: &Derivatives, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S>;
 }
 
 /// The plane gradients a [`DerivativeLod`] reads, in texels.
-pub(crate) struct Derivatives<S: Level = Baseline> {
+pub(crate) struct Derivatives {
     dx: [f32; 3],
     dy: [f32; 3],
-    size: (f32x8<S>, f32x8<S>),
+    size: (f32, f32),
 }
 
-impl<S: Level> Derivatives<S> {
-    fn new<const N: usize>(planes: &AttributePlanes<N>, texture: &FrameTexture) -> Derivatives<S> {
+impl Derivatives {
+    fn new<const N: usize>(planes: &AttributePlanes<N>, texture: &FrameTexture) -> Derivatives {
         let (dx, dy) = (planes.dx(), planes.dy());
         let (q, s, t) = (textured::Q, textured::S, textured::T);
         let (w, h) = (texture.texture.width(), texture.texture.height());
         Derivatives {
             dx: [dx[q], dx[s], dx[t]],
             dy: [dy[q], dy[s], dy[t]],
-            size: (f32x8::splat(w as f32), f32x8::splat(h as f32)),
+            size: (w as f32, h as f32),
         }
     }
 }
@@ -254,7 +254,7 @@ pub(crate) struct DerivativeLod;
 
 impl Lod for BaseLod {
     #[inline(always)]
-    fn lods<I: Interp, S: Level>(_: &Derivatives<S>, _: f32x8<S>, _: f32x8<S>, _: f32x8<S>) -> f32x8<S> {
+    fn lods<I: Interp, S: Level>(_: &Derivatives, _: f32x8<S>, _: f32x8<S>, _: f32x8<S>) -> f32x8<S> {
         f32x8::ZERO
     }
 }
@@ -265,7 +265,7 @@ impl Lod for DerivativeLod {
     /// eight of libm's, which measured ~12 % of a textured frame). Zero or
     /// NaN footprints read level 0.
     #[inline(always)]
-    fn lods<I: Interp, S: Level>(d: &Derivatives<S>, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S> {
+    fn lods<I: Interp, S: Level>(d: &Derivatives, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S> {
         // s = S/Q with S = s/w and Q = 1/w planes: ∂s/∂x = (∂S/∂x − s·∂Q/∂x)/Q.
         let derivative = |ds: f32, dq: f32, v: f32x8<S>| {
             if I::PERSPECTIVE {
@@ -274,7 +274,7 @@ impl Lod for DerivativeLod {
                 f32x8::splat(ds)
             }
         };
-        let (fw, fh) = d.size;
+        let (fw, fh) = (f32x8::splat(d.size.0), f32x8::splat(d.size.1));
         let (dx, dy) = (d.dx, d.dy);
         let (sx, tx) = (derivative(dx[1], dx[0], s) * fw, derivative(dx[2], dx[0], t) * fh);
         let (sy, ty) = (derivative(dy[1], dy[0], s) * fw, derivative(dy[2], dy[0], t) * fh);
@@ -359,7 +359,7 @@ impl TileTarget {
             if live.none() {
                 return;
             }
-            let mask = shadow.get(i / LANES).copied().unwrap_or(i32x8::ZERO);
+            let mask = shadow.get(i / LANES).map_or(i32x8::ZERO, |m| m.at());
             let (c, alpha) = shade(&b.attrs.map(f32x8::from), mask);
             let live = alpha_use.test(live, alpha);
             let bits = live.move_mask();
@@ -394,16 +394,16 @@ impl TileTarget {
     }
 
     /// SPEC §6 flat: one colour.
-    pub(super) fn flat<P: Pass>(&mut self, p: &Primitive<Flat>, pass: &P) -> u64 {
-        let c = Vec3x8::splat(p.shader.color);
+    pub(super) fn flat<P: Pass, S: Level>(&mut self, p: &Primitive<Flat>, pass: &P) -> u64 {
+        let c = Vec3x8::<S>::splat(p.shader.color);
         let planes = AttributePlanes::NONE;
-        self.scan((&p.edges, &p.depth), &planes, pass, &IgnoreAlpha, |_, _| (c, f32x8::ONE))
+        self.scan::<_, _, _, S>((&p.edges, &p.depth), &planes, pass, &IgnoreAlpha, |_, _| (c, f32x8::ONE))
     }
 
     /// SPEC §6 Gouraud: the lit vertex colours interpolated (and clamped
     /// per sample when `C` says so).
-    pub(super) fn gouraud<I: Interp, C: Clamp, P: Pass>(&mut self, p: &Primitive<Gouraud>, pass: &P) -> u64 {
-        self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, _| {
+    pub(super) fn gouraud<I: Interp, C: Clamp, P: Pass, S: Level>(&mut self, p: &Primitive<Gouraud>, pass: &P) -> u64 {
+        self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, _| {
             let (q, c) = (a[gouraud::Q], gouraud::COLOR);
             let c = Vec3x8 { x: I::divide(a[c], q), y: I::divide(a[c + 1], q), z: I::divide(a[c + 2], q) };
             (C::clamp(c), f32x8::ONE)
@@ -412,7 +412,7 @@ impl TileTarget {
 
     /// SPEC §6 Phong: normal and eye position interpolated, the normal
     /// re-normalized per sample, the lighting model per sample.
-    pub(super) fn phong<I: Interp, P: Pass>(
+    pub(super) fn phong<I: Interp, P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Phong<{ phong::LEN }>>,
         ctx: &ShadeContext<'_>,
@@ -421,32 +421,32 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
         if ctx.normals {
-            return self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
-                (encode_normal(phong_point::<_, I>(a).2), f32x8::ONE)
+            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, _| {
+                (encode_normal(phong_point::<_, I, _>(a).2), f32x8::ONE)
             });
         }
         if let Some(maps) = ctx.maps {
-            return self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
-                let (_, eye, normal) = phong_point::<_, I>(a);
+            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, _| {
+                let (_, eye, normal) = phong_point::<_, I, _>(a);
                 let (ad, sp) = l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n));
                 ((ad + sp).clamp01(), f32x8::ONE)
             });
         }
         if m.shadow_bits.is_some() {
-            return self.scan(edges, planes, pass, &IgnoreAlpha, |a, mask| {
-                let (_, eye, normal) = phong_point::<_, I>(a);
+            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, mask| {
+                let (_, eye, normal) = phong_point::<_, I, _>(a);
                 (l.shade_x8_shadowed(m, eye, normal, mask), f32x8::ONE)
             });
         }
-        self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
-            let (_, eye, normal) = phong_point::<_, I>(a);
+        self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, _| {
+            let (_, eye, normal) = phong_point::<_, I, _>(a);
             (l.shade_x8(m, eye, normal), f32x8::ONE)
         })
     }
 
     /// [`Self::phong`] with the vertex colour interpolated too, multiplying
     /// ka and kd like a texel: c ⊙ (ambient+diffuse) + specular, clamped.
-    pub(super) fn phong_tinted<I: Interp, P: Pass>(
+    pub(super) fn phong_tinted<I: Interp, P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Phong<{ phong::COLORED_LEN }>>,
         ctx: &ShadeContext<'_>,
@@ -455,22 +455,22 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
         if let Some(maps) = ctx.maps {
-            return self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
-                let (w, eye, normal) = phong_point::<_, I>(a);
+            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, _| {
+                let (w, eye, normal) = phong_point::<_, I, _>(a);
                 let (ambient_diffuse, specular) =
                     l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n));
                 ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
             });
         }
         if m.shadow_bits.is_some() {
-            return self.scan(edges, planes, pass, &IgnoreAlpha, |a, mask| {
-                let (w, eye, normal) = phong_point::<_, I>(a);
+            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, mask| {
+                let (w, eye, normal) = phong_point::<_, I, _>(a);
                 let (ambient_diffuse, specular) = l.shade_parts_x8_shadowed(m, eye, normal, mask);
                 ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
             });
         }
-        self.scan(edges, planes, pass, &IgnoreAlpha, |a, _| {
-            let (w, eye, normal) = phong_point::<_, I>(a);
+        self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, _| {
+            let (w, eye, normal) = phong_point::<_, I, _>(a);
             let (ambient_diffuse, specular) = l.shade_parts_x8(m, eye, normal);
             ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
         })
@@ -490,10 +490,10 @@ impl TileTarget {
     ) -> u64 {
         let derivatives = Derivatives::new(planes, map);
         let (texture, sampler) = (&*map.texture, &map.sampler);
-        self.scan((edges, depth), planes, pass, &A::new(map), |a, mask| {
+        self.scan::<_, _, _, S>((edges, depth), planes, pass, &A::new(map), |a, mask| {
             let inv = I::w(a[textured::Q]);
             let (s, t) = (a[textured::S] * inv, a[textured::T] * inv);
-            let lods = L::lods::<I>(&derivatives, s, t, inv);
+            let lods = L::lods::<I, _>(&derivatives, s, t, inv);
             let [r, g, b, texel_alpha] = texture.sample_x8(sampler, s, t, lods);
             let texel = Vec3x8 { x: r, y: g, z: b };
             let (ambient_diffuse, specular) = parts(a, inv, mask);
@@ -502,7 +502,7 @@ impl TileTarget {
     }
 
     /// Textured flat: the parts lit once at the centroid.
-    pub(super) fn textured_flat<I: Interp, L: Lod, P: Pass, A: Alpha>(
+    pub(super) fn textured_flat<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         p: &Primitive<TexturedFlat>,
         ctx: &ShadeContext<'_>,
@@ -510,26 +510,26 @@ impl TileTarget {
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
         let (ad, spec) = (Vec3x8::splat(p.shader.ambient_diffuse), Vec3x8::splat(p.shader.specular));
-        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |_, _, _| {
+        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, |_, _, _| {
             (ad, spec)
         })
     }
 
     /// Textured Gouraud: the parts lit at the vertices, interpolated apart.
-    pub(super) fn textured_gouraud<I: Interp, L: Lod, P: Pass, A: Alpha>(
+    pub(super) fn textured_gouraud<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         p: &Primitive<TexturedGouraud>,
         ctx: &ShadeContext<'_>,
         pass: &P,
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
-        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w, _| {
+        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w, _| {
             (triple(a, textured::AMBIENT_DIFFUSE, w), triple(a, textured::SPECULAR, w))
         })
     }
 
     /// Textured Phong: the parts lit per sample.
-    pub(super) fn textured_phong<I: Interp, L: Lod, P: Pass, A: Alpha>(
+    pub(super) fn textured_phong<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         p: &Primitive<TexturedPhong<{ textured::PHONG_LEN }>>,
         ctx: &ShadeContext<'_>,
@@ -539,19 +539,19 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let prim = (&p.edges, &p.depth, &p.shader.planes);
         if let Some(maps) = ctx.maps {
-            return self.textured::<_, I, L, P, A>(prim, map, pass, |a, w, _| {
+            return self.textured::<_, I, L, P, A, S>(prim, map, pass, |a, w, _| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
                 let share = |k, p, n| maps.visibility_x8(k, p, n);
                 l.shade_parts_x8_shared(m, triple(a, textured::EYE, w), normal, share)
             });
         }
         if m.shadow_bits.is_some() {
-            return self.textured::<_, I, L, P, A>(prim, map, pass, |a, w, mask| {
+            return self.textured::<_, I, L, P, A, S>(prim, map, pass, |a, w, mask| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
                 l.shade_parts_x8_shadowed(m, triple(a, textured::EYE, w), normal, mask)
             });
         }
-        self.textured::<_, I, L, P, A>(prim, map, pass, |a, w, _| {
+        self.textured::<_, I, L, P, A, S>(prim, map, pass, |a, w, _| {
             l.shade_parts_x8(
                 m,
                 triple(a, textured::EYE, w),
@@ -563,7 +563,7 @@ impl TileTarget {
     /// Textured Phong with vertex colours: the interpolated colour
     /// multiplies ambient+diffuse like the texel.
     #[inline(never)]
-    pub(super) fn textured_colored_phong<I: Interp, L: Lod, P: Pass, A: Alpha>(
+    pub(super) fn textured_colored_phong<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         p: &Primitive<TexturedPhong<{ textured::COLORED_PHONG_LEN }>>,
         ctx: &ShadeContext<'_>,
@@ -573,7 +573,7 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         // Shadowed or not in one body: this kernel is out of line already.
         let maps = ctx.maps;
-        self.textured::<_, I, L, P, A>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w, mask| {
+        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w, mask| {
             let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
             let eye = triple(a, textured::EYE, w);
             let (ambient_diffuse, specular) = match maps {
@@ -588,7 +588,7 @@ impl TileTarget {
 /// An all-ones lane for each set bit of `bits`.
 #[inline(always)]
 fn lane_mask<S: Level>(bits: u8) -> f32x8<S> {
-    let lane_bits = i32x8::from([1, 2, 4, 8, 16, 32, 64, 128]);
+    let lane_bits = i32x8::<S>::from([1, 2, 4, 8, 16, 32, 64, 128]);
     let set = (i32x8::splat(i32::from(bits)) & lane_bits).cmp_eq(lane_bits);
     bytemuck::cast(set)
 }
@@ -599,7 +599,7 @@ mod tests {
 
     #[test]
     fn lane_masks_follow_bits() {
-        let m: [u32; 8] = bytemuck::cast(lane_mask(0b1010_0110));
+        let m: [u32; 8] = bytemuck::cast(lane_mask::<zline_simd::lanes::Baseline>(0b1010_0110));
         assert_eq!(m.map(|v| v != 0), [false, true, true, false, false, true, false, true]);
     }
 }

@@ -2,7 +2,7 @@
 //! depth-only pass that decides which lines are hidden when surfaces are
 //! not drawn (lines alone) or leave no depth (the painter's algorithm).
 
-use zline_simd::lanes::{f32x8, Baseline, Level};
+use zline_simd::lanes::{f32x8, Baseline};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, LANES};
 use zline_scene::WireframeMode;
 
@@ -43,7 +43,7 @@ impl TileTarget {
         let bg = self.background;
         for (plane, c) in self.rgb.iter_mut().zip([bg.x, bg.y, bg.z]) {
             for i in (0..plane.len() * LANES).step_by(LANES) {
-                store(plane, i, f32x8::splat(c));
+                store(plane, i, f32x8::<Baseline>::splat(c));
             }
         }
         if self.coverage {
@@ -60,7 +60,7 @@ impl TileTarget {
             return;
         }
         if !self.colors_valid {
-            self.materialize_background();
+            self.materialize_background::<Baseline>();
         }
         for &k in bin {
             self.segment(&lines.segments[k as usize], lines, n);

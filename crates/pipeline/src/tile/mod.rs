@@ -27,7 +27,10 @@ mod target;
 pub(crate) use target::{load, load_for_blend, sample, store};
 pub use target::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 
-use zline_simd::lanes::{f32x8, Baseline, Level};
+use std::marker::PhantomData;
+
+use zline_simd::lanes::{f32x8, Level};
+use zline_simd::Vectorized;
 use zline_raster::LANES;
 use zline_scene::{GouraudClamp, Interpolation};
 use zline_shading::Vec3x8;
@@ -53,12 +56,23 @@ impl TileTarget {
         bin: &[OpaqueRef],
         ctx: &ShadeContext<'_>,
     ) -> u64 {
+        zline_simd::vectorize(OpaquePass { target: self, chunks, bin, ctx })
+    }
+
+    /// [`Self::opaque_pass`] at level `S`.
+    #[inline(always)]
+    fn opaque_pass_at<S: Level>(
+        &mut self,
+        chunks: &[PrimitiveChunk],
+        bin: &[OpaqueRef],
+        ctx: &ShadeContext<'_>,
+    ) -> u64 {
         let mut shaded = 0;
         for (k, r) in bin.iter().enumerate() {
             if let Some(ahead) = bin.get(k + PREFETCH_AHEAD) {
                 chunks[ahead.chunk as usize].tables.prefetch(ahead.kernel, ahead.index);
             }
-            shaded += self.draw(&chunks[r.chunk as usize], (r.kernel, r.index), ctx, &Opaque);
+            shaded += self.draw::<Opaque, S>(&chunks[r.chunk as usize], (r.kernel, r.index), ctx, &Opaque);
         }
         shaded
     }
@@ -82,7 +96,20 @@ impl TileTarget {
         fog: Option<&FogPass>,
         order: &mut Vec<(f32, PrimitiveRef)>,
     ) -> u64 {
-        self.materialize_background();
+        zline_simd::vectorize(TransparencyPass { target: self, chunks, bin, ctx, fog, order })
+    }
+
+    /// [`Self::transparency_pass`] at level `S`.
+    #[inline(always)]
+    fn transparency_pass_at<S: Level>(
+        &mut self,
+        chunks: &[PrimitiveChunk],
+        bin: &[PrimitiveRef],
+        ctx: &ShadeContext<'_>,
+        fog: Option<&FogPass>,
+        order: &mut Vec<(f32, PrimitiveRef)>,
+    ) -> u64 {
+        self.materialize_background::<S>();
         let draw = |r: &PrimitiveRef| chunks[r.chunk as usize].draws[r.index as usize];
         back_to_front(order, bin.iter().map(|r| (draw(r).sort_depth, *r)));
         let mut shaded = 0;
@@ -94,10 +121,10 @@ impl TileTarget {
             let opacity = f32x8::splat(1.0 - kt);
             let d = draw(r);
             shaded += match fog {
-                None => self.draw(chunk, (d.kernel, d.index), ctx, &Blend { opacity }),
+                None => self.draw::<_, S>(chunk, (d.kernel, d.index), ctx, &Blend { opacity }),
                 Some(fog) => {
                     let pass = BlendFogged { opacity, fog, color: Vec3x8::splat(fog.color()) };
-                    self.draw(chunk, (d.kernel, d.index), ctx, &pass)
+                    self.draw::<_, S>(chunk, (d.kernel, d.index), ctx, &pass)
                 }
             };
         }
@@ -116,7 +143,7 @@ impl TileTarget {
         if bin.is_empty() {
             return;
         }
-        self.shadow.resize(self.depth.len(), wide::i32x8::ZERO);
+        self.shadow.resize(self.depth.len(), zline_simd::lanes::i32x8::ZERO);
         let (origin, stride, rect) = (self.origin, self.stride, self.rect);
         let mask: &mut [i32] = bytemuck::cast_slice_mut(&mut self.shadow);
         for r in bin {
@@ -140,8 +167,9 @@ impl TileTarget {
 
     /// Writes the background into undrawn samples, so blending reads it as
     /// C_behind.
-    fn materialize_background(&mut self) {
-        let bg = Vec3x8::splat(self.background);
+    #[inline(always)]
+    pub(crate) fn materialize_background<S: Level>(&mut self) {
+        let bg = Vec3x8::<S>::splat(self.background);
         let [red, green, blue] = &mut self.rgb;
         for i in (0..self.depth.len() * LANES).step_by(LANES) {
             let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
@@ -153,7 +181,7 @@ impl TileTarget {
         if self.coverage {
             // Drawn samples are opaque (alpha 1), undrawn ones empty (0).
             for i in (0..self.depth.len() * LANES).step_by(LANES) {
-                let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
+                let empty = load::<S>(&self.depth, i).cmp_eq(f32x8::splat(self.far));
                 store(&mut self.alpha, i, empty.blend(f32x8::ZERO, f32x8::ONE));
             }
         }
@@ -163,13 +191,13 @@ impl TileTarget {
     /// Fogs every drawn sample of the tile (see [`crate::fog`]), with the
     /// fog's coordinate and mode chosen once for the tile.
     pub fn fog_pass(&mut self, pass: &FogPass) {
-        pass.specialized(FogTile { target: self, color: Vec3x8::splat(pass.color()) });
+        pass.specialized(FogTile { target: self, color: pass.color() });
     }
 
     /// Draws one primitive with its kernel in `pass`: the one place where a
     /// primitive's [`Kernel`] becomes a monomorphized span function.
-    #[inline]
-    fn draw<P: Pass>(
+    #[inline(always)]
+    fn draw<P: Pass, S: Level>(
         &mut self,
         chunk: &PrimitiveChunk,
         (kernel, index): (Kernel, u32),
@@ -178,91 +206,141 @@ impl TileTarget {
     ) -> u64 {
         let (t, i) = (&chunk.tables, index as usize);
         match kernel {
-            Kernel::Flat => self.flat(&t.flat[i], pass),
+            Kernel::Flat => self.flat::<P, S>(&t.flat[i], pass),
             Kernel::Gouraud { interpolation, clamp: GouraudClamp::PerVertex } => match interpolation {
                 Interpolation::PerspectiveCorrect => {
-                    self.gouraud::<Perspective, ClampedAtVertices, P>(&t.gouraud[i], pass)
+                    self.gouraud::<Perspective, ClampedAtVertices, P, S>(&t.gouraud[i], pass)
                 }
                 Interpolation::ScreenLinear => {
-                    self.gouraud::<Linear, ClampedAtVertices, P>(&t.gouraud[i], pass)
+                    self.gouraud::<Linear, ClampedAtVertices, P, S>(&t.gouraud[i], pass)
                 }
             },
             Kernel::Gouraud { interpolation, clamp: GouraudClamp::PerSample } => {
-                self.gouraud_clamped_per_sample(&t.gouraud[i], interpolation, pass)
+                self.gouraud_clamped_per_sample::<P, S>(&t.gouraud[i], interpolation, pass)
             }
             Kernel::Phong(Interpolation::PerspectiveCorrect) => {
-                self.phong::<Perspective, P>(&t.phong[i], ctx, pass)
+                self.phong::<Perspective, P, S>(&t.phong[i], ctx, pass)
             }
-            Kernel::Phong(Interpolation::ScreenLinear) => self.phong::<Linear, P>(&t.phong[i], ctx, pass),
+            Kernel::Phong(Interpolation::ScreenLinear) => self.phong::<Linear, P, S>(&t.phong[i], ctx, pass),
             Kernel::ColoredPhong(interpolation) => {
-                self.colored_phong(&t.colored_phong[i], interpolation, ctx, pass)
+                self.colored_phong::<P, S>(&t.colored_phong[i], interpolation, ctx, pass)
             }
             Kernel::Textured { lighting, interpolation, lod, alpha } => {
                 let k = TexturedChoice { lighting, lod, alpha, index: i };
                 match interpolation {
                     Interpolation::PerspectiveCorrect => {
-                        self.textured_lod::<Perspective, P>(chunk, k, ctx, pass)
+                        self.textured_lod::<Perspective, P, S>(chunk, k, ctx, pass)
                     }
-                    Interpolation::ScreenLinear => self.textured_lod::<Linear, P>(chunk, k, ctx, pass),
+                    Interpolation::ScreenLinear => self.textured_lod::<Linear, P, S>(chunk, k, ctx, pass),
                 }
             }
             Kernel::Perturbed { encoding, interpolation, texture } => {
-                self.perturbed(&t.perturbed[i], (encoding, interpolation, texture), ctx, pass)
+                self.perturbed::<P, S>(&t.perturbed[i], (encoding, interpolation, texture), ctx, pass)
             }
         }
     }
 
     /// Gouraud clamped per sample, out of line so that the default kernels
     /// are compiled as if these did not exist.
-    #[inline(never)]
-    fn gouraud_clamped_per_sample<P: Pass>(
+    #[inline(always)]
+    fn gouraud_clamped_per_sample<P: Pass, S: Level>(
         &mut self,
         p: &crate::setup::Primitive<crate::setup::Gouraud>,
         interpolation: Interpolation,
         pass: &P,
     ) -> u64 {
-        match interpolation {
-            Interpolation::PerspectiveCorrect => self.gouraud::<Perspective, ClampPerSample, P>(p, pass),
-            Interpolation::ScreenLinear => self.gouraud::<Linear, ClampPerSample, P>(p, pass),
+        struct Job<'a, P> {
+            target: &'a mut TileTarget,
+            p: &'a crate::setup::Primitive<crate::setup::Gouraud>,
+            interpolation: Interpolation,
+            pass: &'a P,
         }
+        impl<P: Pass> Vectorized for Job<'_, P> {
+            type Output = u64;
+            #[inline(always)]
+            fn run<S: Level>(self) -> u64 {
+                let Job { target, p, interpolation, pass } = self;
+                match interpolation {
+                    Interpolation::PerspectiveCorrect => {
+                        target.gouraud::<Perspective, ClampPerSample, P, S>(p, pass)
+                    }
+                    Interpolation::ScreenLinear => target.gouraud::<Linear, ClampPerSample, P, S>(p, pass),
+                }
+            }
+        }
+        zline_simd::vectorize_at::<S, _>(Job { target: self, p, interpolation, pass })
     }
 
     /// Coloured Phong, out of line so that the kernels of primitives without
     /// colours are compiled as if these did not exist.
-    #[inline(never)]
-    fn colored_phong<P: Pass>(
+    #[inline(always)]
+    fn colored_phong<P: Pass, S: Level>(
         &mut self,
         p: &crate::setup::Primitive<crate::setup::Phong<{ crate::setup::layout::phong::COLORED_LEN }>>,
         interpolation: Interpolation,
         ctx: &ShadeContext<'_>,
         pass: &P,
     ) -> u64 {
-        match interpolation {
-            Interpolation::PerspectiveCorrect => self.phong_tinted::<Perspective, P>(p, ctx, pass),
-            Interpolation::ScreenLinear => self.phong_tinted::<Linear, P>(p, ctx, pass),
+        type Colored = crate::setup::Primitive<crate::setup::Phong<{ crate::setup::layout::phong::COLORED_LEN }>>;
+        struct Job<'a, 'c, P> {
+            target: &'a mut TileTarget,
+            p: &'a Colored,
+            interpolation: Interpolation,
+            ctx: &'a ShadeContext<'c>,
+            pass: &'a P,
         }
+        impl<P: Pass> Vectorized for Job<'_, '_, P> {
+            type Output = u64;
+            #[inline(always)]
+            fn run<S: Level>(self) -> u64 {
+                let Job { target, p, interpolation, ctx, pass } = self;
+                match interpolation {
+                    Interpolation::PerspectiveCorrect => target.phong_tinted::<Perspective, P, S>(p, ctx, pass),
+                    Interpolation::ScreenLinear => target.phong_tinted::<Linear, P, S>(p, ctx, pass),
+                }
+            }
+        }
+        zline_simd::vectorize_at::<S, _>(Job { target: self, p, interpolation, ctx, pass })
     }
 
     /// Textured kernels, step 2: the level of detail.
-    #[inline(never)]
-    fn textured_lod<I: Interp, P: Pass>(
+    #[inline(always)]
+    fn textured_lod<I: Interp, P: Pass, S: Level>(
         &mut self,
         chunk: &PrimitiveChunk,
         k: TexturedChoice,
         ctx: &ShadeContext<'_>,
         pass: &P,
     ) -> u64 {
-        match k.lod {
-            LevelOfDetail::Base => self.textured_alpha::<I, BaseLod, P>(chunk, k, ctx, pass),
-            LevelOfDetail::Derivatives => self.textured_alpha::<I, DerivativeLod, P>(chunk, k, ctx, pass),
+        struct Job<'a, 'c, I, P> {
+            target: &'a mut TileTarget,
+            chunk: &'a PrimitiveChunk,
+            k: TexturedChoice,
+            ctx: &'a ShadeContext<'c>,
+            pass: &'a P,
+            interp: PhantomData<I>,
         }
+        impl<I: Interp, P: Pass> Vectorized for Job<'_, '_, I, P> {
+            type Output = u64;
+            #[inline(always)]
+            fn run<S: Level>(self) -> u64 {
+                let Job { target, chunk, k, ctx, pass, .. } = self;
+                match k.lod {
+                    LevelOfDetail::Base => target.textured_alpha::<I, BaseLod, P, S>(chunk, k, ctx, pass),
+                    LevelOfDetail::Derivatives => {
+                        target.textured_alpha::<I, DerivativeLod, P, S>(chunk, k, ctx, pass)
+                    }
+                }
+            }
+        }
+        zline_simd::vectorize_at::<S, _>(Job::<I, P> { target: self, chunk, k, ctx, pass, interp: PhantomData })
     }
 
     /// Textured kernels, step 3: what the texel's alpha does. A texture
     /// whose alpha blends is drawn only in the transparency pass; in the
     /// opaque pass its alpha is ignored.
     #[inline(always)]
-    fn textured_alpha<I: Interp, L: Lod, P: Pass>(
+    fn textured_alpha<I: Interp, L: Lod, P: Pass, S: Level>(
         &mut self,
         chunk: &PrimitiveChunk,
         k: TexturedChoice,
@@ -271,16 +349,16 @@ impl TileTarget {
     ) -> u64 {
         match (k.alpha, P::BLENDS) {
             (AlphaUse::Ignore, _) | (AlphaUse::Blend, false) => {
-                self.textured_lighting::<I, L, P, IgnoreAlpha>(chunk, k, ctx, pass)
+                self.textured_lighting::<I, L, P, IgnoreAlpha, S>(chunk, k, ctx, pass)
             }
-            (AlphaUse::Mask, _) => self.textured_lighting::<I, L, P, MaskAlpha>(chunk, k, ctx, pass),
-            (AlphaUse::Blend, true) => self.textured_lighting::<I, L, P, TextureAlpha>(chunk, k, ctx, pass),
+            (AlphaUse::Mask, _) => self.textured_lighting::<I, L, P, MaskAlpha, S>(chunk, k, ctx, pass),
+            (AlphaUse::Blend, true) => self.textured_lighting::<I, L, P, TextureAlpha, S>(chunk, k, ctx, pass),
         }
     }
 
     /// Textured kernels, step 4: the lighting combined with the texel.
     #[inline(always)]
-    fn textured_lighting<I: Interp, L: Lod, P: Pass, A: Alpha>(
+    fn textured_lighting<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         chunk: &PrimitiveChunk,
         k: TexturedChoice,
@@ -289,13 +367,13 @@ impl TileTarget {
     ) -> u64 {
         let (t, i) = (&chunk.tables, k.index);
         match k.lighting {
-            TexturedLighting::Flat => self.textured_flat::<I, L, P, A>(&t.textured_flat[i], ctx, pass),
+            TexturedLighting::Flat => self.textured_flat::<I, L, P, A, S>(&t.textured_flat[i], ctx, pass),
             TexturedLighting::Gouraud => {
-                self.textured_gouraud::<I, L, P, A>(&t.textured_gouraud[i], ctx, pass)
+                self.textured_gouraud::<I, L, P, A, S>(&t.textured_gouraud[i], ctx, pass)
             }
-            TexturedLighting::Phong => self.textured_phong::<I, L, P, A>(&t.textured_phong[i], ctx, pass),
+            TexturedLighting::Phong => self.textured_phong::<I, L, P, A, S>(&t.textured_phong[i], ctx, pass),
             TexturedLighting::ColoredPhong => {
-                self.textured_colored_phong::<I, L, P, A>(&t.textured_colored_phong[i], ctx, pass)
+                self.textured_colored_phong::<I, L, P, A, S>(&t.textured_colored_phong[i], ctx, pass)
             }
         }
     }
@@ -324,16 +402,66 @@ struct TexturedChoice {
 }
 
 /// The fog pass over one tile, generic over the fog's factors.
-struct FogTile<'a, S: Level = Baseline> {
+struct FogTile<'a> {
     target: &'a mut TileTarget,
-    color: Vec3x8<S>,
+    color: glam::Vec3,
 }
 
-impl<S: Level> FogVisitor for FogTile<'_, S> {
+/// The loop of [`FogTile`] with its factors, as a job.
+struct FogLoop<'a, F> {
+    target: &'a mut TileTarget,
+    color: glam::Vec3,
+    factors: F,
+}
+
+/// [`TileTarget::opaque_pass`] as a job.
+struct OpaquePass<'a, 'c> {
+    target: &'a mut TileTarget,
+    chunks: &'a [PrimitiveChunk],
+    bin: &'a [OpaqueRef],
+    ctx: &'a ShadeContext<'c>,
+}
+
+impl Vectorized for OpaquePass<'_, '_> {
+    type Output = u64;
+    #[inline(always)]
+    fn run<S: Level>(self) -> u64 {
+        self.target.opaque_pass_at::<S>(self.chunks, self.bin, self.ctx)
+    }
+}
+
+/// [`TileTarget::transparency_pass`] as a job.
+struct TransparencyPass<'a, 'c> {
+    target: &'a mut TileTarget,
+    chunks: &'a [PrimitiveChunk],
+    bin: &'a [PrimitiveRef],
+    ctx: &'a ShadeContext<'c>,
+    fog: Option<&'a FogPass>,
+    order: &'a mut Vec<(f32, PrimitiveRef)>,
+}
+
+impl Vectorized for TransparencyPass<'_, '_> {
+    type Output = u64;
+    #[inline(always)]
+    fn run<S: Level>(self) -> u64 {
+        self.target.transparency_pass_at::<S>(self.chunks, self.bin, self.ctx, self.fog, self.order)
+    }
+}
+
+impl FogVisitor for FogTile<'_> {
     type Output = ();
 
     fn visit<F: FogFactors>(self, factors: F) {
-        let (t, fog) = (self.target, self.color);
+        zline_simd::vectorize(FogLoop { target: self.target, color: self.color, factors });
+    }
+}
+
+impl<F: FogFactors> Vectorized for FogLoop<'_, F> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<S: Level>(self) {
+        let (t, fog, factors) = (self.target, Vec3x8::<S>::splat(self.color), self.factors);
         let [red, green, blue] = &mut t.rgb;
         for row in 0..t.rect.height() as usize {
             let y = t.rect.y0 + row as i32;

@@ -25,7 +25,7 @@
 //! zline-pipeline --release --test it painter` prints the share of wrong
 //! pixels).
 
-use zline_simd::lanes::{f32x8, Baseline, Level};
+use zline_simd::lanes::{f32x8, Baseline};
 use zline_shading::Vec3x8;
 
 use super::kernel::{Blend, BlendFogged};
@@ -48,7 +48,7 @@ impl TileTarget {
         fog: Option<&FogPass>,
         order: &mut Vec<(f32, PrimitiveRef)>,
     ) -> u64 {
-        self.materialize_background();
+        self.materialize_background::<Baseline>();
         let draw = |r: &PrimitiveRef| chunks[r.chunk as usize].draws[r.index as usize];
         back_to_front(order, bin.iter().map(|r| (draw(r).far_depth, *r)));
         let mut painted = 0;
@@ -61,10 +61,10 @@ impl TileTarget {
             };
             let d = draw(r);
             painted += match fog {
-                None => self.draw(chunk, (d.kernel, d.index), ctx, &Blend { opacity }),
+                None => self.draw::<_, Baseline>(chunk, (d.kernel, d.index), ctx, &Blend { opacity }),
                 Some(fog) => {
                     let pass = BlendFogged { opacity, fog, color: Vec3x8::splat(fog.color()) };
-                    self.draw(chunk, (d.kernel, d.index), ctx, &pass)
+                    self.draw::<_, Baseline>(chunk, (d.kernel, d.index), ctx, &pass)
                 }
             };
         }

@@ -13,7 +13,7 @@
 //!
 //! [`Kernel::Perturbed`]: crate::setup::Kernel::Perturbed
 
-use zline_simd::lanes::{f32x8, Baseline, Level};
+use zline_simd::lanes::{f32x8, Level};
 use zline_scene::{Interpolation, NormalEncoding};
 use zline_shading::{Filter, Sampler, Texture, Vec3x8};
 
@@ -26,21 +26,21 @@ use crate::setup::layout::perturbed::{BITANGENT, EYE, NORMAL, Q, S, T, TANGENT};
 use crate::setup::{AlphaUse, LevelOfDetail, Perturbed, Primitive};
 
 /// A map as the kernel reads it.
-pub(crate) struct MapReader<'a, S: Level = Baseline> {
+pub(crate) struct MapReader<'a> {
     texture: &'a Texture,
     /// The map's sampler, trilinear read as bilinear: at level 0 they are
     /// the same filter (`Texture::sample` with a level of detail ≤ 0), and
     /// the bilinear path skips the per-lane level choice.
     sampler: Sampler,
     /// k.
-    scale: f32x8<S>,
+    scale: f32,
     /// One texel in s and t: 1/W, 1/H.
-    step: (f32x8<S>, f32x8<S>),
+    step: (f32, f32),
     /// W/2, H/2: the central differences' divisor 2/W, 2/H inverted.
-    half: (f32x8<S>, f32x8<S>),
+    half: (f32, f32),
 }
 
-impl<'a, S: Level> MapReader<'a, S> {
+impl<'a> MapReader<'a> {
     fn new(map: &'a FrameTexture, scale: f32) -> MapReader<'a> {
         let (w, h) = (map.texture.width() as f32, map.texture.height() as f32);
         MapReader {
@@ -49,15 +49,15 @@ impl<'a, S: Level> MapReader<'a, S> {
                 Filter::Trilinear => Sampler { filter: Filter::Bilinear, ..map.sampler },
                 Filter::Nearest | Filter::Bilinear => map.sampler,
             },
-            scale: f32x8::splat(scale),
-            step: (f32x8::splat(1.0 / w), f32x8::splat(1.0 / h)),
-            half: (f32x8::splat(w * 0.5), f32x8::splat(h * 0.5)),
+            scale,
+            step: (1.0 / w, 1.0 / h),
+            half: (w * 0.5, h * 0.5),
         }
     }
 
     /// The map's texel at (s, t), level 0.
     #[inline(always)]
-    fn read(&self, s: f32x8<S>, t: f32x8<S>) -> [f32x8<S>; 4] {
+    fn read<S: Level>(&self, s: f32x8<S>, t: f32x8<S>) -> [f32x8<S>; 4] {
         self.texture.sample_x8(&self.sampler, s, t, f32x8::ZERO)
     }
 }
@@ -78,11 +78,13 @@ pub(crate) struct TangentNormal;
 impl Encoding for Height {
     #[inline(always)]
     fn tangent_normal<S: Level>(map: &MapReader<'_>, s: f32x8<S>, t: f32x8<S>) -> Vec3x8<S> {
-        let ((ds, dt), (hw, hh)) = (map.step, map.half);
+        let splat = |(a, b): (f32, f32)| (f32x8::<S>::splat(a), f32x8::<S>::splat(b));
+        let ((ds, dt), (hw, hh)) = (splat(map.step), splat(map.half));
+        let scale = f32x8::<S>::splat(map.scale);
         let h = |s, t| map.read(s, t)[0];
         let dh_ds = (h(s + ds, t) - h(s - ds, t)) * hw;
         let dh_dt = (h(s, t + dt) - h(s, t - dt)) * hh;
-        Vec3x8 { x: -(map.scale * dh_ds), y: -(map.scale * dh_dt), z: f32x8::ONE }
+        Vec3x8 { x: -(scale * dh_ds), y: -(scale * dh_dt), z: f32x8::ONE }
     }
 }
 
@@ -90,8 +92,8 @@ impl Encoding for TangentNormal {
     #[inline(always)]
     fn tangent_normal<S: Level>(map: &MapReader<'_>, s: f32x8<S>, t: f32x8<S>) -> Vec3x8<S> {
         let [r, g, b, _] = map.read(s, t);
-        let (one, two) = (f32x8::ONE, f32x8::splat(2.0));
-        Vec3x8 { x: (two * r - one) * map.scale, y: (two * g - one) * map.scale, z: two * b - one }
+        let (one, two, scale) = (f32x8::ONE, f32x8::splat(2.0), f32x8::splat(map.scale));
+        Vec3x8 { x: (two * r - one) * scale, y: (two * g - one) * scale, z: two * b - one }
     }
 }
 
@@ -116,8 +118,34 @@ fn perturbed_point<E: Encoding, S: Level>(map: &MapReader<'_>, a: &[f32x8<S>; 15
 impl TileTarget {
     /// Draws a [`Perturbed`] primitive: the one dispatch from the kernel's
     /// choices to a monomorphized span function, out of line.
-    #[inline(never)]
-    pub(super) fn perturbed<P: Pass>(
+    #[inline(always)]
+    pub(super) fn perturbed<P: Pass, S: Level>(
+        &mut self,
+        p: &Primitive<Perturbed>,
+        choice: (NormalEncoding, Interpolation, Option<(LevelOfDetail, AlphaUse)>),
+        ctx: &ShadeContext<'_>,
+        pass: &P,
+    ) -> u64 {
+        struct Job<'a, 'c, P> {
+            target: &'a mut TileTarget,
+            p: &'a Primitive<Perturbed>,
+            choice: (NormalEncoding, Interpolation, Option<(LevelOfDetail, AlphaUse)>),
+            ctx: &'a ShadeContext<'c>,
+            pass: &'a P,
+        }
+        impl<P: Pass> zline_simd::Vectorized for Job<'_, '_, P> {
+            type Output = u64;
+            #[inline(always)]
+            fn run<S: Level>(self) -> u64 {
+                self.target.perturbed_at::<P, S>(self.p, self.choice, self.ctx, self.pass)
+            }
+        }
+        zline_simd::vectorize_at::<S, _>(Job { target: self, p, choice, ctx, pass })
+    }
+
+    /// [`Self::perturbed`] inside its job.
+    #[inline(always)]
+    fn perturbed_at<P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Perturbed>,
         (encoding, interpolation, texture): (
@@ -131,22 +159,22 @@ impl TileTarget {
         use Interpolation::{PerspectiveCorrect, ScreenLinear};
         match (encoding, interpolation) {
             (NormalEncoding::Height, PerspectiveCorrect) => {
-                self.perturbed_texture::<Perspective, Height, P>(p, texture, ctx, pass)
+                self.perturbed_texture::<Perspective, Height, P, S>(p, texture, ctx, pass)
             }
             (NormalEncoding::Height, ScreenLinear) => {
-                self.perturbed_texture::<Linear, Height, P>(p, texture, ctx, pass)
+                self.perturbed_texture::<Linear, Height, P, S>(p, texture, ctx, pass)
             }
             (NormalEncoding::Tangent, PerspectiveCorrect) => {
-                self.perturbed_texture::<Perspective, TangentNormal, P>(p, texture, ctx, pass)
+                self.perturbed_texture::<Perspective, TangentNormal, P, S>(p, texture, ctx, pass)
             }
             (NormalEncoding::Tangent, ScreenLinear) => {
-                self.perturbed_texture::<Linear, TangentNormal, P>(p, texture, ctx, pass)
+                self.perturbed_texture::<Linear, TangentNormal, P, S>(p, texture, ctx, pass)
             }
         }
     }
 
     #[inline(always)]
-    fn perturbed_texture<I: Interp, E: Encoding, P: Pass>(
+    fn perturbed_texture<I: Interp, E: Encoding, P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Perturbed>,
         texture: Option<(LevelOfDetail, AlphaUse)>,
@@ -154,12 +182,12 @@ impl TileTarget {
         pass: &P,
     ) -> u64 {
         match texture {
-            None => self.perturbed_plain::<I, E, P>(p, ctx, pass),
+            None => self.perturbed_plain::<I, E, P, S>(p, ctx, pass),
             Some((LevelOfDetail::Base, alpha)) => {
-                self.perturbed_alpha::<I, E, BaseLod, P>(p, alpha, ctx, pass)
+                self.perturbed_alpha::<I, E, BaseLod, P, S>(p, alpha, ctx, pass)
             }
             Some((LevelOfDetail::Derivatives, alpha)) => {
-                self.perturbed_alpha::<I, E, DerivativeLod, P>(p, alpha, ctx, pass)
+                self.perturbed_alpha::<I, E, DerivativeLod, P, S>(p, alpha, ctx, pass)
             }
         }
     }
@@ -168,7 +196,7 @@ impl TileTarget {
     /// drawn in the transparency pass only, and its alpha ignored in the
     /// opaque pass.
     #[inline(always)]
-    fn perturbed_alpha<I: Interp, E: Encoding, L: Lod, P: Pass>(
+    fn perturbed_alpha<I: Interp, E: Encoding, L: Lod, P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Perturbed>,
         alpha: AlphaUse,
@@ -177,16 +205,16 @@ impl TileTarget {
     ) -> u64 {
         match (alpha, P::BLENDS) {
             (AlphaUse::Ignore, _) | (AlphaUse::Blend, false) => {
-                self.perturbed_textured::<I, E, L, P, IgnoreAlpha>(p, ctx, pass)
+                self.perturbed_textured::<I, E, L, P, IgnoreAlpha, S>(p, ctx, pass)
             }
-            (AlphaUse::Mask, _) => self.perturbed_textured::<I, E, L, P, MaskAlpha>(p, ctx, pass),
-            (AlphaUse::Blend, true) => self.perturbed_textured::<I, E, L, P, TextureAlpha>(p, ctx, pass),
+            (AlphaUse::Mask, _) => self.perturbed_textured::<I, E, L, P, MaskAlpha, S>(p, ctx, pass),
+            (AlphaUse::Blend, true) => self.perturbed_textured::<I, E, L, P, TextureAlpha, S>(p, ctx, pass),
         }
     }
 
     /// Untextured: c = clamp(ambient+diffuse + specular) with the perturbed
     /// normal (planar shadows and shadow maps as in the Phong kernel).
-    fn perturbed_plain<I: Interp, E: Encoding, P: Pass>(
+    fn perturbed_plain<I: Interp, E: Encoding, P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Perturbed>,
         ctx: &ShadeContext<'_>,
@@ -195,12 +223,12 @@ impl TileTarget {
         let (m, l, maps) = (&ctx.materials[p.shader.material as usize], ctx.lighting, ctx.maps);
         let map = MapReader::new(&ctx.textures[p.shader.map as usize], p.shader.scale);
         if ctx.normals {
-            return self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, _| {
-                (encode_normal(perturbed_point::<E>(&map, a, I::w(a[Q])).1), f32x8::ONE)
+            return self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, _| {
+                (encode_normal(perturbed_point::<E, _>(&map, a, I::w(a[Q])).1), f32x8::ONE)
             });
         }
-        self.scan((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, mask| {
-            let (eye, normal) = perturbed_point::<E>(&map, a, I::w(a[Q]));
+        self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, mask| {
+            let (eye, normal) = perturbed_point::<E, _>(&map, a, I::w(a[Q]));
             let (ambient_diffuse, specular) = match maps {
                 Some(maps) => l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n)),
                 None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
@@ -211,7 +239,7 @@ impl TileTarget {
 
     /// Textured: c = clamp(texel ⊙ (ambient+diffuse) + specular) with the
     /// perturbed normal.
-    fn perturbed_textured<I: Interp, E: Encoding, L: Lod, P: Pass, A: Alpha>(
+    fn perturbed_textured<I: Interp, E: Encoding, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         p: &Primitive<Perturbed>,
         ctx: &ShadeContext<'_>,
@@ -221,8 +249,8 @@ impl TileTarget {
         let map = MapReader::new(&ctx.textures[p.shader.map as usize], p.shader.scale);
         let texture = &ctx.textures[p.shader.texture as usize];
         let prim = (&p.edges, &p.depth, &p.shader.planes);
-        self.textured::<_, I, L, P, A>(prim, texture, pass, |a, w, mask| {
-            let (eye, normal) = perturbed_point::<E>(&map, a, w);
+        self.textured::<_, I, L, P, A, S>(prim, texture, pass, |a, w, mask| {
+            let (eye, normal) = perturbed_point::<E, _>(&map, a, w);
             match maps {
                 Some(maps) => l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n)),
                 None => l.shade_parts_x8_shadowed(m, eye, normal, mask),

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use glam::Vec3;
-use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
+use zline_simd::lanes::{f32x8, i32x8, Level};
 use zline_raster::{Rect, LANES};
 use zline_shading::{PreparedLights, PreparedMaterial, Sampler, Texture};
 
@@ -159,5 +159,5 @@ pub(crate) fn store<S: Level>(buf: &mut [f32x8], i: usize, v: f32x8<S>) {
 /// Sample `i` of a buffer.
 #[inline(always)]
 pub(crate) fn sample(buf: &[f32x8], i: usize) -> f32 {
-    bytemuck::cast_slice::<f32x8<S>, f32>(buf)[i]
+    bytemuck::cast_slice::<f32x8, f32>(buf)[i]
 }
