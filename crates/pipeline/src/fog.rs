@@ -62,7 +62,7 @@ impl FogPass {
     /// Fog factors for eight samples of row `y` starting at column `x`, with
     /// stored depths `z` (the coordinate and mode chosen per call; a pass
     /// over many blocks uses [`Self::specialized`] instead).
-    #[inline]
+    #[inline(always)]
     pub fn factors<S: Level>(&self, x: i32, y: i32, z: f32x8<S>) -> f32x8<S> {
         match (self.fog.coordinate, self.fog.mode) {
             (FogCoordinate::EyePlane, mode) => self.factors_with::<EyePlane, _>(Falloffs::new(mode), x, y, z),

@@ -46,7 +46,7 @@ impl DepthMap {
     /// `v` per vertex interpolated affinely; stores `depth(v)` where it is
     /// nearer than what is there.
     fn draw(&mut self, p: [(f32, f32); 3], v: [f64; 3], depth: impl Fn(f64) -> f32) {
-        let Some(fixed) = p.iter().map(|&(x, y)| FixedPoint::snap(x, y)).collect::<Option<Vec<_>>>() else {
+        let Some(fixed) = p.iter().map(#[inline(always)] |&(x, y)| FixedPoint::snap(x, y)).collect::<Option<Vec<_>>>() else {
             return;
         };
         let fixed = [fixed[0], fixed[1], fixed[2]];
@@ -56,7 +56,7 @@ impl DepthMap {
         let plane = DepthPlane::new(&basis, v);
         let n = self.size as i32;
         let size = self.size as usize;
-        edges.scan(Rect { x0: 0, y0: 0, x1: n, y1: n }, |s| {
+        edges.scan(Rect { x0: 0, y0: 0, x1: n, y1: n }, #[inline(always)] |s| {
             for x in s.x0..s.x1 {
                 let d = depth(plane.at(f64::from(x) + 0.5, f64::from(s.y) + 0.5));
                 let t = &mut self.depth[s.y as usize * size + x as usize];
@@ -68,7 +68,7 @@ impl DepthMap {
     }
 
     /// The stored depth at texel (x, y), clamped to the map.
-    #[inline]
+    #[inline(always)]
     fn at(&self, x: i32, y: i32) -> f32 {
         let last = self.size as i32 - 1;
         self.depth[y.clamp(0, last) as usize * self.size as usize + x.clamp(0, last) as usize]
@@ -115,10 +115,10 @@ impl ShadowMaps {
         let mut tris: Vec<[Vec3; 3]> = Vec::new();
         for o in &scene.objects {
             let m = *eye_from_world * o.world_from_object;
-            let p: Vec<Vec3> = o.mesh.positions.iter().map(|&p| m.transform_point3(p)).collect();
+            let p: Vec<Vec3> = o.mesh.positions.iter().map(#[inline(always)] |&p| m.transform_point3(p)).collect();
             for t in &o.mesh.triangles {
-                let v = t.map(|i| p.get(i as usize).copied().unwrap_or(Vec3::NAN));
-                if v.iter().all(|p| p.is_finite()) {
+                let v = t.map(#[inline(always)] |i| p.get(i as usize).copied().unwrap_or(Vec3::NAN));
+                if v.iter().all(#[inline(always)] |p| p.is_finite()) {
                     tris.push(v);
                 }
             }
@@ -126,14 +126,14 @@ impl ShadowMaps {
         let (lo, hi) = tris
             .iter()
             .flatten()
-            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), #[inline(always)] |(lo, hi), &p| (lo.min(p), hi.max(p)));
         let extent = (hi - lo).max_element();
         // Lights, and a point light's faces, are drawn in parallel: each
         // map is its own, so the result does not depend on the threads.
         let lights = scene
             .lights
             .par_iter()
-            .map(|light| {
+            .map(#[inline(always)] |light| {
                 if tris.is_empty() || !(extent.is_finite() && extent > 0.0) {
                     return LightMap::Unshadowed;
                 }
@@ -149,6 +149,7 @@ impl ShadowMaps {
 
     /// The share of light `k` that reaches each lane's eye-space `point`
     /// with unit `normal`: 0 (hidden) to 1 (seen).
+    #[inline(always)]
     pub fn visibility_x8<S: Level>(&self, k: u32, point: Vec3x8<S>, normal: Vec3x8<S>) -> f32x8<S> {
         let Some(map) = self.lights.get(k as usize) else {
             return f32x8::ONE;
@@ -168,7 +169,7 @@ impl ShadowMaps {
                 + normal.z * f32x8::splat(to_light.z);
             let bias = f32x8::splat(self.bias) * slope_bias_x8(n_dot_l) * f32x8::splat(*texel);
             let (x, y, d) = (row(0).to_array(), row(1).to_array(), (row(2) - bias).to_array());
-            return f32x8::from(std::array::from_fn::<f32, 8, _>(|i| self.lookup(map, x[i], y[i], d[i])));
+            return f32x8::from(std::array::from_fn::<f32, 8, _>(#[inline(always)] |i| self.lookup(map, x[i], y[i], d[i])));
         }
         let (px, py, pz) = (point.x.to_array(), point.y.to_array(), point.z.to_array());
         let (nx, ny, nz) = (normal.x.to_array(), normal.y.to_array(), normal.z.to_array());
@@ -232,6 +233,7 @@ impl ShadowMaps {
 }
 
 /// [`slope_bias`] per lane, with the same operations.
+#[inline(always)]
 fn slope_bias_x8<S: Level>(n_dot_l: f32x8<S>) -> f32x8<S> {
     let c = n_dot_l.abs().max(f32x8::splat(0.0995));
     let tan = (f32x8::ONE - c * c).max(f32x8::ZERO).sqrt() / c;
@@ -256,7 +258,7 @@ fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size
     let (right, up) = forward.any_orthonormal_pair();
     let view =
         Mat4::from_cols(right.extend(0.0), up.extend(0.0), forward.extend(0.0), glam::Vec4::W).transpose();
-    let corners = (0..8).map(|i| {
+    let corners = (0..8).map(#[inline(always)] |i| {
         Vec3::new(
             if i & 1 == 0 { lo.x } else { hi.x },
             if i & 2 == 0 { lo.y } else { hi.y },
@@ -264,8 +266,8 @@ fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size
         )
     });
     let (a, b) = corners
-        .map(|c| view.transform_point3(c))
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), p| (a.min(p), b.max(p)));
+        .map(#[inline(always)] |c| view.transform_point3(c))
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), #[inline(always)] |(a, b), p| (a.min(p), b.max(p)));
     let span = (b.x - a.x).max(b.y - a.y).max(f32::MIN_POSITIVE);
     let s = size as f32;
     // Texels: x = (v.x − a.x)/span·size; depth from the box's near side.
@@ -273,8 +275,8 @@ fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size
     let from_eye = to_texels * view;
     let mut map = DepthMap::new(size);
     for t in tris {
-        let q = t.map(|p| from_eye.transform_point3(p));
-        map.draw(q.map(|q| (q.x, q.y)), q.map(|q| f64::from(q.z)), |d| d as f32);
+        let q = t.map(#[inline(always)] |p| from_eye.transform_point3(p));
+        map.draw(q.map(#[inline(always)] |q| (q.x, q.y)), q.map(#[inline(always)] |q| f64::from(q.z)), #[inline(always)] |d| d as f32);
     }
     LightMap::Directional { from_eye, map, texel: span / s, to_light: -forward }
 }
@@ -283,19 +285,19 @@ fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size
 fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32) -> LightMap {
     let near = NEAR * extent;
     let s = size as f32;
-    let faces = (0..6usize).into_par_iter().map(|face| {
+    let faces = (0..6usize).into_par_iter().map(#[inline(always)] |face| {
         let (axis, sign) = (face / 2, if face % 2 == 0 { 1.0 } else { -1.0 });
         let (ua, ub) = face_axes(axis);
         let mut map = DepthMap::new(size);
         for t in tris {
             // Face space: (a, b, depth) with depth along the face's axis.
-            let q = t.map(|p| {
+            let q = t.map(#[inline(always)] |p| {
                 let v = p - position;
                 Vec3::new(v[ua], v[ub], sign * v[axis])
             });
-            clip_near(q, near, |piece| {
-                let tex = piece.map(|q| ((q.x / q.z + 1.0) * 0.5 * s, (q.y / q.z + 1.0) * 0.5 * s));
-                map.draw(tex, piece.map(|q| 1.0 / f64::from(q.z)), |inv| (1.0 / inv) as f32);
+            clip_near(q, near, #[inline(always)] |piece| {
+                let tex = piece.map(#[inline(always)] |q| ((q.x / q.z + 1.0) * 0.5 * s, (q.y / q.z + 1.0) * 0.5 * s));
+                map.draw(tex, piece.map(#[inline(always)] |q| 1.0 / f64::from(q.z)), #[inline(always)] |inv| (1.0 / inv) as f32);
             });
         }
         map
@@ -307,11 +309,11 @@ fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32) -> LightMap
 /// of at most two triangles handed to `piece` (clipped on the stack with
 /// the planar shadows' [`Polygon`], in f64).
 fn clip_near(q: [Vec3; 3], near: f32, mut piece: impl FnMut([Vec3; 3])) {
-    let [a, b, c] = q.map(|p| p.as_dvec3());
-    let mut poly = Polygon::triangle(a, b, c).clip(|x| x.z - f64::from(near));
+    let [a, b, c] = q.map(#[inline(always)] |p| p.as_dvec3());
+    let mut poly = Polygon::triangle(a, b, c).clip(#[inline(always)] |x| x.z - f64::from(near));
     let points = poly.points_mut();
     for k in 1..points.len().saturating_sub(1) {
-        piece([points[0], points[k], points[k + 1]].map(|p| p.as_vec3()));
+        piece([points[0], points[k], points[k + 1]].map(#[inline(always)] |p| p.as_vec3()));
     }
 }
 

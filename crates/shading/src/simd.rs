@@ -34,42 +34,42 @@ impl<L: Level> Vec3x8<L> {
     }
 
     /// Every lane set to `v`.
-    #[inline]
+    #[inline(always)]
     pub fn splat(v: glam::Vec3) -> Vec3x8<L> {
         Vec3x8 { x: f32x8::splat(v.x), y: f32x8::splat(v.y), z: f32x8::splat(v.z) }
     }
 
-    #[inline]
+    #[inline(always)]
     fn dot(self, o: Vec3x8<L>) -> f32x8<L> {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 
-    #[inline]
+    #[inline(always)]
     fn scale(self, s: f32x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x * s, y: self.y * s, z: self.z * s }
     }
 
     /// Every lane clamped to [0, 1] (NaN becomes 0, as `Vec3::clamp` after
     /// `max`).
-    #[inline]
+    #[inline(always)]
     pub fn clamp01(self) -> Vec3x8<L> {
         let clamp = |c: f32x8<L>| c.max(f32x8::ZERO).min(f32x8::ONE);
         Vec3x8 { x: clamp(self.x), y: clamp(self.y), z: clamp(self.z) }
     }
 
-    #[inline]
+    #[inline(always)]
     fn sub(self, o: Vec3x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x - o.x, y: self.y - o.y, z: self.z - o.z }
     }
 
-    #[inline]
+    #[inline(always)]
     fn div(self, s: f32x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x / s, y: self.y / s, z: self.z / s }
     }
 
     /// glam's `normalize_or_zero`: v / |v|, or 0 where 1/|v| is not a
     /// finite positive number.
-    #[inline]
+    #[inline(always)]
     pub fn normalize_or_zero(self) -> Vec3x8<L> {
         let rcp = f32x8::ONE / self.dot(self).sqrt();
         let ok = rcp.is_finite() & rcp.cmp_gt(f32x8::ZERO);
@@ -78,7 +78,7 @@ impl<L: Level> Vec3x8<L> {
     }
 
     /// `where mask { self } else { 0 }` per lane.
-    #[inline]
+    #[inline(always)]
     fn keep(self, mask: f32x8<L>) -> Vec3x8<L> {
         Vec3x8 {
             x: mask.blend(self.x, f32x8::ZERO),
@@ -88,7 +88,7 @@ impl<L: Level> Vec3x8<L> {
     }
 
     /// Lane `i` as a glam vector.
-    #[inline]
+    #[inline(always)]
     pub fn lane(&self, i: usize) -> glam::Vec3 {
         glam::Vec3::new(self.x.as_array_ref()[i], self.y.as_array_ref()[i], self.z.as_array_ref()[i])
     }
@@ -98,7 +98,7 @@ impl<L: Level> Add for Vec3x8<L> {
     type Output = Vec3x8<L>;
 
     /// Lane-wise sum.
-    #[inline]
+    #[inline(always)]
     fn add(self, o: Vec3x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x + o.x, y: self.y + o.y, z: self.z + o.z }
     }
@@ -108,7 +108,7 @@ impl<L: Level> Mul for Vec3x8<L> {
     type Output = Vec3x8<L>;
 
     /// Lane-wise product.
-    #[inline]
+    #[inline(always)]
     fn mul(self, o: Vec3x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x * o.x, y: self.y * o.y, z: self.z * o.z }
     }
@@ -116,11 +116,11 @@ impl<L: Level> Mul for Vec3x8<L> {
 
 impl Shininess {
     /// [`Shininess::pow`] per lane.
-    #[inline]
+    #[inline(always)]
     fn pow_x8<L: Level>(self, x: f32x8<L>) -> f32x8<L> {
         match self {
             Shininess::Whole(n) => pow_by_squaring(x, f32x8::ONE, n),
-            Shininess::Real(ns) => f32x8::from(x.to_array().map(|v| v.powf(ns))),
+            Shininess::Real(ns) => f32x8::from(x.to_array().map(#[inline(always)] |v| v.powf(ns))),
         }
     }
 }
@@ -128,7 +128,7 @@ impl Shininess {
 impl PreparedLights {
     /// [`PreparedLights::shade`] for eight samples: clamped colours at
     /// `point` with unit `normal`, the eye at the origin.
-    #[inline]
+    #[inline(always)]
     pub fn shade_x8<L: Level>(&self, m: &PreparedMaterial, point: Vec3x8<L>, normal: Vec3x8<L>) -> Vec3x8<L> {
         let (ambient_diffuse, specular) = self.shade_parts_x8(m, point, normal);
         ambient_diffuse.add(specular).clamp01()
@@ -136,16 +136,16 @@ impl PreparedLights {
 
     /// [`PreparedLights::shade_parts`] for eight samples: the unclamped
     /// ambient+diffuse and specular parts, for texturing (SPEC §7).
-    #[inline]
+    #[inline(always)]
     pub fn shade_parts_x8<L: Level>(&self, m: &PreparedMaterial, point: Vec3x8<L>, normal: Vec3x8<L>) -> (Vec3x8<L>, Vec3x8<L>) {
-        self.parts_x8(m, point, normal, |_| all_lanes(), |_| None)
+        self.parts_x8(m, point, normal, #[inline(always)] |_| all_lanes(), #[inline(always)] |_| None)
     }
 
     /// [`Self::shade_parts_x8`] where light k (its index in the scene's
     /// list) reaches each lane with the share `share(k, point, normal)` in
     /// [0, 1] of its intensity (shadow maps: the fraction of the filter's
     /// texels that see it).
-    #[inline]
+    #[inline(always)]
     pub fn shade_parts_x8_shared<L: Level>(
         &self,
         m: &PreparedMaterial,
@@ -153,14 +153,14 @@ impl PreparedLights {
         normal: Vec3x8<L>,
         share: impl Fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>,
     ) -> (Vec3x8<L>, Vec3x8<L>) {
-        self.parts_x8(m, point, normal, |_| all_lanes(), |k| Some(share(k, point, normal)))
+        self.parts_x8(m, point, normal, #[inline(always)] |_| all_lanes(), #[inline(always)] |k| Some(share(k, point, normal)))
     }
 
     /// [`Self::shade_x8`] where some lights may be hidden: light k (its
     /// index in the scene's list) contributes nothing to a lane whose
     /// `mask` has bit `m.shadow_bits + k` set. Bits past 31, and every bit
     /// for a material without `shadow_bits`, leave the light lit.
-    #[inline]
+    #[inline(always)]
     pub fn shade_x8_shadowed<L: Level>(
         &self,
         m: &PreparedMaterial,
@@ -174,7 +174,7 @@ impl PreparedLights {
 
     /// [`Self::shade_parts_x8`] with hidden lights (see
     /// [`Self::shade_x8_shadowed`]).
-    #[inline]
+    #[inline(always)]
     pub fn shade_parts_x8_shadowed<L: Level>(
         &self,
         m: &PreparedMaterial,
@@ -183,14 +183,14 @@ impl PreparedLights {
         mask: i32x8<L>,
     ) -> (Vec3x8<L>, Vec3x8<L>) {
         let first = m.shadow_bits.unwrap_or(u32::MAX);
-        let visible = |k: u32| match first.checked_add(k).filter(|&b| b < 32) {
+        let visible = |k: u32| match first.checked_add(k).filter(#[inline(always)] |&b| b < 32) {
             Some(b) => {
                 let bit = i32x8::splat(1 << b);
                 bytemuck::cast::<i32x8<L>, f32x8<L>>((mask & bit).cmp_eq(i32x8::ZERO))
             }
             None => all_lanes(),
         };
-        self.parts_x8(m, point, normal, visible, |_| None)
+        self.parts_x8(m, point, normal, visible, #[inline(always)] |_| None)
     }
 
     /// The sums over the lights, light k counting in the lanes
@@ -238,7 +238,7 @@ impl PreparedLights {
 }
 
 /// A mask with every lane set.
-#[inline]
+#[inline(always)]
 fn all_lanes<L: Level>() -> f32x8<L> {
     f32x8::from([f32::from_bits(u32::MAX); 8])
 }

@@ -324,7 +324,7 @@ impl TileTarget {
     ) -> u64 {
         let (depth, planes) = (*depth, *planes);
         let mut n = 0;
-        edges.scan(self.rect, |s| n += self.blocks(&depth, &planes, s, pass, alpha, shade));
+        edges.scan(self.rect, #[inline(always)] |s| n += self.blocks(&depth, &planes, s, pass, alpha, shade));
         n
     }
 
@@ -352,14 +352,14 @@ impl TileTarget {
         // The alpha plane, blended like a colour of 1 (coverage only).
         let mut coverage = (P::BLENDS && self.coverage).then_some(&mut self.alpha);
         let mut n = 0;
-        for_each_block(depth, attrs, span, |b| {
+        for_each_block(depth, attrs, span, #[inline(always)] |b| {
             let i = row + (b.x - origin) as usize;
             let (z, stored) = (f32x8::from(b.z), load(zbuf, i));
             let live = lane_mask(b.mask) & z.cmp_lt(stored);
             if live.none() {
                 return;
             }
-            let mask = shadow.get(i / LANES).map_or(i32x8::ZERO, |m| m.at());
+            let mask = shadow.get(i / LANES).map_or(i32x8::ZERO, #[inline(always)] |m| m.at());
             let (c, alpha) = shade(&b.attrs.map(f32x8::from), mask);
             let live = alpha_use.test(live, alpha);
             let bits = live.move_mask();
@@ -394,16 +394,18 @@ impl TileTarget {
     }
 
     /// SPEC §6 flat: one colour.
+    #[inline(always)]
     pub(super) fn flat<P: Pass, S: Level>(&mut self, p: &Primitive<Flat>, pass: &P) -> u64 {
         let c = Vec3x8::<S>::splat(p.shader.color);
         let planes = AttributePlanes::NONE;
-        self.scan::<_, _, _, S>((&p.edges, &p.depth), &planes, pass, &IgnoreAlpha, |_, _| (c, f32x8::ONE))
+        self.scan::<_, _, _, S>((&p.edges, &p.depth), &planes, pass, &IgnoreAlpha, #[inline(always)] |_, _| (c, f32x8::ONE))
     }
 
     /// SPEC §6 Gouraud: the lit vertex colours interpolated (and clamped
     /// per sample when `C` says so).
+    #[inline(always)]
     pub(super) fn gouraud<I: Interp, C: Clamp, P: Pass, S: Level>(&mut self, p: &Primitive<Gouraud>, pass: &P) -> u64 {
-        self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, _| {
+        self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
             let (q, c) = (a[gouraud::Q], gouraud::COLOR);
             let c = Vec3x8 { x: I::divide(a[c], q), y: I::divide(a[c + 1], q), z: I::divide(a[c + 2], q) };
             (C::clamp(c), f32x8::ONE)
@@ -412,6 +414,7 @@ impl TileTarget {
 
     /// SPEC §6 Phong: normal and eye position interpolated, the normal
     /// re-normalized per sample, the lighting model per sample.
+    #[inline(always)]
     pub(super) fn phong<I: Interp, P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Phong<{ phong::LEN }>>,
@@ -421,24 +424,24 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
         if ctx.normals {
-            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, _| {
+            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
                 (encode_normal(phong_point::<_, I, _>(a).2), f32x8::ONE)
             });
         }
         if let Some(maps) = ctx.maps {
-            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, _| {
+            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
                 let (_, eye, normal) = phong_point::<_, I, _>(a);
-                let (ad, sp) = l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n));
+                let (ad, sp) = l.shade_parts_x8_shared(m, eye, normal, #[inline(always)] |k, p, n| maps.visibility_x8(k, p, n));
                 ((ad + sp).clamp01(), f32x8::ONE)
             });
         }
         if m.shadow_bits.is_some() {
-            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, mask| {
+            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, mask| {
                 let (_, eye, normal) = phong_point::<_, I, _>(a);
                 (l.shade_x8_shadowed(m, eye, normal, mask), f32x8::ONE)
             });
         }
-        self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, _| {
+        self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
             let (_, eye, normal) = phong_point::<_, I, _>(a);
             (l.shade_x8(m, eye, normal), f32x8::ONE)
         })
@@ -446,6 +449,7 @@ impl TileTarget {
 
     /// [`Self::phong`] with the vertex colour interpolated too, multiplying
     /// ka and kd like a texel: c ⊙ (ambient+diffuse) + specular, clamped.
+    #[inline(always)]
     pub(super) fn phong_tinted<I: Interp, P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Phong<{ phong::COLORED_LEN }>>,
@@ -455,21 +459,21 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
         if let Some(maps) = ctx.maps {
-            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, _| {
+            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
                 let (w, eye, normal) = phong_point::<_, I, _>(a);
                 let (ambient_diffuse, specular) =
-                    l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n));
+                    l.shade_parts_x8_shared(m, eye, normal, #[inline(always)] |k, p, n| maps.visibility_x8(k, p, n));
                 ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
             });
         }
         if m.shadow_bits.is_some() {
-            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, mask| {
+            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, mask| {
                 let (w, eye, normal) = phong_point::<_, I, _>(a);
                 let (ambient_diffuse, specular) = l.shade_parts_x8_shadowed(m, eye, normal, mask);
                 ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
             });
         }
-        self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, |a, _| {
+        self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
             let (w, eye, normal) = phong_point::<_, I, _>(a);
             let (ambient_diffuse, specular) = l.shade_parts_x8(m, eye, normal);
             ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
@@ -490,7 +494,7 @@ impl TileTarget {
     ) -> u64 {
         let derivatives = Derivatives::new(planes, map);
         let (texture, sampler) = (&*map.texture, &map.sampler);
-        self.scan::<_, _, _, S>((edges, depth), planes, pass, &A::new(map), |a, mask| {
+        self.scan::<_, _, _, S>((edges, depth), planes, pass, &A::new(map), #[inline(always)] |a, mask| {
             let inv = I::w(a[textured::Q]);
             let (s, t) = (a[textured::S] * inv, a[textured::T] * inv);
             let lods = L::lods::<I, _>(&derivatives, s, t, inv);
@@ -502,6 +506,7 @@ impl TileTarget {
     }
 
     /// Textured flat: the parts lit once at the centroid.
+    #[inline(always)]
     pub(super) fn textured_flat<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         p: &Primitive<TexturedFlat>,
@@ -510,12 +515,13 @@ impl TileTarget {
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
         let (ad, spec) = (Vec3x8::splat(p.shader.ambient_diffuse), Vec3x8::splat(p.shader.specular));
-        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, |_, _, _| {
+        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, #[inline(always)] |_, _, _| {
             (ad, spec)
         })
     }
 
     /// Textured Gouraud: the parts lit at the vertices, interpolated apart.
+    #[inline(always)]
     pub(super) fn textured_gouraud<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         p: &Primitive<TexturedGouraud>,
@@ -523,12 +529,13 @@ impl TileTarget {
         pass: &P,
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
-        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w, _| {
+        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, #[inline(always)] |a, w, _| {
             (triple(a, textured::AMBIENT_DIFFUSE, w), triple(a, textured::SPECULAR, w))
         })
     }
 
     /// Textured Phong: the parts lit per sample.
+    #[inline(always)]
     pub(super) fn textured_phong<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         p: &Primitive<TexturedPhong<{ textured::PHONG_LEN }>>,
@@ -539,19 +546,19 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let prim = (&p.edges, &p.depth, &p.shader.planes);
         if let Some(maps) = ctx.maps {
-            return self.textured::<_, I, L, P, A, S>(prim, map, pass, |a, w, _| {
+            return self.textured::<_, I, L, P, A, S>(prim, map, pass, #[inline(always)] |a, w, _| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
                 let share = |k, p, n| maps.visibility_x8(k, p, n);
                 l.shade_parts_x8_shared(m, triple(a, textured::EYE, w), normal, share)
             });
         }
         if m.shadow_bits.is_some() {
-            return self.textured::<_, I, L, P, A, S>(prim, map, pass, |a, w, mask| {
+            return self.textured::<_, I, L, P, A, S>(prim, map, pass, #[inline(always)] |a, w, mask| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
                 l.shade_parts_x8_shadowed(m, triple(a, textured::EYE, w), normal, mask)
             });
         }
-        self.textured::<_, I, L, P, A, S>(prim, map, pass, |a, w, _| {
+        self.textured::<_, I, L, P, A, S>(prim, map, pass, #[inline(always)] |a, w, _| {
             l.shade_parts_x8(
                 m,
                 triple(a, textured::EYE, w),
@@ -562,7 +569,7 @@ impl TileTarget {
 
     /// Textured Phong with vertex colours: the interpolated colour
     /// multiplies ambient+diffuse like the texel.
-    #[inline(never)]
+    #[inline(always)]
     pub(super) fn textured_colored_phong<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         p: &Primitive<TexturedPhong<{ textured::COLORED_PHONG_LEN }>>,
@@ -573,11 +580,11 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         // Shadowed or not in one body: this kernel is out of line already.
         let maps = ctx.maps;
-        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, |a, w, mask| {
+        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, #[inline(always)] |a, w, mask| {
             let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
             let eye = triple(a, textured::EYE, w);
             let (ambient_diffuse, specular) = match maps {
-                Some(maps) => l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n)),
+                Some(maps) => l.shade_parts_x8_shared(m, eye, normal, #[inline(always)] |k, p, n| maps.visibility_x8(k, p, n)),
                 None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
             };
             (triple(a, textured::COLOR, w) * ambient_diffuse, specular)

@@ -111,7 +111,7 @@ impl TileTarget {
     ) -> u64 {
         self.materialize_background::<S>();
         let draw = |r: &PrimitiveRef| chunks[r.chunk as usize].draws[r.index as usize];
-        back_to_front(order, bin.iter().map(|r| (draw(r).sort_depth, *r)));
+        back_to_front(order, bin.iter().map(#[inline(always)] |r| (draw(r).sort_depth, *r)));
         let mut shaded = 0;
         for (_, r) in order.iter() {
             let chunk = &chunks[r.chunk as usize];
@@ -157,10 +157,10 @@ impl TileTarget {
             };
             let p = &chunk.tables.flat[d.index as usize];
             let bit = 1i32 << bit;
-            p.edges.scan(rect, |s| {
+            p.edges.scan(rect, #[inline(always)] |s| {
                 let row = (s.y - rect.y0) as usize * stride;
                 let (a, b) = (row + (s.x0 - origin) as usize, row + (s.x1 - origin) as usize);
-                mask[a..b].iter_mut().for_each(|m| *m |= bit);
+                mask[a..b].iter_mut().for_each(#[inline(always)] |m| *m |= bit);
             });
         }
     }
@@ -386,8 +386,8 @@ impl TileTarget {
 fn back_to_front(order: &mut Vec<(f32, PrimitiveRef)>, keyed: impl Iterator<Item = (f32, PrimitiveRef)>) {
     order.clear();
     order.extend(keyed);
-    order.sort_unstable_by(|a, b| {
-        b.0.total_cmp(&a.0).then_with(|| (a.1.chunk, a.1.index).cmp(&(b.1.chunk, b.1.index)))
+    order.sort_unstable_by(#[inline(always)] |a, b| {
+        b.0.total_cmp(&a.0).then_with(#[inline(always)] || (a.1.chunk, a.1.index).cmp(&(b.1.chunk, b.1.index)))
     });
 }
 

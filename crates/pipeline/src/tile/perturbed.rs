@@ -214,6 +214,7 @@ impl TileTarget {
 
     /// Untextured: c = clamp(ambient+diffuse + specular) with the perturbed
     /// normal (planar shadows and shadow maps as in the Phong kernel).
+    #[inline(always)]
     fn perturbed_plain<I: Interp, E: Encoding, P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Perturbed>,
@@ -223,14 +224,14 @@ impl TileTarget {
         let (m, l, maps) = (&ctx.materials[p.shader.material as usize], ctx.lighting, ctx.maps);
         let map = MapReader::new(&ctx.textures[p.shader.map as usize], p.shader.scale);
         if ctx.normals {
-            return self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, _| {
+            return self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
                 (encode_normal(perturbed_point::<E, _>(&map, a, I::w(a[Q])).1), f32x8::ONE)
             });
         }
-        self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, |a, mask| {
+        self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, #[inline(always)] |a, mask| {
             let (eye, normal) = perturbed_point::<E, _>(&map, a, I::w(a[Q]));
             let (ambient_diffuse, specular) = match maps {
-                Some(maps) => l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n)),
+                Some(maps) => l.shade_parts_x8_shared(m, eye, normal, #[inline(always)] |k, p, n| maps.visibility_x8(k, p, n)),
                 None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
             };
             ((ambient_diffuse + specular).clamp01(), f32x8::ONE)
@@ -239,6 +240,7 @@ impl TileTarget {
 
     /// Textured: c = clamp(texel ⊙ (ambient+diffuse) + specular) with the
     /// perturbed normal.
+    #[inline(always)]
     fn perturbed_textured<I: Interp, E: Encoding, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
         p: &Primitive<Perturbed>,
@@ -249,10 +251,10 @@ impl TileTarget {
         let map = MapReader::new(&ctx.textures[p.shader.map as usize], p.shader.scale);
         let texture = &ctx.textures[p.shader.texture as usize];
         let prim = (&p.edges, &p.depth, &p.shader.planes);
-        self.textured::<_, I, L, P, A, S>(prim, texture, pass, |a, w, mask| {
+        self.textured::<_, I, L, P, A, S>(prim, texture, pass, #[inline(always)] |a, w, mask| {
             let (eye, normal) = perturbed_point::<E, _>(&map, a, w);
             match maps {
-                Some(maps) => l.shade_parts_x8_shared(m, eye, normal, |k, p, n| maps.visibility_x8(k, p, n)),
+                Some(maps) => l.shade_parts_x8_shared(m, eye, normal, #[inline(always)] |k, p, n| maps.visibility_x8(k, p, n)),
                 None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
             }
         })

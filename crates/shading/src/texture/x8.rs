@@ -55,7 +55,7 @@ struct Levels<L: LaneLevel = Baseline> {
 
 impl<L: LaneLevel> Levels<L> {
     /// The same level in every lane.
-    #[inline]
+    #[inline(always)]
     fn splat(lv: Level) -> Levels<L> {
         // Sizes are at most MAX_TEXTURE_SIZE and the whole chain fits in
         // i32 (16384² · 4/3 texels), so these casts are exact.
@@ -70,15 +70,15 @@ impl<L: LaneLevel> Levels<L> {
     }
 
     /// Level `index[k]` in lane k.
-    #[inline]
+    #[inline(always)]
     fn gather(levels: &[Level], index: [i32; 8]) -> Levels<L> {
-        let lv = index.map(|i| levels[i as usize]);
+        let lv = index.map(#[inline(always)] |i| levels[i as usize]);
         Levels {
-            offset: i32x8::from(lv.map(|l| l.offset as i32)),
-            width: i32x8::from(lv.map(|l| l.width as i32)),
-            height: i32x8::from(lv.map(|l| l.height as i32)),
-            width_f: f32x8::from(lv.map(|l| l.width as f32)),
-            height_f: f32x8::from(lv.map(|l| l.height as f32)),
+            offset: i32x8::from(lv.map(#[inline(always)] |l| l.offset as i32)),
+            width: i32x8::from(lv.map(#[inline(always)] |l| l.width as i32)),
+            height: i32x8::from(lv.map(#[inline(always)] |l| l.height as i32)),
+            width_f: f32x8::from(lv.map(#[inline(always)] |l| l.width as f32)),
+            height_f: f32x8::from(lv.map(#[inline(always)] |l| l.height as f32)),
         }
     }
 }
@@ -86,7 +86,7 @@ impl<L: LaneLevel> Levels<L> {
 impl Texture {
     /// [`Texture::sample`] for eight lanes: lane k of the result (R, G, B,
     /// A) is bit for bit `self.sample(sampler, s[k], t[k], lod[k])`.
-    #[inline]
+    #[inline(always)]
     pub fn sample_x8<L: LaneLevel>(&self, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>, lod: f32x8<L>) -> [f32x8<L>; 4] {
         match sampler.filter {
             Filter::Nearest => self.nearest_x8(Levels::splat(self.levels[0]), sampler, s, t),
@@ -95,7 +95,7 @@ impl Texture {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn nearest_x8<L: LaneLevel>(&self, lv: Levels<L>, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>) -> [f32x8<L>; 4] {
         let x = nearest_index(s, lv.width_f, lv.width, sampler.wrap_s);
         let y = nearest_index(t, lv.height_f, lv.height, sampler.wrap_t);
@@ -105,7 +105,7 @@ impl Texture {
     }
 
     /// The scalar bilinear's two-step interpolation, per lane.
-    #[inline]
+    #[inline(always)]
     fn bilinear_x8<L: LaneLevel>(&self, lv: Levels<L>, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>) -> [f32x8<L>; 4] {
         let (x0, x1, fs) = linear_taps(s, lv.width_f, lv.width, sampler.wrap_s);
         let (y0, y1, ft) = linear_taps(t, lv.height_f, lv.height, sampler.wrap_t);
@@ -126,7 +126,7 @@ impl Texture {
 
     /// The texels at buffer indices `a[k]` and `b[k]` of every lane k, as
     /// channel vectors.
-    #[inline]
+    #[inline(always)]
     fn gather_pair<L: LaneLevel>(&self, a: [i32; 8], b: [i32; 8]) -> ([f32x8<L>; 4], [f32x8<L>; 4]) {
         split(zline_simd::gather_texel_pairs_x8_at::<L>(self.texel_array(), a, b))
     }
@@ -149,7 +149,7 @@ impl Texture {
     /// beyond it, a blend of the two levels around a positive lod, level 0
     /// otherwise (NaN included). Every lane computes the finer level; the
     /// coarser one only when some lane blends.
-    #[inline]
+    #[inline(always)]
     fn trilinear_x8<L: LaneLevel>(&self, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>, lod: f32x8<L>) -> [f32x8<L>; 4] {
         let last = self.levels.len() - 1;
         let beyond = lod.cmp_ge(f32x8::splat(last as f32));
@@ -165,7 +165,7 @@ impl Texture {
         let coarser = self.levels_of((finer + i32x8::splat(1)).min(i32x8::splat(last as i32)));
         let coarse = self.bilinear_x8(coarser, sampler, s, t);
         let blended = lerp4(fine, coarse, lod - level);
-        std::array::from_fn(|c| between.blend(blended[c], fine[c]))
+        std::array::from_fn(#[inline(always)] |c| between.blend(blended[c], fine[c]))
     }
 
     /// The levels `index[k]` per lane, read once when all lanes agree.
@@ -231,14 +231,14 @@ fn is_floor_of(got: f32, v: f32) -> bool {
 }
 
 /// a + (b − a)·f per channel, as the scalar `lerp`.
-#[inline]
+#[inline(always)]
 fn lerp4<L: LaneLevel>(a: [f32x8<L>; 4], b: [f32x8<L>; 4], f: f32x8<L>) -> [f32x8<L>; 4] {
     std::array::from_fn(|c| a[c] + (b[c] - a[c]) * f)
 }
 
 /// The scalar `nearest_index` per lane: ⌊coord·size⌋ wrapped, 0 where
 /// coord·size is not finite.
-#[inline]
+#[inline(always)]
 fn nearest_index<L: LaneLevel>(coord: f32x8<L>, size_f: f32x8<L>, size: i32x8<L>, wrap: Wrap) -> i32x8<L> {
     let u = coord * size_f;
     let i = u.is_finite().blend(floor(u), f32x8::ZERO).trunc_int();
@@ -250,7 +250,7 @@ fn nearest_index<L: LaneLevel>(coord: f32x8<L>, size_f: f32x8<L>, size: i32x8<L>
 
 /// The scalar `linear_taps` per lane: the two texels around the sample,
 /// wrapped, and the weight of the second.
-#[inline]
+#[inline(always)]
 fn linear_taps<L: LaneLevel>(coord: f32x8<L>, size_f: f32x8<L>, size: i32x8<L>, wrap: Wrap) -> (i32x8<L>, i32x8<L>, f32x8<L>) {
     let u = coord * size_f - f32x8::splat(0.5);
     let finite = u.is_finite();
@@ -274,7 +274,7 @@ fn linear_taps<L: LaneLevel>(coord: f32x8<L>, size_f: f32x8<L>, size: i32x8<L>, 
 /// The scalar `repeat` per lane: i modulo size in [0, size). Power-of-two
 /// sizes mask; other sizes keep indices already inside and take
 /// [`rem_euclid`] only when some lane lies outside.
-#[inline]
+#[inline(always)]
 fn repeat<L: LaneLevel>(i: i32x8<L>, size: i32x8<L>) -> i32x8<L> {
     let one = i32x8::splat(1);
     let pow2 = (size & (size - one)).cmp_eq(i32x8::ZERO);
@@ -295,7 +295,7 @@ fn repeat<L: LaneLevel>(i: i32x8<L>, size: i32x8<L>) -> i32x8<L> {
 /// `f32`. Step two: r/size is within 2^-15 of its exact value, closer than
 /// the 1/size ≥ 2^-14 between a non-integer quotient and the next integer,
 /// so ⌊r/size⌋ is exact and r − ⌊r/size⌋·size lies in [0, size).
-#[inline]
+#[inline(always)]
 fn rem_euclid<L: LaneLevel>(i: i32x8<L>, size: i32x8<L>) -> i32x8<L> {
     let size_f = f32x8::from_i32x8(size);
     let step = |v: i32x8<L>| {
