@@ -151,7 +151,7 @@ impl EdgeTable {
 
     /// Calls `emit` for every non-empty span of covered samples inside
     /// `clip`, row by row from the top.
-    #[inline]
+    #[inline(always)]
     pub fn scan(&self, clip: Rect, mut emit: impl FnMut(Span)) {
         let area = self.bounds.intersect(&clip);
         if area.is_empty() {
