@@ -39,7 +39,7 @@ impl TileTarget {
                     let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
                     (empty, empty.blend(f32x8::ZERO, f32x8::ONE))
                 };
-                let p = |plane: &[f32x8]| empty.blend(f32x8::ZERO, load(plane, i));
+                let p = zline_simd::inlined(#[inline(always)] |plane: &[f32x8]| empty.blend(f32x8::ZERO, load(plane, i)));
                 let px = pack_straight([p(red), p(green), p(blue)], alpha);
                 store_block(out, x, &self.rect, &px);
             }
@@ -89,8 +89,8 @@ impl TileTarget {
 pub(crate) fn pack_straight<S: Level>(p: [f32x8<S>; 3], alpha: f32x8<S>) -> [u32; LANES] {
     let covered = alpha.cmp_gt(f32x8::ZERO);
     let safe = covered.blend(alpha, f32x8::ONE);
-    let straight = |c: f32x8<S>| covered.blend(c / safe, f32x8::ZERO);
-    let [r, g, b] = p.map(straight);
+    let straight = zline_simd::inlined(#[inline(always)] |c: f32x8<S>| covered.blend(c / safe, f32x8::ZERO));
+    let [r, g, b] = [straight(p[0]), straight(p[1]), straight(p[2])];
     let packed: i32x8<S> =
         quantize_x8(r) | (quantize_x8(g) << 8) | (quantize_x8(b) << 16) | (quantize_x8(alpha) << 24);
     bytemuck::cast(packed)

@@ -105,9 +105,9 @@ impl FogPass {
         let lanes = f32x8::from([0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
         let xn = (f32x8::splat(x as f32) + lanes) * f32x8::splat(sx) + f32x8::splat(ox);
         let yn = f32x8::splat(y as f32 * sy + oy);
-        let row = |r: Vec4| {
+        let row = zline_simd::inlined(#[inline(always)] |r: Vec4| {
             xn * f32x8::splat(r.x) + yn * f32x8::splat(r.y) + z * f32x8::splat(r.z) + f32x8::splat(r.w)
-        };
+        });
         let f = falloff.factor(C::distance(&self.rows, row));
         // NaN (a degenerate projection) becomes full fog, as in `Fog::factor`.
         let f = f.cmp_eq(f).blend(f, f32x8::ZERO);

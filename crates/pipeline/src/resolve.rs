@@ -36,7 +36,7 @@ impl TileTarget {
                 } else {
                     load(&self.depth, i).cmp_eq(f32x8::splat(self.far))
                 };
-                let c = |plane: &[f32x8], b: f32x8<S>| empty.blend(b, load(plane, i));
+                let c = zline_simd::inlined(#[inline(always)] |plane: &[f32x8], b: f32x8<S>| empty.blend(b, load(plane, i)));
                 let px = pack_rgba(c(red, bg.x), c(green, bg.y), c(blue, bg.z));
                 store_block(out, x, &self.rect, &px);
             }

@@ -159,11 +159,11 @@ impl ShadowMaps {
             // order (glam's affine transform and dot product), so every lane
             // is what `visibility` computes; only the texel reads are per lane.
             let c = from_eye.to_cols_array();
-            let row = |r: usize| {
+            let row = zline_simd::inlined(#[inline(always)] |r: usize| {
                 f32x8::splat(c[12 + r])
                     + (f32x8::splat(c[8 + r]) * point.z
                         + (f32x8::splat(c[4 + r]) * point.y + f32x8::splat(c[r]) * point.x))
-            };
+            });
             let n_dot_l = normal.x * f32x8::splat(to_light.x)
                 + normal.y * f32x8::splat(to_light.y)
                 + normal.z * f32x8::splat(to_light.z);

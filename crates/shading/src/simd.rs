@@ -53,7 +53,7 @@ impl<L: Level> Vec3x8<L> {
     /// `max`).
     #[inline(always)]
     pub fn clamp01(self) -> Vec3x8<L> {
-        let clamp = |c: f32x8<L>| c.max(f32x8::ZERO).min(f32x8::ONE);
+        let clamp = zline_simd::inlined(#[inline(always)] |c: f32x8<L>| c.max(f32x8::ZERO).min(f32x8::ONE));
         Vec3x8 { x: clamp(self.x), y: clamp(self.y), z: clamp(self.z) }
     }
 

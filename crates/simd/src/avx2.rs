@@ -59,6 +59,7 @@ pub(crate) fn v3_token() -> Option<V3Token> {
 /// # Safety
 /// The CPU has AVX2 and FMA.
 #[target_feature(enable = "avx2,fma")]
+#[inline(never)]
 unsafe fn run_v3<V: crate::Vectorized>(job: V) -> V::Output {
     job.run::<crate::lanes::private::V3>()
 }

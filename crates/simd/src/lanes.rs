@@ -14,8 +14,9 @@
 //! gets it only from [`crate::vectorize`], which instantiates a job with it
 //! after run-time detection found AVX2 and FMA, and calls that
 //! instantiation from a `#[target_feature]` function so that the job's
-//! inlined body is compiled for those instructions. That is the soundness
-//! argument of every `unsafe` block here: a function that runs with
+//! inlined body is compiled for those instructions (or from
+//! [`crate::dispatch`], after the same detection, without that function).
+//! That is the soundness argument of every `unsafe` block here: a function that runs with
 //! `L::V3` true runs in a process whose CPU has AVX2 and FMA.
 //!
 //! Storage is `wide`'s: `f32x8<L>` is `#[repr(transparent)]` over
@@ -78,8 +79,8 @@ macro_rules! at_level {
         #[cfg(target_arch = "x86_64")]
         if L::V3 {
             // SAFETY: `L::V3` is true only for the level that
-            // `crate::vectorize` instantiates after it detected AVX2 and
-            // FMA (module docs), so the CPU has these instructions.
+            // `crate::vectorize` and `crate::dispatch` instantiate after
+            // they detected AVX2 and FMA (module docs), so the CPU has these instructions.
             #[allow(unused_unsafe, reason = "some intrinsics are safe to call in an AVX2 context")]
             return unsafe { $v3 };
         }

@@ -179,17 +179,67 @@ pub fn vectorize<V: Vectorized>(job: V) -> V::Output {
     job.run::<lanes::Baseline>()
 }
 
-/// Runs `job` at level `L` itself: a function boundary that keeps the
-/// level's instructions (a job's body is compiled for its level only where
-/// it is inlined; a part kept out of line on purpose, such as a rare
-/// kernel, runs through here instead).
+/// Chooses the level as [`vectorize`] does, but runs `job` where it is,
+/// without entering a `#[target_feature]` function: for a loop whose own
+/// work is light and which hands each heavy part to [`vectorize_at`]. The
+/// tile passes do this with each primitive's kernel, so that every kernel
+/// is compiled once per level, as a function of its own, instead of all of
+/// them being inlined into one pass body per level (which made the release
+/// build of `zline-pipeline` run past 40 minutes). Lane operations in
+/// `job`'s own body run out of line at the v3 level: correct, but slow.
+#[inline(always)]
+pub fn dispatch<V: Vectorized>(job: V) -> V::Output {
+    #[cfg(target_arch = "x86_64")]
+    if avx2::v3_token().is_some() {
+        return job.run::<lanes::private::V3>();
+    }
+    job.run::<lanes::Baseline>()
+}
+
+/// Runs `job` at level `L` as a function of its own: the job's body is
+/// compiled for its level (inlined into a `#[target_feature]` function at
+/// the v3 level, into a plain one otherwise), once per job type, apart from
+/// its caller. For the parts a [`dispatch`]ed loop hands over, and for parts
+/// of a job kept out of line on purpose, such as a rare kernel.
 #[inline(always)]
 pub fn vectorize_at<L: lanes::Level, V: Vectorized>(job: V) -> V::Output {
     #[cfg(target_arch = "x86_64")]
     if L::V3 {
         return avx2::V3Token::within_v3().vectorize(job);
     }
+    run_apart::<V>(job)
+}
+
+/// [`Vectorized::run`] at [`lanes::Baseline`], never inlined: the
+/// baseline twin of the v3 trampoline's function boundary.
+#[inline(never)]
+fn run_apart<V: Vectorized>(job: V) -> V::Output {
     job.run::<lanes::Baseline>()
+}
+
+/// Returns `f`: lets a closure bound by `let` carry `#[inline(always)]` on
+/// stable Rust, which accepts the attribute on a closure in argument
+/// position only. A vectorized job's closures must be inlined into it to run
+/// at its level (a closure left out of line reaches each lane operation
+/// through a call).
+#[inline(always)]
+pub fn inlined<F>(f: F) -> F {
+    f
+}
+
+/// A closure as a job of [`vectorize_at`]. The closure takes no level: it
+/// runs the code its caller instantiated, for the level the caller was
+/// given (so it is sound by the caller's own level), and it should be
+/// marked `#[inline(always)]` so that its body lands in the job's function.
+#[derive(Debug)]
+pub struct Call<F>(pub F);
+
+impl<R, F: FnOnce() -> R> Vectorized for Call<F> {
+    type Output = R;
+    #[inline(always)]
+    fn run<L: lanes::Level>(self) -> R {
+        (self.0)()
+    }
 }
 
 /// The x86-64-v3 level when [`vectorize`] would choose it (for tests and

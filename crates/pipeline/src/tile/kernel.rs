@@ -267,13 +267,13 @@ impl Lod for DerivativeLod {
     #[inline(always)]
     fn lods<I: Interp, S: Level>(d: &Derivatives, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S> {
         // s = S/Q with S = s/w and Q = 1/w planes: ∂s/∂x = (∂S/∂x − s·∂Q/∂x)/Q.
-        let derivative = |ds: f32, dq: f32, v: f32x8<S>| {
+        let derivative = zline_simd::inlined(#[inline(always)] |ds: f32, dq: f32, v: f32x8<S>| {
             if I::PERSPECTIVE {
                 (f32x8::splat(ds) - v * f32x8::splat(dq)) * inv
             } else {
                 f32x8::splat(ds)
             }
-        };
+        });
         let (fw, fh) = (f32x8::splat(d.size.0), f32x8::splat(d.size.1));
         let (dx, dy) = (d.dx, d.dy);
         let (sx, tx) = (derivative(dx[1], dx[0], s) * fw, derivative(dx[2], dx[0], t) * fh);
@@ -548,7 +548,7 @@ impl TileTarget {
         if let Some(maps) = ctx.maps {
             return self.textured::<_, I, L, P, A, S>(prim, map, pass, #[inline(always)] |a, w, _| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-                let share = |k, p, n| maps.visibility_x8(k, p, n);
+                let share = zline_simd::inlined(#[inline(always)] |k, p, n| maps.visibility_x8(k, p, n));
                 l.shade_parts_x8_shared(m, triple(a, textured::EYE, w), normal, share)
             });
         }

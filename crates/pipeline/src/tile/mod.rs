@@ -27,7 +27,6 @@ mod target;
 pub(crate) use target::{load, load_for_blend, sample, store};
 pub use target::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 
-use std::marker::PhantomData;
 
 use zline_simd::lanes::{f32x8, Level};
 use zline_simd::Vectorized;
@@ -56,7 +55,7 @@ impl TileTarget {
         bin: &[OpaqueRef],
         ctx: &ShadeContext<'_>,
     ) -> u64 {
-        zline_simd::vectorize(OpaquePass { target: self, chunks, bin, ctx })
+        zline_simd::dispatch(OpaquePass { target: self, chunks, bin, ctx })
     }
 
     /// [`Self::opaque_pass`] at level `S`.
@@ -96,7 +95,7 @@ impl TileTarget {
         fog: Option<&FogPass>,
         order: &mut Vec<(f32, PrimitiveRef)>,
     ) -> u64 {
-        zline_simd::vectorize(TransparencyPass { target: self, chunks, bin, ctx, fog, order })
+        zline_simd::dispatch(TransparencyPass { target: self, chunks, bin, ctx, fog, order })
     }
 
     /// [`Self::transparency_pass`] at level `S`.
@@ -109,7 +108,7 @@ impl TileTarget {
         fog: Option<&FogPass>,
         order: &mut Vec<(f32, PrimitiveRef)>,
     ) -> u64 {
-        self.materialize_background::<S>();
+        apart::<S, _>(#[inline(always)] || self.materialize_background::<S>());
         let draw = |r: &PrimitiveRef| chunks[r.chunk as usize].draws[r.index as usize];
         back_to_front(order, bin.iter().map(#[inline(always)] |r| (draw(r).sort_depth, *r)));
         let mut shaded = 0;
@@ -195,7 +194,8 @@ impl TileTarget {
     }
 
     /// Draws one primitive with its kernel in `pass`: the one place where a
-    /// primitive's [`Kernel`] becomes a monomorphized span function.
+    /// primitive's [`Kernel`] becomes a monomorphized span function. Each
+    /// kernel runs as a job of its own at level `S` ([`apart`]).
     #[inline(always)]
     fn draw<P: Pass, S: Level>(
         &mut self,
@@ -206,25 +206,42 @@ impl TileTarget {
     ) -> u64 {
         let (t, i) = (&chunk.tables, index as usize);
         match kernel {
-            Kernel::Flat => self.flat::<P, S>(&t.flat[i], pass),
-            Kernel::Gouraud { interpolation, clamp: GouraudClamp::PerVertex } => match interpolation {
-                Interpolation::PerspectiveCorrect => {
-                    self.gouraud::<Perspective, ClampedAtVertices, P, S>(&t.gouraud[i], pass)
+            Kernel::Flat => apart::<S, _>(#[inline(always)] || self.flat::<P, S>(&t.flat[i], pass)),
+            Kernel::Gouraud { interpolation, clamp } => {
+                let p = &t.gouraud[i];
+                match (interpolation, clamp) {
+                    (Interpolation::PerspectiveCorrect, GouraudClamp::PerVertex) => apart::<S, _>(
+                        #[inline(always)]
+                        || self.gouraud::<Perspective, ClampedAtVertices, P, S>(p, pass),
+                    ),
+                    (Interpolation::ScreenLinear, GouraudClamp::PerVertex) => apart::<S, _>(
+                        #[inline(always)]
+                        || self.gouraud::<Linear, ClampedAtVertices, P, S>(p, pass),
+                    ),
+                    (Interpolation::PerspectiveCorrect, GouraudClamp::PerSample) => apart::<S, _>(
+                        #[inline(always)]
+                        || self.gouraud::<Perspective, ClampPerSample, P, S>(p, pass),
+                    ),
+                    (Interpolation::ScreenLinear, GouraudClamp::PerSample) => apart::<S, _>(
+                        #[inline(always)]
+                        || self.gouraud::<Linear, ClampPerSample, P, S>(p, pass),
+                    ),
                 }
-                Interpolation::ScreenLinear => {
-                    self.gouraud::<Linear, ClampedAtVertices, P, S>(&t.gouraud[i], pass)
-                }
-            },
-            Kernel::Gouraud { interpolation, clamp: GouraudClamp::PerSample } => {
-                self.gouraud_clamped_per_sample::<P, S>(&t.gouraud[i], interpolation, pass)
             }
             Kernel::Phong(Interpolation::PerspectiveCorrect) => {
-                self.phong::<Perspective, P, S>(&t.phong[i], ctx, pass)
+                apart::<S, _>(#[inline(always)] || self.phong::<Perspective, P, S>(&t.phong[i], ctx, pass))
             }
-            Kernel::Phong(Interpolation::ScreenLinear) => self.phong::<Linear, P, S>(&t.phong[i], ctx, pass),
-            Kernel::ColoredPhong(interpolation) => {
-                self.colored_phong::<P, S>(&t.colored_phong[i], interpolation, ctx, pass)
+            Kernel::Phong(Interpolation::ScreenLinear) => {
+                apart::<S, _>(#[inline(always)] || self.phong::<Linear, P, S>(&t.phong[i], ctx, pass))
             }
+            Kernel::ColoredPhong(Interpolation::PerspectiveCorrect) => apart::<S, _>(
+                #[inline(always)]
+                || self.phong_tinted::<Perspective, P, S>(&t.colored_phong[i], ctx, pass),
+            ),
+            Kernel::ColoredPhong(Interpolation::ScreenLinear) => apart::<S, _>(
+                #[inline(always)]
+                || self.phong_tinted::<Linear, P, S>(&t.colored_phong[i], ctx, pass),
+            ),
             Kernel::Textured { lighting, interpolation, lod, alpha } => {
                 let k = TexturedChoice { lighting, lod, alpha, index: i };
                 match interpolation {
@@ -240,69 +257,6 @@ impl TileTarget {
         }
     }
 
-    /// Gouraud clamped per sample, out of line so that the default kernels
-    /// are compiled as if these did not exist.
-    #[inline(always)]
-    fn gouraud_clamped_per_sample<P: Pass, S: Level>(
-        &mut self,
-        p: &crate::setup::Primitive<crate::setup::Gouraud>,
-        interpolation: Interpolation,
-        pass: &P,
-    ) -> u64 {
-        struct Job<'a, P> {
-            target: &'a mut TileTarget,
-            p: &'a crate::setup::Primitive<crate::setup::Gouraud>,
-            interpolation: Interpolation,
-            pass: &'a P,
-        }
-        impl<P: Pass> Vectorized for Job<'_, P> {
-            type Output = u64;
-            #[inline(always)]
-            fn run<S: Level>(self) -> u64 {
-                let Job { target, p, interpolation, pass } = self;
-                match interpolation {
-                    Interpolation::PerspectiveCorrect => {
-                        target.gouraud::<Perspective, ClampPerSample, P, S>(p, pass)
-                    }
-                    Interpolation::ScreenLinear => target.gouraud::<Linear, ClampPerSample, P, S>(p, pass),
-                }
-            }
-        }
-        zline_simd::vectorize_at::<S, _>(Job { target: self, p, interpolation, pass })
-    }
-
-    /// Coloured Phong, out of line so that the kernels of primitives without
-    /// colours are compiled as if these did not exist.
-    #[inline(always)]
-    fn colored_phong<P: Pass, S: Level>(
-        &mut self,
-        p: &crate::setup::Primitive<crate::setup::Phong<{ crate::setup::layout::phong::COLORED_LEN }>>,
-        interpolation: Interpolation,
-        ctx: &ShadeContext<'_>,
-        pass: &P,
-    ) -> u64 {
-        type Colored = crate::setup::Primitive<crate::setup::Phong<{ crate::setup::layout::phong::COLORED_LEN }>>;
-        struct Job<'a, 'c, P> {
-            target: &'a mut TileTarget,
-            p: &'a Colored,
-            interpolation: Interpolation,
-            ctx: &'a ShadeContext<'c>,
-            pass: &'a P,
-        }
-        impl<P: Pass> Vectorized for Job<'_, '_, P> {
-            type Output = u64;
-            #[inline(always)]
-            fn run<S: Level>(self) -> u64 {
-                let Job { target, p, interpolation, ctx, pass } = self;
-                match interpolation {
-                    Interpolation::PerspectiveCorrect => target.phong_tinted::<Perspective, P, S>(p, ctx, pass),
-                    Interpolation::ScreenLinear => target.phong_tinted::<Linear, P, S>(p, ctx, pass),
-                }
-            }
-        }
-        zline_simd::vectorize_at::<S, _>(Job { target: self, p, interpolation, ctx, pass })
-    }
-
     /// Textured kernels, step 2: the level of detail.
     #[inline(always)]
     fn textured_lod<I: Interp, P: Pass, S: Level>(
@@ -312,28 +266,10 @@ impl TileTarget {
         ctx: &ShadeContext<'_>,
         pass: &P,
     ) -> u64 {
-        struct Job<'a, 'c, I, P> {
-            target: &'a mut TileTarget,
-            chunk: &'a PrimitiveChunk,
-            k: TexturedChoice,
-            ctx: &'a ShadeContext<'c>,
-            pass: &'a P,
-            interp: PhantomData<I>,
+        match k.lod {
+            LevelOfDetail::Base => self.textured_alpha::<I, BaseLod, P, S>(chunk, k, ctx, pass),
+            LevelOfDetail::Derivatives => self.textured_alpha::<I, DerivativeLod, P, S>(chunk, k, ctx, pass),
         }
-        impl<I: Interp, P: Pass> Vectorized for Job<'_, '_, I, P> {
-            type Output = u64;
-            #[inline(always)]
-            fn run<S: Level>(self) -> u64 {
-                let Job { target, chunk, k, ctx, pass, .. } = self;
-                match k.lod {
-                    LevelOfDetail::Base => target.textured_alpha::<I, BaseLod, P, S>(chunk, k, ctx, pass),
-                    LevelOfDetail::Derivatives => {
-                        target.textured_alpha::<I, DerivativeLod, P, S>(chunk, k, ctx, pass)
-                    }
-                }
-            }
-        }
-        zline_simd::vectorize_at::<S, _>(Job::<I, P> { target: self, chunk, k, ctx, pass, interp: PhantomData })
     }
 
     /// Textured kernels, step 3: what the texel's alpha does. A texture
@@ -356,7 +292,8 @@ impl TileTarget {
         }
     }
 
-    /// Textured kernels, step 4: the lighting combined with the texel.
+    /// Textured kernels, step 4: the lighting combined with the texel, each
+    /// combination a job of its own.
     #[inline(always)]
     fn textured_lighting<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
         &mut self,
@@ -367,16 +304,34 @@ impl TileTarget {
     ) -> u64 {
         let (t, i) = (&chunk.tables, k.index);
         match k.lighting {
-            TexturedLighting::Flat => self.textured_flat::<I, L, P, A, S>(&t.textured_flat[i], ctx, pass),
-            TexturedLighting::Gouraud => {
-                self.textured_gouraud::<I, L, P, A, S>(&t.textured_gouraud[i], ctx, pass)
-            }
-            TexturedLighting::Phong => self.textured_phong::<I, L, P, A, S>(&t.textured_phong[i], ctx, pass),
-            TexturedLighting::ColoredPhong => {
-                self.textured_colored_phong::<I, L, P, A, S>(&t.textured_colored_phong[i], ctx, pass)
-            }
+            TexturedLighting::Flat => apart::<S, _>(
+                #[inline(always)]
+                || self.textured_flat::<I, L, P, A, S>(&t.textured_flat[i], ctx, pass),
+            ),
+            TexturedLighting::Gouraud => apart::<S, _>(
+                #[inline(always)]
+                || self.textured_gouraud::<I, L, P, A, S>(&t.textured_gouraud[i], ctx, pass),
+            ),
+            TexturedLighting::Phong => apart::<S, _>(
+                #[inline(always)]
+                || self.textured_phong::<I, L, P, A, S>(&t.textured_phong[i], ctx, pass),
+            ),
+            TexturedLighting::ColoredPhong => apart::<S, _>(
+                #[inline(always)]
+                || self.textured_colored_phong::<I, L, P, A, S>(&t.textured_colored_phong[i], ctx, pass),
+            ),
         }
     }
+}
+
+/// Runs one kernel as a job of its own at level `S`
+/// ([`zline_simd::vectorize_at`]): each kernel is compiled once per level,
+/// with the level's instructions, as a function apart from the others and
+/// from the pass loop that calls it. `kernel` should be an
+/// `#[inline(always)]` closure, so that its body lands in the job.
+#[inline(always)]
+pub(super) fn apart<S: Level, R>(kernel: impl FnOnce() -> R) -> R {
+    zline_simd::vectorize_at::<S, _>(zline_simd::Call(kernel))
 }
 
 /// Fills `order` with `keyed` sorted far to near (largest key first), ties

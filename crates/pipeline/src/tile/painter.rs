@@ -25,11 +25,12 @@
 //! zline-pipeline --release --test it painter` prints the share of wrong
 //! pixels).
 
-use zline_simd::lanes::{f32x8, Baseline};
+use zline_simd::lanes::{f32x8, Level};
+use zline_simd::Vectorized;
 use zline_shading::Vec3x8;
 
 use super::kernel::{Blend, BlendFogged};
-use super::{back_to_front, ShadeContext, TileTarget};
+use super::{apart, back_to_front, ShadeContext, TileTarget};
 use crate::bin::PrimitiveRef;
 use crate::fog::FogPass;
 use crate::setup::{PassKind, PrimitiveChunk};
@@ -48,7 +49,20 @@ impl TileTarget {
         fog: Option<&FogPass>,
         order: &mut Vec<(f32, PrimitiveRef)>,
     ) -> u64 {
-        self.materialize_background::<Baseline>();
+        zline_simd::dispatch(PainterPass { target: self, chunks, bin, ctx, fog, order })
+    }
+
+    /// [`Self::painter_pass`] at level `S`, each kernel a job of its own.
+    #[inline(always)]
+    fn painter_pass_at<S: Level>(
+        &mut self,
+        chunks: &[PrimitiveChunk],
+        bin: &[PrimitiveRef],
+        ctx: &ShadeContext<'_>,
+        fog: Option<&FogPass>,
+        order: &mut Vec<(f32, PrimitiveRef)>,
+    ) -> u64 {
+        apart::<S, _>(#[inline(always)] || self.materialize_background::<S>());
         let draw = |r: &PrimitiveRef| chunks[r.chunk as usize].draws[r.index as usize];
         back_to_front(order, bin.iter().map(|r| (draw(r).far_depth, *r)));
         let mut painted = 0;
@@ -61,13 +75,31 @@ impl TileTarget {
             };
             let d = draw(r);
             painted += match fog {
-                None => self.draw::<_, Baseline>(chunk, (d.kernel, d.index), ctx, &Blend { opacity }),
+                None => self.draw::<_, S>(chunk, (d.kernel, d.index), ctx, &Blend { opacity }),
                 Some(fog) => {
                     let pass = BlendFogged { opacity, fog, color: Vec3x8::splat(fog.color()) };
-                    self.draw::<_, Baseline>(chunk, (d.kernel, d.index), ctx, &pass)
+                    self.draw::<_, S>(chunk, (d.kernel, d.index), ctx, &pass)
                 }
             };
         }
         painted
+    }
+}
+
+/// [`TileTarget::painter_pass`] as a job.
+struct PainterPass<'a, 'c> {
+    target: &'a mut TileTarget,
+    chunks: &'a [PrimitiveChunk],
+    bin: &'a [PrimitiveRef],
+    ctx: &'a ShadeContext<'c>,
+    fog: Option<&'a FogPass>,
+    order: &'a mut Vec<(f32, PrimitiveRef)>,
+}
+
+impl Vectorized for PainterPass<'_, '_> {
+    type Output = u64;
+    #[inline(always)]
+    fn run<S: Level>(self) -> u64 {
+        self.target.painter_pass_at::<S>(self.chunks, self.bin, self.ctx, self.fog, self.order)
     }
 }

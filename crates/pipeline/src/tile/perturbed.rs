@@ -21,6 +21,7 @@ use super::kernel::{
     encode_normal, triple, Alpha, BaseLod, DerivativeLod, IgnoreAlpha, Interp, Linear, Lod, MaskAlpha, Pass,
     Perspective, TextureAlpha,
 };
+use super::apart;
 use super::target::{FrameTexture, ShadeContext, TileTarget};
 use crate::setup::layout::perturbed::{BITANGENT, EYE, NORMAL, Q, S, T, TANGENT};
 use crate::setup::{AlphaUse, LevelOfDetail, Perturbed, Primitive};
@@ -78,10 +79,10 @@ pub(crate) struct TangentNormal;
 impl Encoding for Height {
     #[inline(always)]
     fn tangent_normal<S: Level>(map: &MapReader<'_>, s: f32x8<S>, t: f32x8<S>) -> Vec3x8<S> {
-        let splat = |(a, b): (f32, f32)| (f32x8::<S>::splat(a), f32x8::<S>::splat(b));
+        let splat = zline_simd::inlined(#[inline(always)] |(a, b): (f32, f32)| (f32x8::<S>::splat(a), f32x8::<S>::splat(b)));
         let ((ds, dt), (hw, hh)) = (splat(map.step), splat(map.half));
         let scale = f32x8::<S>::splat(map.scale);
-        let h = |s, t| map.read(s, t)[0];
+        let h = zline_simd::inlined(#[inline(always)] |s, t| map.read(s, t)[0]);
         let dh_ds = (h(s + ds, t) - h(s - ds, t)) * hw;
         let dh_dt = (h(s, t + dt) - h(s, t - dt)) * hh;
         Vec3x8 { x: -(scale * dh_ds), y: -(scale * dh_dt), z: f32x8::ONE }
@@ -117,35 +118,9 @@ fn perturbed_point<E: Encoding, S: Level>(map: &MapReader<'_>, a: &[f32x8<S>; 15
 
 impl TileTarget {
     /// Draws a [`Perturbed`] primitive: the one dispatch from the kernel's
-    /// choices to a monomorphized span function, out of line.
+    /// choices to a monomorphized span function, each a job of its own.
     #[inline(always)]
     pub(super) fn perturbed<P: Pass, S: Level>(
-        &mut self,
-        p: &Primitive<Perturbed>,
-        choice: (NormalEncoding, Interpolation, Option<(LevelOfDetail, AlphaUse)>),
-        ctx: &ShadeContext<'_>,
-        pass: &P,
-    ) -> u64 {
-        struct Job<'a, 'c, P> {
-            target: &'a mut TileTarget,
-            p: &'a Primitive<Perturbed>,
-            choice: (NormalEncoding, Interpolation, Option<(LevelOfDetail, AlphaUse)>),
-            ctx: &'a ShadeContext<'c>,
-            pass: &'a P,
-        }
-        impl<P: Pass> zline_simd::Vectorized for Job<'_, '_, P> {
-            type Output = u64;
-            #[inline(always)]
-            fn run<S: Level>(self) -> u64 {
-                self.target.perturbed_at::<P, S>(self.p, self.choice, self.ctx, self.pass)
-            }
-        }
-        zline_simd::vectorize_at::<S, _>(Job { target: self, p, choice, ctx, pass })
-    }
-
-    /// [`Self::perturbed`] inside its job.
-    #[inline(always)]
-    fn perturbed_at<P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Perturbed>,
         (encoding, interpolation, texture): (
@@ -182,7 +157,7 @@ impl TileTarget {
         pass: &P,
     ) -> u64 {
         match texture {
-            None => self.perturbed_plain::<I, E, P, S>(p, ctx, pass),
+            None => apart::<S, _>(#[inline(always)] || self.perturbed_plain::<I, E, P, S>(p, ctx, pass)),
             Some((LevelOfDetail::Base, alpha)) => {
                 self.perturbed_alpha::<I, E, BaseLod, P, S>(p, alpha, ctx, pass)
             }
@@ -204,11 +179,18 @@ impl TileTarget {
         pass: &P,
     ) -> u64 {
         match (alpha, P::BLENDS) {
-            (AlphaUse::Ignore, _) | (AlphaUse::Blend, false) => {
-                self.perturbed_textured::<I, E, L, P, IgnoreAlpha, S>(p, ctx, pass)
-            }
-            (AlphaUse::Mask, _) => self.perturbed_textured::<I, E, L, P, MaskAlpha, S>(p, ctx, pass),
-            (AlphaUse::Blend, true) => self.perturbed_textured::<I, E, L, P, TextureAlpha, S>(p, ctx, pass),
+            (AlphaUse::Ignore, _) | (AlphaUse::Blend, false) => apart::<S, _>(
+                #[inline(always)]
+                || self.perturbed_textured::<I, E, L, P, IgnoreAlpha, S>(p, ctx, pass),
+            ),
+            (AlphaUse::Mask, _) => apart::<S, _>(
+                #[inline(always)]
+                || self.perturbed_textured::<I, E, L, P, MaskAlpha, S>(p, ctx, pass),
+            ),
+            (AlphaUse::Blend, true) => apart::<S, _>(
+                #[inline(always)]
+                || self.perturbed_textured::<I, E, L, P, TextureAlpha, S>(p, ctx, pass),
+            ),
         }
     }
 

@@ -233,7 +233,7 @@ fn is_floor_of(got: f32, v: f32) -> bool {
 /// a + (b − a)·f per channel, as the scalar `lerp`.
 #[inline(always)]
 fn lerp4<L: LaneLevel>(a: [f32x8<L>; 4], b: [f32x8<L>; 4], f: f32x8<L>) -> [f32x8<L>; 4] {
-    std::array::from_fn(|c| a[c] + (b[c] - a[c]) * f)
+    std::array::from_fn(#[inline(always)] |c| a[c] + (b[c] - a[c]) * f)
 }
 
 /// The scalar `nearest_index` per lane: ⌊coord·size⌋ wrapped, 0 where
