@@ -77,7 +77,7 @@ use std::sync::{Arc, Mutex, OnceLock, PoisonError, Weak};
 
 use glam::{Mat4, Vec3, Vec4Swizzles};
 use meshopt::{SimplifyOptions, VertexDataAdapter};
-use zline_scene::{Mesh, Object};
+use zline_scene::{Mesh, Object, Scene};
 use zline_shading::Material;
 
 /// Levels per mesh: target errors R/8 down to R/4096.
@@ -305,6 +305,48 @@ pub enum Choice {
 }
 
 impl LodView {
+    /// The view of `scene`'s frame (its sizes taken as the renderer takes
+    /// them); `None` without the adaptive mode, or with a tolerance that is
+    /// not a finite number ≥ 0 (which the renderer ignores too).
+    pub fn of_scene(scene: &Scene) -> Option<LodView> {
+        let s = &scene.settings;
+        let tolerance = s.adaptive_tolerance.filter(|t| t.is_finite() && *t >= 0.0)?;
+        let side = |v: u32| v.clamp(1, zline_scene::MAX_IMAGE_SIDE);
+        let (width, height) = (side(s.width), side(s.height));
+        let n = s.ssaa.clamp(1, zline_scene::MAX_SSAA);
+        Some(LodView {
+            eye_from_world: scene.camera.eye_from_world(),
+            clip_from_eye: scene.camera.clip_from_eye(width as f32 / height as f32),
+            height_samples: height * n,
+            samples: n,
+            tolerance,
+            light_sum: scene.lights.iter().map(|l| l.color().max_element().max(0.0)).sum(),
+        })
+    }
+
+    /// One line on what the frame draws: how many objects are simplified,
+    /// the triangles before and after, and the levels.
+    pub fn summary(&self, objects: &[Object]) -> String {
+        let (mut simplified, mut full, mut drawn, mut levels) = (0, 0, 0, Vec::new());
+        for o in objects {
+            full += o.mesh.triangles.len();
+            match self.choose(o) {
+                Choice::Full => drawn += o.mesh.triangles.len(),
+                Choice::Level { k, mesh } => {
+                    simplified += 1;
+                    drawn += mesh.triangles.len();
+                    levels.push(k.to_string());
+                }
+            }
+        }
+        let levels =
+            if levels.is_empty() { String::new() } else { format!(" (levels {})", levels.join(", ")) };
+        format!(
+            "level of detail: {simplified} of {} objects simplified, {full} -> {drawn} triangles{levels}",
+            objects.len()
+        )
+    }
+
     /// The mesh `object` is drawn with (the module documentation states the
     /// rule).
     pub fn choose(&self, object: &Object) -> Choice {
@@ -386,5 +428,77 @@ fn largest_scale(m: Mat4) -> f32 {
         len[0].max(len[1]).max(len[2]) * (1.0 + 1e-5)
     } else {
         (len[0] * len[0] + len[1] * len[1] + len[2] * len[2]).sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::{Quat, Vec2};
+
+    #[test]
+    fn the_pixel_budget_is_a_32nd_of_the_tolerance_up_to_a_quarter() {
+        assert_eq!(pixel_error(2.0), 1.0 / 16.0);
+        assert_eq!(pixel_error(8.0), 0.25);
+        assert_eq!(pixel_error(100.0), 0.25);
+        assert_eq!(pixel_error(0.0), 0.0);
+    }
+
+    #[test]
+    fn the_normal_level_is_the_coarsest_within_the_colour_budget() {
+        // τ = 8: 8/255 = 0.03137 ≥ 2^−5 = 0.03125 (k = 2), < 2^−4.
+        assert_eq!(normal_level(8.0, 1.0), 2);
+        // τ = 2: 0.00784 ≥ 2^−7 = 0.0078125 (k = 4).
+        assert_eq!(normal_level(2.0, 1.0), 4);
+        // Twice the sensitivity: one level finer.
+        assert_eq!(normal_level(2.0, 2.0), 5);
+        assert_eq!(normal_level(8.0, f32::INFINITY), LEVELS);
+        assert_eq!(normal_level(8.0, f32::NAN), LEVELS);
+        // The default material: 0.8 + 0.2·1.05·√32.
+        let s = material_sensitivity(&Material::DEFAULT);
+        assert!((s - (0.8 + 0.2 * 1.05 * 32f32.sqrt())).abs() < 1e-6, "{s}");
+        let soft = Material { ns: 0.5, ..Material::DEFAULT };
+        assert_eq!(material_sensitivity(&soft), f32::INFINITY);
+    }
+
+    #[test]
+    fn the_largest_scale_is_exact_for_rotate_scale_and_bounds_a_shear() {
+        let trs = Mat4::from_scale_rotation_translation(
+            Vec3::new(2.0, 3.0, 0.5),
+            Quat::from_rotation_y(0.7),
+            Vec3::ONE,
+        );
+        assert!((largest_scale(trs) - 3.0).abs() < 1e-3, "{}", largest_scale(trs));
+        let shear = Mat4::from_cols_array(&[
+            1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+        ]);
+        // Its largest singular value is the golden ratio ≈ 1.618.
+        assert!(largest_scale(shear) >= 1.618, "{}", largest_scale(shear));
+    }
+
+    #[test]
+    fn compaction_keeps_every_attribute_of_the_kept_vertices() {
+        let positions: Vec<Vec3> = (0..6).map(|i| Vec3::new(i as f32, (i * i) as f32, 0.0)).collect();
+        let mesh = Mesh {
+            name: "m".into(),
+            normals: (0..6).map(|i| Vec3::new(0.0, (i as f32).sin(), (i as f32).cos())).collect(),
+            uvs: (0..6).map(|i| Vec2::new(i as f32 * 0.1, 0.5)).collect(),
+            colors: (0..6).map(|i| Vec3::splat(i as f32 / 6.0)).collect(),
+            positions,
+            triangles: vec![[0, 1, 2], [3, 4, 5]],
+            material: Material::DEFAULT,
+            diffuse_map: None,
+            tangents: Vec::new(),
+            normal_map: None,
+        };
+        let c = compact(&mesh, &[5, 2, 4, 2, 5, 0]);
+        assert_eq!(c.triangles, vec![[0, 1, 2], [1, 0, 3]]);
+        for (new, old) in [5usize, 2, 4, 0].into_iter().enumerate() {
+            assert_eq!(c.positions[new], mesh.positions[old]);
+            assert_eq!(c.normals[new], mesh.normals[old]);
+            assert_eq!(c.uvs[new], mesh.uvs[old]);
+            assert_eq!(c.colors[new], mesh.colors[old]);
+        }
+        assert!(c.tangents.is_empty() && c.positions.len() == 4);
     }
 }

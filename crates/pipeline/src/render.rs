@@ -187,14 +187,7 @@ impl Frame {
             Adaptive::new(t, &model.transformed(&eye_from_world))
         });
         let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);
-        let lod = s.adaptive_tolerance.filter(|_| adaptive.is_some()).map(|tolerance| LodView {
-            eye_from_world,
-            clip_from_eye,
-            height_samples: height * n,
-            samples: n,
-            tolerance,
-            light_sum: scene.lights.iter().map(|l| l.color().max_element().max(0.0)).sum(),
-        });
+        let lod = LodView::of_scene(scene);
         Frame {
             width,
             height,

@@ -415,6 +415,9 @@ fn run(cli: Cli) -> Result<()> {
             ms(saved),
             std::fs::metadata(&common.output).map_or(0, |m| m.len())
         );
+        if let Some(view) = zline::pipeline::lod::LodView::of_scene(&scene) {
+            eprintln!("timings: {}", view.summary(&scene.objects));
+        }
     }
     Ok(())
 }

@@ -99,6 +99,8 @@ fn a_far_dense_mesh_is_drawn_simplified_and_stays_close_to_the_full_mesh() {
         let (full, full_stats, none) = draw(&s, false);
         let (lod, lod_stats, levels) = draw(&s, true);
         assert!(none.is_empty(), "levels reported with the level of detail off: {none:?}");
+        let summary = zline_pipeline::lod::LodView::of_scene(&s).unwrap().summary(&s.objects);
+        assert!(summary.starts_with("level of detail: 1 of 1 objects simplified"), "{summary}");
         assert!(matches!(levels[..], [Some(_)]), "τ = {tolerance}: no level drawn: {levels:?}");
         assert!(
             lod_stats.primitives * 4 < full_stats.primitives,
