@@ -141,10 +141,7 @@ impl Pyramid {
     /// The bounds of `mesh`; no level is built yet.
     pub fn new(mesh: &Mesh) -> Pyramid {
         let n = mesh.positions.len();
-        let finite = mesh.positions.iter().all(|p| p.is_finite())
-            && mesh.normals.len() == n
-            && mesh.normals.iter().all(|v| v.is_finite());
-        let in_range = mesh.triangles.iter().flatten().all(|&i| (i as usize) < n);
+        let finite = mesh.positions.iter().all(|p| p.is_finite());
         let (lo, hi) = mesh
             .positions
             .iter()
@@ -157,13 +154,7 @@ impl Pyramid {
         };
         let total: f64 = mesh.triangles.iter().map(|t| area(t) as f64).sum();
         let mean_area = (total / mesh.triangles.len().max(1) as f64) as f32;
-        let usable = finite
-            && in_range
-            && n > 0
-            && n <= u32::MAX as usize
-            && radius.is_finite()
-            && radius > 0.0
-            && mean_area.is_finite();
+        let usable = simplifiable(mesh) && radius.is_finite() && radius > 0.0 && mean_area.is_finite();
         Pyramid { center, radius, mean_area, usable, levels: Default::default() }
     }
 
@@ -182,9 +173,31 @@ impl Pyramid {
     }
 }
 
+/// True when meshoptimizer can take `mesh` and its levels can carry every
+/// attribute: vertices (at most `u32::MAX`), finite positions and one
+/// finite normal each, every index in range, and texture coordinates,
+/// colours and tangents each absent or one per vertex. Checked again
+/// before each simplification (the simplifier's C++ would read out of
+/// bounds on a bad index).
+fn simplifiable(mesh: &Mesh) -> bool {
+    let n = mesh.positions.len();
+    let per_vertex = |len: usize| len == 0 || len == n;
+    n > 0
+        && n <= u32::MAX as usize
+        && mesh.normals.len() == n
+        && mesh.positions.iter().chain(&mesh.normals).all(|v| v.is_finite())
+        && mesh.triangles.iter().flatten().all(|&i| (i as usize) < n)
+        && per_vertex(mesh.uvs.len())
+        && per_vertex(mesh.colors.len())
+        && per_vertex(mesh.tangents.len())
+}
+
 /// The level of `mesh` with absolute target error `target`: meshopt's
 /// simplification, its vertices compacted in order of first use.
 fn simplify(mesh: &Mesh, target: f32, radius: f32) -> Option<Level> {
+    if !simplifiable(mesh) {
+        return None;
+    }
     let positions: Vec<[f32; 3]> = mesh.positions.iter().map(|p| p.to_array()).collect();
     let adapter = VertexDataAdapter::new(bytemuck::cast_slice(&positions), 12, 0).ok()?;
     let indices: &[u32] = bytemuck::cast_slice(&mesh.triangles);
