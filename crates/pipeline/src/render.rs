@@ -186,7 +186,6 @@ impl Frame {
             let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
             Adaptive::new(t, &model.transformed(&eye_from_world))
         });
-        let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);
         let lod = LodView::of_scene(scene);
         Frame {
             width,
@@ -194,7 +193,7 @@ impl Frame {
             n,
             viewport: Viewport { width: width * n, height: height * n },
             eye_from_world,
-            clip_from_eye,
+            clip_from_eye: scene.camera.clip_from_eye(width as f32 / height as f32),
             depth,
             viewer,
             adaptive,
