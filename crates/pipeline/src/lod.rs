@@ -73,7 +73,8 @@
 //! more than τ, and the RMSE, set against the same measures for the full
 //! mesh moved ¼ px (BENCHMARKS.md, "Simplified meshes").
 
-use std::sync::{Arc, Mutex, OnceLock, PoisonError, Weak};
+use std::collections::HashMap;
+use std::sync::{Arc, LazyLock, Mutex, OnceLock, PoisonError, Weak};
 
 use glam::{Mat4, Vec3, Vec4Swizzles};
 use meshopt::{SimplifyOptions, VertexDataAdapter};
@@ -270,19 +271,28 @@ fn compact(mesh: &Mesh, indices: &[u32]) -> Mesh {
     }
 }
 
-/// The process-wide cache: one pyramid per live mesh.
-static CACHE: Mutex<Vec<(Weak<Mesh>, Arc<Pyramid>)>> = Mutex::new(Vec::new());
+/// The process-wide cache: one pyramid per live mesh, keyed by the mesh's
+/// address (the `Weak` keeps the allocation, so the address is not reused
+/// while the entry lives).
+static CACHE: LazyLock<Mutex<HashMap<usize, CacheEntry>>> = LazyLock::new(Default::default);
+
+/// A cached mesh (held weakly) and its pyramid.
+type CacheEntry = (Weak<Mesh>, Arc<Pyramid>);
 
 /// The pyramid of `mesh`, from the cache or made now (bounds only; levels
-/// are built on first use).
+/// are built on first use). A look-up is one hash; entries of dropped
+/// meshes are removed when a new mesh is added.
 pub fn pyramid(mesh: &Arc<Mesh>) -> Arc<Pyramid> {
+    let key = Arc::as_ptr(mesh) as usize;
     let mut cache = CACHE.lock().unwrap_or_else(PoisonError::into_inner);
-    cache.retain(|(weak, _)| weak.strong_count() > 0);
-    if let Some((_, p)) = cache.iter().find(|(weak, _)| std::ptr::eq(weak.as_ptr(), Arc::as_ptr(mesh))) {
-        return p.clone();
+    if let Some((weak, p)) = cache.get(&key) {
+        if weak.strong_count() > 0 {
+            return p.clone();
+        }
     }
+    cache.retain(|_, (weak, _)| weak.strong_count() > 0);
     let p = Arc::new(Pyramid::new(mesh));
-    cache.push((Arc::downgrade(mesh), p.clone()));
+    cache.insert(key, (Arc::downgrade(mesh), p.clone()));
     p
 }
 
@@ -318,46 +328,27 @@ pub enum Choice {
 }
 
 impl LodView {
-    /// The view of `scene`'s frame (its sizes taken as the renderer takes
-    /// them); `None` without the adaptive mode, or with a tolerance that is
-    /// not a finite number ≥ 0 (which the renderer ignores too).
-    pub fn of_scene(scene: &Scene) -> Option<LodView> {
-        let s = &scene.settings;
-        let tolerance = s.adaptive_tolerance.filter(|t| t.is_finite() && *t >= 0.0)?;
-        let side = |v: u32| v.clamp(1, zline_scene::MAX_IMAGE_SIDE);
-        let (width, height) = (side(s.width), side(s.height));
-        let n = s.ssaa.clamp(1, zline_scene::MAX_SSAA);
+    /// The view of a frame of `scene` with the camera matrices and the
+    /// window height in samples (`samples` per pixel along an axis) the
+    /// renderer computed; `None` without the adaptive mode, or with a
+    /// tolerance that is not a finite number ≥ 0 (which the renderer
+    /// ignores too).
+    pub fn new(
+        scene: &Scene,
+        eye_from_world: Mat4,
+        clip_from_eye: Mat4,
+        height_samples: u32,
+        samples: u32,
+    ) -> Option<LodView> {
+        let tolerance = scene.settings.adaptive_tolerance.filter(|t| t.is_finite() && *t >= 0.0)?;
         Some(LodView {
-            eye_from_world: scene.camera.eye_from_world(),
-            clip_from_eye: scene.camera.clip_from_eye(width as f32 / height as f32),
-            height_samples: height * n,
-            samples: n,
+            eye_from_world,
+            clip_from_eye,
+            height_samples,
+            samples,
             tolerance,
             light_sum: scene.lights.iter().map(|l| l.color().max_element().max(0.0)).sum(),
         })
-    }
-
-    /// One line on what the frame draws: how many objects are simplified,
-    /// the triangles before and after, and the levels.
-    pub fn summary(&self, objects: &[Object]) -> String {
-        let (mut simplified, mut full, mut drawn, mut levels) = (0, 0, 0, Vec::new());
-        for o in objects {
-            full += o.mesh.triangles.len();
-            match self.choose(o) {
-                Choice::Full => drawn += o.mesh.triangles.len(),
-                Choice::Level { k, mesh } => {
-                    simplified += 1;
-                    drawn += mesh.triangles.len();
-                    levels.push(k.to_string());
-                }
-            }
-        }
-        let levels =
-            if levels.is_empty() { String::new() } else { format!(" (levels {})", levels.join(", ")) };
-        format!(
-            "level of detail: {simplified} of {} objects simplified, {full} -> {drawn} triangles{levels}",
-            objects.len()
-        )
     }
 
     /// The mesh `object` is drawn with (the module documentation states the

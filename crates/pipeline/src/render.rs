@@ -62,6 +62,11 @@ pub struct RenderStats {
     pub primitives: u64,
     /// Samples that passed the depth test and were shaded.
     pub fragments: u64,
+    /// Triangles of the meshes drawn: `triangles` less what the adaptive
+    /// mode's simplified levels left out (`crate::lod`).
+    pub triangles_drawn: u64,
+    /// Objects the adaptive mode drew from a simplified level.
+    pub simplified: u64,
     /// Time in the vertex stage and triangle setup.
     pub geometry: Duration,
     /// Time binning primitives into tiles.
@@ -186,14 +191,15 @@ impl Frame {
             let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
             Adaptive::new(t, &model.transformed(&eye_from_world))
         });
-        let lod = LodView::of_scene(scene);
+        let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);
+        let lod = LodView::new(scene, eye_from_world, clip_from_eye, height * n, n);
         Frame {
             width,
             height,
             n,
             viewport: Viewport { width: width * n, height: height * n },
             eye_from_world,
-            clip_from_eye: scene.camera.clip_from_eye(width as f32 / height as f32),
+            clip_from_eye,
             depth,
             viewer,
             adaptive,
@@ -243,8 +249,9 @@ impl Renderer {
         self.levels.clear();
         for (index, object) in scene.objects.iter().enumerate() {
             stats.triangles += object.mesh.triangles.len() as u64;
-            self.setup_object(scene, index, object, &frame);
+            stats.triangles_drawn += self.setup_object(scene, index, object, &frame) as u64;
         }
+        stats.simplified = self.levels.iter().flatten().count() as u64;
         stats.primitives = self.chunks[..self.used].iter().map(|c| c.draws.len() as u64).sum();
         if scene.shadows.mode == ShadowMode::Planar {
             self.setup_shadows(scene, &frame);
@@ -327,8 +334,10 @@ impl Renderer {
     }
 
     /// The vertex stage and setup of one object, appending its primitives
-    /// in mesh order. Every per-object decision is made here, once.
-    fn setup_object(&mut self, scene: &Scene, index: usize, object: &Object, frame: &Frame) {
+    /// in mesh order. Every per-object decision is made here, once. Returns
+    /// the triangles of the mesh drawn (a simplified level's, or the
+    /// object's own).
+    fn setup_object(&mut self, scene: &Scene, index: usize, object: &Object, frame: &Frame) -> usize {
         // The adaptive mode may draw a simplified level (`crate::lod`).
         let choice = frame.lod.filter(|_| !self.full_meshes).map(|view| view.choose(object));
         if let Some(choice) = &choice {
@@ -405,6 +414,7 @@ impl Renderer {
             ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, object.world_from_object);
         let out = (&mut self.vertices, &mut self.chunks, &mut self.used);
         setup_mesh(mesh, (&transforms, lights), &ctx, pass, out);
+        mesh.triangles.len()
     }
 
     /// Planar shadows: for each receiving plane and light that has a bit in

@@ -415,8 +415,14 @@ fn run(cli: Cli) -> Result<()> {
             ms(saved),
             std::fs::metadata(&common.output).map_or(0, |m| m.len())
         );
-        if let Some(view) = zline::pipeline::lod::LodView::of_scene(&scene) {
-            eprintln!("timings: {}", view.summary(&scene.objects));
+        if scene.settings.adaptive_tolerance.is_some() {
+            eprintln!(
+                "timings: level of detail: {} of {} objects simplified, {} -> {} triangles",
+                stats.simplified,
+                scene.objects.len(),
+                stats.triangles,
+                stats.triangles_drawn
+            );
         }
     }
     Ok(())

@@ -99,8 +99,9 @@ fn a_far_dense_mesh_is_drawn_simplified_and_stays_close_to_the_full_mesh() {
         let (full, full_stats, none) = draw(&s, false);
         let (lod, lod_stats, levels) = draw(&s, true);
         assert!(none.is_empty(), "levels reported with the level of detail off: {none:?}");
-        let summary = zline_pipeline::lod::LodView::of_scene(&s).unwrap().summary(&s.objects);
-        assert!(summary.starts_with("level of detail: 1 of 1 objects simplified"), "{summary}");
+        assert_eq!((full_stats.simplified, lod_stats.simplified), (0, 1), "τ = {tolerance}");
+        assert_eq!(full_stats.triangles_drawn, full_stats.triangles, "τ = {tolerance}");
+        assert!(lod_stats.triangles_drawn * 4 < lod_stats.triangles, "τ = {tolerance}: {lod_stats:?}");
         assert!(matches!(levels[..], [Some(_)]), "τ = {tolerance}: no level drawn: {levels:?}");
         assert!(
             lod_stats.primitives * 4 < full_stats.primitives,
