@@ -15,6 +15,7 @@ mod modules;
 mod ray_batch;
 mod regress;
 mod report;
+mod report_lod;
 mod report_shadows;
 mod terrain;
 mod timing;

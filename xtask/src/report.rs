@@ -168,8 +168,14 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         println!("wrote {} and {}", args.out.display(), shadow_chart.display());
         return Ok(());
     }
+    if scenes.is_empty() && args.filter.as_deref() == Some("lod") {
+        let markdown = crate::report_lod::section(&args.assets, args.frames)?;
+        write(&args.out, markdown.as_bytes())?;
+        println!("wrote {}", args.out.display());
+        return Ok(());
+    }
     if scenes.is_empty() {
-        bail!("no scene matches the filter (\"shadows\" gives the shadow section alone)");
+        bail!("no scene matches the filter (\"shadows\" or \"lod\" gives that section alone)");
     }
     let mut rows = Vec::new();
     for (si, rs) in scenes.iter().enumerate() {
@@ -217,6 +223,11 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         markdown += &section;
         crate::chart::draw(&shadow_chart, &args.font, &shadow_points, &crate::report_shadows::CHART)?;
         eprintln!("shadows: {:.1} s", start.elapsed().as_secs_f64());
+    }
+    if args.filter.is_none() {
+        let start = Instant::now();
+        markdown += &crate::report_lod::section(&args.assets, args.frames)?;
+        eprintln!("simplified meshes: {:.1} s", start.elapsed().as_secs_f64());
     }
     write(&args.out, markdown.as_bytes())?;
     crate::chart::draw(&args.chart, &args.font, &points, &crate::chart::SETTINGS)?;

@@ -28,6 +28,7 @@ pub mod fog;
 pub mod image;
 pub mod layers;
 pub mod lines;
+pub mod lod;
 mod normal_map;
 mod render;
 pub mod resolve;

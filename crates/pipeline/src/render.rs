@@ -19,6 +19,7 @@ use crate::bin::{bin_primitives, bin_primitives_painter, Bins, PrimitiveRef, Til
 use crate::fog::FogPass;
 use crate::image::{quantize_rgba, Image};
 use crate::lines::{LineFrame, Lines};
+use crate::lod::{Choice, LodView};
 use crate::setup::{
     setup_triangle, AlphaUse, DepthEncoding, Faces, LevelOfDetail, NormalMapUse, PassKind, PrimitiveChunk,
     SetupContext, TextureUse, VertexColors, Viewer,
@@ -61,6 +62,11 @@ pub struct RenderStats {
     pub primitives: u64,
     /// Samples that passed the depth test and were shaded.
     pub fragments: u64,
+    /// Triangles of the meshes drawn: `triangles` less what the adaptive
+    /// mode's simplified levels left out (`crate::lod`).
+    pub triangles_drawn: u64,
+    /// Objects the adaptive mode drew from a simplified level.
+    pub simplified: u64,
     /// Time in the vertex stage and triangle setup.
     pub geometry: Duration,
     /// Time binning primitives into tiles.
@@ -103,6 +109,12 @@ pub struct Renderer {
     lines: Lines,
     /// This frame is the normals frame (`Renderer::render_normals_into`).
     pub(crate) normals: bool,
+    /// With the adaptive mode, per object of the last frame: the
+    /// simplified level drawn (`crate::lod`), `None` for the full mesh.
+    levels: Vec<Option<usize>>,
+    /// The adaptive mode draws every mesh in full
+    /// ([`Renderer::set_level_of_detail`]).
+    full_meshes: bool,
 }
 
 /// The frame's lights, materials and textures, indexed by the primitives.
@@ -147,6 +159,8 @@ pub(crate) struct Frame {
     depth: DepthEncoding,
     viewer: Viewer,
     adaptive: Option<Adaptive>,
+    /// The level-of-detail choice, with the adaptive mode.
+    lod: Option<LodView>,
 }
 
 impl Frame {
@@ -177,16 +191,19 @@ impl Frame {
             let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
             Adaptive::new(t, &model.transformed(&eye_from_world))
         });
+        let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);
+        let lod = LodView::new(scene, eye_from_world, clip_from_eye, height * n, n);
         Frame {
             width,
             height,
             n,
             viewport: Viewport { width: width * n, height: height * n },
             eye_from_world,
-            clip_from_eye: scene.camera.clip_from_eye(width as f32 / height as f32),
+            clip_from_eye,
             depth,
             viewer,
             adaptive,
+            lod,
         }
     }
 }
@@ -197,6 +214,20 @@ impl Renderer {
     pub fn render_into(&mut self, scene: &Scene, options: &RenderOptions, image: &mut Image) -> RenderStats {
         self.normals = false;
         self.render_frame(scene, options, image, None)
+    }
+
+    /// Lets the adaptive mode draw simplified meshes (`crate::lod`; the
+    /// default) or not (`false`: every mesh in full, every other shortcut
+    /// kept), for comparing the two.
+    pub fn set_level_of_detail(&mut self, on: bool) {
+        self.full_meshes = !on;
+    }
+
+    /// With the adaptive mode, per object of the last frame, the simplified
+    /// level it was drawn with (`crate::lod`; 0 is the coarsest), `None`
+    /// for the full mesh; empty without the adaptive mode.
+    pub fn levels_drawn(&self) -> &[Option<usize>] {
+        &self.levels
     }
 
     /// [`Self::render_into`], and when `depth` is given, each pixel's
@@ -215,10 +246,12 @@ impl Renderer {
         self.prepare_tables(scene, &frame);
         let mut stats = RenderStats::default();
         self.used = 0;
+        self.levels.clear();
         for (index, object) in scene.objects.iter().enumerate() {
             stats.triangles += object.mesh.triangles.len() as u64;
-            self.setup_object(scene, index, object, &frame);
+            stats.triangles_drawn += self.setup_object(scene, index, object, &frame) as u64;
         }
+        stats.simplified = self.levels.iter().flatten().count() as u64;
         stats.primitives = self.chunks[..self.used].iter().map(|c| c.draws.len() as u64).sum();
         if scene.shadows.mode == ShadowMode::Planar {
             self.setup_shadows(scene, &frame);
@@ -301,9 +334,22 @@ impl Renderer {
     }
 
     /// The vertex stage and setup of one object, appending its primitives
-    /// in mesh order. Every per-object decision is made here, once.
-    fn setup_object(&mut self, scene: &Scene, index: usize, object: &Object, frame: &Frame) {
-        let mesh = &object.mesh;
+    /// in mesh order. Every per-object decision is made here, once. Returns
+    /// the triangles of the mesh drawn (a simplified level's, or the
+    /// object's own).
+    fn setup_object(&mut self, scene: &Scene, index: usize, object: &Object, frame: &Frame) -> usize {
+        // The adaptive mode may draw a simplified level (`crate::lod`).
+        let choice = frame.lod.filter(|_| !self.full_meshes).map(|view| view.choose(object));
+        if let Some(choice) = &choice {
+            self.levels.push(match choice {
+                Choice::Full => None,
+                Choice::Level { k, .. } => Some(*k),
+            });
+        }
+        let mesh: &zline_scene::Mesh = match &choice {
+            Some(Choice::Level { mesh, .. }) => mesh,
+            _ => &object.mesh,
+        };
         // A surface that receives planar shadows is lit per sample, where
         // the tile's shadow mask says which lights each sample sees.
         let receives = scene.shadows.receives(index) && !scene.lights.is_empty();
@@ -368,6 +414,7 @@ impl Renderer {
             ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, object.world_from_object);
         let out = (&mut self.vertices, &mut self.chunks, &mut self.used);
         setup_mesh(mesh, (&transforms, lights), &ctx, pass, out);
+        mesh.triangles.len()
     }
 
     /// Planar shadows: for each receiving plane and light that has a bit in

@@ -415,6 +415,15 @@ fn run(cli: Cli) -> Result<()> {
             ms(saved),
             std::fs::metadata(&common.output).map_or(0, |m| m.len())
         );
+        if scene.settings.adaptive_tolerance.is_some() {
+            eprintln!(
+                "timings: level of detail: {} of {} objects simplified, {} -> {} triangles",
+                stats.simplified,
+                scene.objects.len(),
+                stats.triangles,
+                stats.triangles_drawn
+            );
+        }
     }
     Ok(())
 }

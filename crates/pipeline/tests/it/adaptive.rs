@@ -9,7 +9,19 @@ use proptest::prelude::*;
 use zline_scene::{uv_sphere, GouraudClamp, Interpolation, Object, Scene};
 use zline_shading::{Attenuation, Light, Material, ShadingMode};
 
-use crate::support::{colored, draw, object, scene, wavy_grid};
+use crate::support::{colored, object, scene, wavy_grid};
+
+/// The image with every mesh drawn in full: these tests hold the shading
+/// shortcuts to their per-pixel bound; the simplified meshes the adaptive
+/// mode also draws (`zline_pipeline::lod`) have their own measure
+/// (`crate::lod`).
+fn draw(scene: &Scene) -> zline_pipeline::Image {
+    let mut renderer = zline_pipeline::Renderer::default();
+    renderer.set_level_of_detail(false);
+    let mut image = zline_pipeline::Image::empty();
+    renderer.render_into(scene, &zline_pipeline::RenderOptions::default(), &mut image);
+    image
+}
 
 /// Largest 8-bit difference between two images of the same size.
 fn max_difference(a: &zline_pipeline::Image, b: &zline_pipeline::Image) -> u8 {
