@@ -14,8 +14,8 @@
 //! Compositing it over a background B gives P + (1 − α)·B: the frame drawn
 //! on B, up to the two quantizations.
 
-use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 use zline_raster::LANES;
+use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 
 use crate::resolve::{quantize_x8, store_block};
 use crate::tile::{load, sample, TileTarget};
@@ -39,7 +39,10 @@ impl TileTarget {
                     let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
                     (empty, empty.blend(f32x8::ZERO, f32x8::ONE))
                 };
-                let p = zline_simd::inlined(#[inline(always)] |plane: &[f32x8]| empty.blend(f32x8::ZERO, load(plane, i)));
+                let p = zline_simd::inlined(
+                    #[inline(always)]
+                    |plane: &[f32x8]| empty.blend(f32x8::ZERO, load(plane, i)),
+                );
                 let px = pack_straight([p(red), p(green), p(blue)], alpha);
                 store_block(out, x, &self.rect, &px);
             }
@@ -89,7 +92,10 @@ impl TileTarget {
 pub(crate) fn pack_straight<S: Level>(p: [f32x8<S>; 3], alpha: f32x8<S>) -> [u32; LANES] {
     let covered = alpha.cmp_gt(f32x8::ZERO);
     let safe = covered.blend(alpha, f32x8::ONE);
-    let straight = zline_simd::inlined(#[inline(always)] |c: f32x8<S>| covered.blend(c / safe, f32x8::ZERO));
+    let straight = zline_simd::inlined(
+        #[inline(always)]
+        |c: f32x8<S>| covered.blend(c / safe, f32x8::ZERO),
+    );
     let [r, g, b] = [straight(p[0]), straight(p[1]), straight(p[2])];
     let packed: i32x8<S> =
         quantize_x8(r) | (quantize_x8(g) << 8) | (quantize_x8(b) << 16) | (quantize_x8(alpha) << 24);

@@ -20,8 +20,8 @@
 use std::marker::PhantomData;
 
 use glam::{Mat4, Vec4};
-use zline_simd::lanes::{f32x8, Level};
 use zline_scene::{Fog, FogCoordinate, FogMode};
+use zline_simd::lanes::{f32x8, Level};
 
 use crate::setup::DepthEncoding;
 
@@ -100,14 +100,23 @@ impl FogPass {
 
     /// The factors with the coordinate `C` and the falloff `falloff`.
     #[inline(always)]
-    fn factors_with<C: Coordinate, S: Level>(&self, falloff: impl Falloff, x: i32, y: i32, z: f32x8<S>) -> f32x8<S> {
+    fn factors_with<C: Coordinate, S: Level>(
+        &self,
+        falloff: impl Falloff,
+        x: i32,
+        y: i32,
+        z: f32x8<S>,
+    ) -> f32x8<S> {
         let (sx, ox, sy, oy) = self.scale;
         let lanes = f32x8::from([0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
         let xn = (f32x8::splat(x as f32) + lanes) * f32x8::splat(sx) + f32x8::splat(ox);
         let yn = f32x8::splat(y as f32 * sy + oy);
-        let row = zline_simd::inlined(#[inline(always)] |r: Vec4| {
-            xn * f32x8::splat(r.x) + yn * f32x8::splat(r.y) + z * f32x8::splat(r.z) + f32x8::splat(r.w)
-        });
+        let row = zline_simd::inlined(
+            #[inline(always)]
+            |r: Vec4| {
+                xn * f32x8::splat(r.x) + yn * f32x8::splat(r.y) + z * f32x8::splat(r.z) + f32x8::splat(r.w)
+            },
+        );
         let f = falloff.factor(C::distance(&self.rows, row));
         // NaN (a degenerate projection) becomes full fog, as in `Fog::factor`.
         let f = f.cmp_eq(f).blend(f, f32x8::ZERO);

@@ -4,9 +4,9 @@
 //! background here, since tiles never clear their colour planes.
 
 use glam::Vec3;
-use zline_simd::lanes::{f32x8, i32x8, Level};
 use zline_raster::LANES;
 use zline_shading::Vec3x8;
+use zline_simd::lanes::{f32x8, i32x8, Level};
 
 use crate::tile::{load, sample, TileTarget};
 
@@ -36,7 +36,10 @@ impl TileTarget {
                 } else {
                     load(&self.depth, i).cmp_eq(f32x8::splat(self.far))
                 };
-                let c = zline_simd::inlined(#[inline(always)] |plane: &[f32x8], b: f32x8<S>| empty.blend(b, load(plane, i)));
+                let c = zline_simd::inlined(
+                    #[inline(always)]
+                    |plane: &[f32x8], b: f32x8<S>| empty.blend(b, load(plane, i)),
+                );
                 let px = pack_rgba(c(red, bg.x), c(green, bg.y), c(blue, bg.z));
                 store_block(out, x, &self.rect, &px);
             }
@@ -125,8 +128,8 @@ pub(crate) fn quantize_x8<S: Level>(c: f32x8<S>) -> i32x8<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use zline_simd::lanes::Baseline;
     use crate::image::quantize;
+    use zline_simd::lanes::Baseline;
 
     #[test]
     fn pack_matches_the_scalar_quantizer() {

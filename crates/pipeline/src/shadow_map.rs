@@ -20,10 +20,10 @@
 
 use glam::{Mat4, Vec3};
 use rayon::prelude::*;
-use zline_simd::lanes::{f32x8, Level};
 use zline_raster::{DepthPlane, EdgeTable, FixedPoint, PlaneBasis, Rect};
 use zline_scene::{Light, Scene};
 use zline_shading::Vec3x8;
+use zline_simd::lanes::{f32x8, Level};
 
 use crate::shadow::Polygon;
 
@@ -46,7 +46,14 @@ impl DepthMap {
     /// `v` per vertex interpolated affinely; stores `depth(v)` where it is
     /// nearer than what is there.
     fn draw(&mut self, p: [(f32, f32); 3], v: [f64; 3], depth: impl Fn(f64) -> f32) {
-        let Some(fixed) = p.iter().map(#[inline(always)] |&(x, y)| FixedPoint::snap(x, y)).collect::<Option<Vec<_>>>() else {
+        let Some(fixed) = p
+            .iter()
+            .map(
+                #[inline(always)]
+                |&(x, y)| FixedPoint::snap(x, y),
+            )
+            .collect::<Option<Vec<_>>>()
+        else {
             return;
         };
         let fixed = [fixed[0], fixed[1], fixed[2]];
@@ -56,15 +63,19 @@ impl DepthMap {
         let plane = DepthPlane::new(&basis, v);
         let n = self.size as i32;
         let size = self.size as usize;
-        edges.scan(Rect { x0: 0, y0: 0, x1: n, y1: n }, #[inline(always)] |s| {
-            for x in s.x0..s.x1 {
-                let d = depth(plane.at(f64::from(x) + 0.5, f64::from(s.y) + 0.5));
-                let t = &mut self.depth[s.y as usize * size + x as usize];
-                if d < *t {
-                    *t = d;
+        edges.scan(
+            Rect { x0: 0, y0: 0, x1: n, y1: n },
+            #[inline(always)]
+            |s| {
+                for x in s.x0..s.x1 {
+                    let d = depth(plane.at(f64::from(x) + 0.5, f64::from(s.y) + 0.5));
+                    let t = &mut self.depth[s.y as usize * size + x as usize];
+                    if d < *t {
+                        *t = d;
+                    }
                 }
-            }
-        });
+            },
+        );
     }
 
     /// The stored depth at texel (x, y), clamped to the map.
@@ -115,33 +126,51 @@ impl ShadowMaps {
         let mut tris: Vec<[Vec3; 3]> = Vec::new();
         for o in &scene.objects {
             let m = *eye_from_world * o.world_from_object;
-            let p: Vec<Vec3> = o.mesh.positions.iter().map(#[inline(always)] |&p| m.transform_point3(p)).collect();
+            let p: Vec<Vec3> = o
+                .mesh
+                .positions
+                .iter()
+                .map(
+                    #[inline(always)]
+                    |&p| m.transform_point3(p),
+                )
+                .collect();
             for t in &o.mesh.triangles {
-                let v = t.map(#[inline(always)] |i| p.get(i as usize).copied().unwrap_or(Vec3::NAN));
-                if v.iter().all(#[inline(always)] |p| p.is_finite()) {
+                let v = t.map(
+                    #[inline(always)]
+                    |i| p.get(i as usize).copied().unwrap_or(Vec3::NAN),
+                );
+                if v.iter().all(
+                    #[inline(always)]
+                    |p| p.is_finite(),
+                ) {
                     tris.push(v);
                 }
             }
         }
-        let (lo, hi) = tris
-            .iter()
-            .flatten()
-            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), #[inline(always)] |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        let (lo, hi) = tris.iter().flatten().fold(
+            (Vec3::INFINITY, Vec3::NEG_INFINITY),
+            #[inline(always)]
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
         let extent = (hi - lo).max_element();
         // Lights, and a point light's faces, are drawn in parallel: each
         // map is its own, so the result does not depend on the threads.
         let lights = scene
             .lights
             .par_iter()
-            .map(#[inline(always)] |light| {
-                if tris.is_empty() || !(extent.is_finite() && extent > 0.0) {
-                    return LightMap::Unshadowed;
-                }
-                match light.transformed(eye_from_world) {
-                    Light::Directional { direction, .. } => directional(&tris, (lo, hi), direction, size),
-                    Light::Point { position, .. } => point(&tris, position, extent, size),
-                }
-            })
+            .map(
+                #[inline(always)]
+                |light| {
+                    if tris.is_empty() || !(extent.is_finite() && extent > 0.0) {
+                        return LightMap::Unshadowed;
+                    }
+                    match light.transformed(eye_from_world) {
+                        Light::Directional { direction, .. } => directional(&tris, (lo, hi), direction, size),
+                        Light::Point { position, .. } => point(&tris, position, extent, size),
+                    }
+                },
+            )
             .collect();
         let bias = if scene.shadows.bias.is_finite() { scene.shadows.bias.max(0.0) } else { 1.0 };
         ShadowMaps { lights, pcf: scene.shadows.pcf, bias }
@@ -159,27 +188,36 @@ impl ShadowMaps {
             // order (glam's affine transform and dot product), so every lane
             // is what `visibility` computes; only the texel reads are per lane.
             let c = from_eye.to_cols_array();
-            let row = zline_simd::inlined(#[inline(always)] |r: usize| {
-                f32x8::splat(c[12 + r])
-                    + (f32x8::splat(c[8 + r]) * point.z
-                        + (f32x8::splat(c[4 + r]) * point.y + f32x8::splat(c[r]) * point.x))
-            });
+            let row = zline_simd::inlined(
+                #[inline(always)]
+                |r: usize| {
+                    f32x8::splat(c[12 + r])
+                        + (f32x8::splat(c[8 + r]) * point.z
+                            + (f32x8::splat(c[4 + r]) * point.y + f32x8::splat(c[r]) * point.x))
+                },
+            );
             let n_dot_l = normal.x * f32x8::splat(to_light.x)
                 + normal.y * f32x8::splat(to_light.y)
                 + normal.z * f32x8::splat(to_light.z);
             let bias = f32x8::splat(self.bias) * slope_bias_x8(n_dot_l) * f32x8::splat(*texel);
             let (x, y, d) = (row(0).to_array(), row(1).to_array(), (row(2) - bias).to_array());
-            return f32x8::from(std::array::from_fn::<f32, 8, _>(#[inline(always)] |i| self.lookup(map, x[i], y[i], d[i])));
+            return f32x8::from(per_lane::<S>(
+                #[inline(always)]
+                |i| self.lookup(map, x[i], y[i], d[i]),
+            ));
         }
         let (px, py, pz) = (point.x.to_array(), point.y.to_array(), point.z.to_array());
         let (nx, ny, nz) = (normal.x.to_array(), normal.y.to_array(), normal.z.to_array());
-        let lane = |i: usize| {
-            let (p, n) = (Vec3::new(px[i], py[i], pz[i]), Vec3::new(nx[i], ny[i], nz[i]));
-            self.visibility(map, p, n)
-        };
-        f32x8::from(std::array::from_fn::<f32, 8, _>(lane))
+        f32x8::from(per_lane::<S>(
+            #[inline(always)]
+            |i| {
+                let (p, n) = (Vec3::new(px[i], py[i], pz[i]), Vec3::new(nx[i], ny[i], nz[i]));
+                self.visibility(map, p, n)
+            },
+        ))
     }
 
+    #[inline(always)]
     fn visibility(&self, map: &LightMap, p: Vec3, n: Vec3) -> f32 {
         match map {
             LightMap::Unshadowed => 1.0,
@@ -217,6 +255,7 @@ impl ShadowMaps {
     /// 1 when the texel at (x, y) stores a depth of at least `d` (the
     /// sample is nearest), 0 when something nearer hides it; with PCF the
     /// mean over the 3 × 3 texels around it.
+    #[inline(always)]
     fn lookup(&self, map: &DepthMap, x: f32, y: f32, d: f32) -> f32 {
         let (tx, ty) = (x.floor() as i32, y.floor() as i32);
         if !self.pcf {
@@ -230,6 +269,27 @@ impl ShadowMaps {
         }
         seen as f32 / 9.0
     }
+}
+
+/// `lane(i)` for the eight lanes, as a job of its own at level `S`: the
+/// texel reads are scalar, but their floors and conversions are single
+/// instructions at the v3 level (a baseline build without SSE4.1 calls
+/// libm's `floorf`, which measured 5 % of a shadow-mapped frame), and the
+/// kernels that read shadow maps keep one call here instead of eight
+/// inlined copies.
+#[inline(always)]
+fn per_lane<S: Level>(lane: impl Fn(usize) -> f32) -> [f32; 8] {
+    zline_simd::vectorize_at::<S, _>(zline_simd::Call(
+        #[inline(always)]
+        || {
+            // A loop, not `array::from_fn`: its wrapper closure stays out of line.
+            let mut lanes = [0.0; 8];
+            for (i, v) in lanes.iter_mut().enumerate() {
+                *v = lane(i);
+            }
+            lanes
+        },
+    ))
 }
 
 /// [`slope_bias`] per lane, with the same operations.
@@ -258,16 +318,26 @@ fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size
     let (right, up) = forward.any_orthonormal_pair();
     let view =
         Mat4::from_cols(right.extend(0.0), up.extend(0.0), forward.extend(0.0), glam::Vec4::W).transpose();
-    let corners = (0..8).map(#[inline(always)] |i| {
-        Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        )
-    });
+    let corners = (0..8).map(
+        #[inline(always)]
+        |i| {
+            Vec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        },
+    );
     let (a, b) = corners
-        .map(#[inline(always)] |c| view.transform_point3(c))
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), #[inline(always)] |(a, b), p| (a.min(p), b.max(p)));
+        .map(
+            #[inline(always)]
+            |c| view.transform_point3(c),
+        )
+        .fold(
+            (Vec3::INFINITY, Vec3::NEG_INFINITY),
+            #[inline(always)]
+            |(a, b), p| (a.min(p), b.max(p)),
+        );
     let span = (b.x - a.x).max(b.y - a.y).max(f32::MIN_POSITIVE);
     let s = size as f32;
     // Texels: x = (v.x − a.x)/span·size; depth from the box's near side.
@@ -275,8 +345,22 @@ fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size
     let from_eye = to_texels * view;
     let mut map = DepthMap::new(size);
     for t in tris {
-        let q = t.map(#[inline(always)] |p| from_eye.transform_point3(p));
-        map.draw(q.map(#[inline(always)] |q| (q.x, q.y)), q.map(#[inline(always)] |q| f64::from(q.z)), #[inline(always)] |d| d as f32);
+        let q = t.map(
+            #[inline(always)]
+            |p| from_eye.transform_point3(p),
+        );
+        map.draw(
+            q.map(
+                #[inline(always)]
+                |q| (q.x, q.y),
+            ),
+            q.map(
+                #[inline(always)]
+                |q| f64::from(q.z),
+            ),
+            #[inline(always)]
+            |d| d as f32,
+        );
     }
     LightMap::Directional { from_eye, map, texel: span / s, to_light: -forward }
 }
@@ -285,23 +369,45 @@ fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size
 fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32) -> LightMap {
     let near = NEAR * extent;
     let s = size as f32;
-    let faces = (0..6usize).into_par_iter().map(#[inline(always)] |face| {
-        let (axis, sign) = (face / 2, if face % 2 == 0 { 1.0 } else { -1.0 });
-        let (ua, ub) = face_axes(axis);
-        let mut map = DepthMap::new(size);
-        for t in tris {
-            // Face space: (a, b, depth) with depth along the face's axis.
-            let q = t.map(#[inline(always)] |p| {
-                let v = p - position;
-                Vec3::new(v[ua], v[ub], sign * v[axis])
-            });
-            clip_near(q, near, #[inline(always)] |piece| {
-                let tex = piece.map(#[inline(always)] |q| ((q.x / q.z + 1.0) * 0.5 * s, (q.y / q.z + 1.0) * 0.5 * s));
-                map.draw(tex, piece.map(#[inline(always)] |q| 1.0 / f64::from(q.z)), #[inline(always)] |inv| (1.0 / inv) as f32);
-            });
-        }
-        map
-    });
+    let faces = (0..6usize).into_par_iter().map(
+        #[inline(always)]
+        |face| {
+            let (axis, sign) = (face / 2, if face % 2 == 0 { 1.0 } else { -1.0 });
+            let (ua, ub) = face_axes(axis);
+            let mut map = DepthMap::new(size);
+            for t in tris {
+                // Face space: (a, b, depth) with depth along the face's axis.
+                let q = t.map(
+                    #[inline(always)]
+                    |p| {
+                        let v = p - position;
+                        Vec3::new(v[ua], v[ub], sign * v[axis])
+                    },
+                );
+                clip_near(
+                    q,
+                    near,
+                    #[inline(always)]
+                    |piece| {
+                        let tex = piece.map(
+                            #[inline(always)]
+                            |q| ((q.x / q.z + 1.0) * 0.5 * s, (q.y / q.z + 1.0) * 0.5 * s),
+                        );
+                        map.draw(
+                            tex,
+                            piece.map(
+                                #[inline(always)]
+                                |q| 1.0 / f64::from(q.z),
+                            ),
+                            #[inline(always)]
+                            |inv| (1.0 / inv) as f32,
+                        );
+                    },
+                );
+            }
+            map
+        },
+    );
     LightMap::Point { position, faces: faces.collect() }
 }
 
@@ -309,11 +415,20 @@ fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32) -> LightMap
 /// of at most two triangles handed to `piece` (clipped on the stack with
 /// the planar shadows' [`Polygon`], in f64).
 fn clip_near(q: [Vec3; 3], near: f32, mut piece: impl FnMut([Vec3; 3])) {
-    let [a, b, c] = q.map(#[inline(always)] |p| p.as_dvec3());
-    let mut poly = Polygon::triangle(a, b, c).clip(#[inline(always)] |x| x.z - f64::from(near));
+    let [a, b, c] = q.map(
+        #[inline(always)]
+        |p| p.as_dvec3(),
+    );
+    let mut poly = Polygon::triangle(a, b, c).clip(
+        #[inline(always)]
+        |x| x.z - f64::from(near),
+    );
     let points = poly.points_mut();
     for k in 1..points.len().saturating_sub(1) {
-        piece([points[0], points[k], points[k + 1]].map(#[inline(always)] |p| p.as_vec3()));
+        piece([points[0], points[k], points[k + 1]].map(
+            #[inline(always)]
+            |p| p.as_vec3(),
+        ));
     }
 }
 

@@ -11,10 +11,10 @@
 
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use rayon::prelude::*;
-use zline_simd::lanes::{f32x8, Level};
 use zline_raster::FixedPoint;
 use zline_scene::{GouraudClamp, Mesh};
 use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode, Vec3x8};
+use zline_simd::lanes::{f32x8, Level};
 
 use crate::volume::{view_code, ClipVolume};
 

@@ -53,7 +53,10 @@ impl<L: Level> Vec3x8<L> {
     /// `max`).
     #[inline(always)]
     pub fn clamp01(self) -> Vec3x8<L> {
-        let clamp = zline_simd::inlined(#[inline(always)] |c: f32x8<L>| c.max(f32x8::ZERO).min(f32x8::ONE));
+        let clamp = zline_simd::inlined(
+            #[inline(always)]
+            |c: f32x8<L>| c.max(f32x8::ZERO).min(f32x8::ONE),
+        );
         Vec3x8 { x: clamp(self.x), y: clamp(self.y), z: clamp(self.z) }
     }
 
@@ -120,7 +123,10 @@ impl Shininess {
     fn pow_x8<L: Level>(self, x: f32x8<L>) -> f32x8<L> {
         match self {
             Shininess::Whole(n) => pow_by_squaring(x, f32x8::ONE, n),
-            Shininess::Real(ns) => f32x8::from(x.to_array().map(#[inline(always)] |v| v.powf(ns))),
+            Shininess::Real(ns) => f32x8::from(x.to_array().map(
+                #[inline(always)]
+                |v| v.powf(ns),
+            )),
         }
     }
 }
@@ -137,8 +143,21 @@ impl PreparedLights {
     /// [`PreparedLights::shade_parts`] for eight samples: the unclamped
     /// ambient+diffuse and specular parts, for texturing (SPEC §7).
     #[inline(always)]
-    pub fn shade_parts_x8<L: Level>(&self, m: &PreparedMaterial, point: Vec3x8<L>, normal: Vec3x8<L>) -> (Vec3x8<L>, Vec3x8<L>) {
-        self.parts_x8(m, point, normal, #[inline(always)] |_| all_lanes(), #[inline(always)] |_| None)
+    pub fn shade_parts_x8<L: Level>(
+        &self,
+        m: &PreparedMaterial,
+        point: Vec3x8<L>,
+        normal: Vec3x8<L>,
+    ) -> (Vec3x8<L>, Vec3x8<L>) {
+        self.parts_x8(
+            m,
+            point,
+            normal,
+            #[inline(always)]
+            |_| all_lanes(),
+            #[inline(always)]
+            |_| None,
+        )
     }
 
     /// [`Self::shade_parts_x8`] where light k (its index in the scene's
@@ -153,7 +172,15 @@ impl PreparedLights {
         normal: Vec3x8<L>,
         share: impl Fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>,
     ) -> (Vec3x8<L>, Vec3x8<L>) {
-        self.parts_x8(m, point, normal, #[inline(always)] |_| all_lanes(), #[inline(always)] |k| Some(share(k, point, normal)))
+        self.parts_x8(
+            m,
+            point,
+            normal,
+            #[inline(always)]
+            |_| all_lanes(),
+            #[inline(always)]
+            |k| Some(share(k, point, normal)),
+        )
     }
 
     /// [`Self::shade_x8`] where some lights may be hidden: light k (its
@@ -183,14 +210,24 @@ impl PreparedLights {
         mask: i32x8<L>,
     ) -> (Vec3x8<L>, Vec3x8<L>) {
         let first = m.shadow_bits.unwrap_or(u32::MAX);
-        let visible = |k: u32| match first.checked_add(k).filter(#[inline(always)] |&b| b < 32) {
+        let visible = |k: u32| match first.checked_add(k).filter(
+            #[inline(always)]
+            |&b| b < 32,
+        ) {
             Some(b) => {
                 let bit = i32x8::splat(1 << b);
                 bytemuck::cast::<i32x8<L>, f32x8<L>>((mask & bit).cmp_eq(i32x8::ZERO))
             }
             None => all_lanes(),
         };
-        self.parts_x8(m, point, normal, visible, #[inline(always)] |_| None)
+        self.parts_x8(
+            m,
+            point,
+            normal,
+            visible,
+            #[inline(always)]
+            |_| None,
+        )
     }
 
     /// The sums over the lights, light k counting in the lanes

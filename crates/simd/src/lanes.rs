@@ -203,7 +203,10 @@ impl<L: Level> f32x8<L> {
     /// (lanes of `self` are masks: all ones or all zeros).
     #[inline(always)]
     pub fn blend(self, t: Self, f: Self) -> Self {
-        at_level!(Self::from_m(_mm256_blendv_ps(f.m(), t.m(), self.m())), Self::from_wide(self.w.blend(t.w, f.w)))
+        at_level!(
+            Self::from_m(_mm256_blendv_ps(f.m(), t.m(), self.m())),
+            Self::from_wide(self.w.blend(t.w, f.w))
+        )
     }
 
     /// |x| (the sign bit cleared).
@@ -254,7 +257,10 @@ impl<L: Level> f32x8<L> {
     /// All ones where the lane is NaN.
     #[inline(always)]
     pub fn is_nan(self) -> Self {
-        at_level!(Self::from_m(_mm256_cmp_ps::<_CMP_UNORD_Q>(self.m(), self.m())), Self::from_wide(self.w.is_nan()))
+        at_level!(
+            Self::from_m(_mm256_cmp_ps::<_CMP_UNORD_Q>(self.m(), self.m())),
+            Self::from_wide(self.w.is_nan())
+        )
     }
 
     /// All ones where the lane is neither infinite nor NaN.
@@ -328,7 +334,8 @@ impl<L: Level> f32x8<L> {
             {
                 let m = self.m();
                 let non_nan = _mm256_and_ps(m, _mm256_cmp_ps::<_CMP_EQ_OQ>(m, m));
-                let flip = _mm256_castps_si256(_mm256_cmp_ps::<_CMP_GE_OQ>(m, _mm256_set1_ps(2_147_483_648.0)));
+                let flip =
+                    _mm256_castps_si256(_mm256_cmp_ps::<_CMP_GE_OQ>(m, _mm256_set1_ps(2_147_483_648.0)));
                 i32x8::from_m(_mm256_xor_si256(flip, _mm256_cvttps_epi32(non_nan)))
             },
             i32x8::from_wide(self.w.trunc_int())
@@ -338,31 +345,46 @@ impl<L: Level> f32x8<L> {
     /// All ones where the lanes are equal (ordered).
     #[inline(always)]
     pub fn cmp_eq(self, rhs: Self) -> Self {
-        at_level!(Self::from_m(_mm256_cmp_ps::<_CMP_EQ_OQ>(self.m(), rhs.m())), Self::from_wide(wide::CmpEq::cmp_eq(self.w, rhs.w)))
+        at_level!(
+            Self::from_m(_mm256_cmp_ps::<_CMP_EQ_OQ>(self.m(), rhs.m())),
+            Self::from_wide(wide::CmpEq::cmp_eq(self.w, rhs.w))
+        )
     }
 
     /// All ones where `self` < `rhs` (ordered).
     #[inline(always)]
     pub fn cmp_lt(self, rhs: Self) -> Self {
-        at_level!(Self::from_m(_mm256_cmp_ps::<_CMP_LT_OQ>(self.m(), rhs.m())), Self::from_wide(wide::CmpLt::cmp_lt(self.w, rhs.w)))
+        at_level!(
+            Self::from_m(_mm256_cmp_ps::<_CMP_LT_OQ>(self.m(), rhs.m())),
+            Self::from_wide(wide::CmpLt::cmp_lt(self.w, rhs.w))
+        )
     }
 
     /// All ones where `self` ≤ `rhs` (ordered).
     #[inline(always)]
     pub fn cmp_le(self, rhs: Self) -> Self {
-        at_level!(Self::from_m(_mm256_cmp_ps::<_CMP_LE_OQ>(self.m(), rhs.m())), Self::from_wide(wide::CmpLe::cmp_le(self.w, rhs.w)))
+        at_level!(
+            Self::from_m(_mm256_cmp_ps::<_CMP_LE_OQ>(self.m(), rhs.m())),
+            Self::from_wide(wide::CmpLe::cmp_le(self.w, rhs.w))
+        )
     }
 
     /// All ones where `self` > `rhs` (ordered).
     #[inline(always)]
     pub fn cmp_gt(self, rhs: Self) -> Self {
-        at_level!(Self::from_m(_mm256_cmp_ps::<_CMP_GT_OQ>(self.m(), rhs.m())), Self::from_wide(wide::CmpGt::cmp_gt(self.w, rhs.w)))
+        at_level!(
+            Self::from_m(_mm256_cmp_ps::<_CMP_GT_OQ>(self.m(), rhs.m())),
+            Self::from_wide(wide::CmpGt::cmp_gt(self.w, rhs.w))
+        )
     }
 
     /// All ones where `self` ≥ `rhs` (ordered).
     #[inline(always)]
     pub fn cmp_ge(self, rhs: Self) -> Self {
-        at_level!(Self::from_m(_mm256_cmp_ps::<_CMP_GE_OQ>(self.m(), rhs.m())), Self::from_wide(wide::CmpGe::cmp_ge(self.w, rhs.w)))
+        at_level!(
+            Self::from_m(_mm256_cmp_ps::<_CMP_GE_OQ>(self.m(), rhs.m())),
+            Self::from_wide(wide::CmpGe::cmp_ge(self.w, rhs.w))
+        )
     }
 }
 
@@ -589,7 +611,10 @@ impl<L: Level> i32x8<L> {
     /// `t` where the lane of `self` is all ones, `f` where it is zero.
     #[inline(always)]
     pub fn blend(self, t: Self, f: Self) -> Self {
-        at_level!(Self::from_m(_mm256_blendv_epi8(f.m(), t.m(), self.m())), Self::from_wide(self.w.blend(t.w, f.w)))
+        at_level!(
+            Self::from_m(_mm256_blendv_epi8(f.m(), t.m(), self.m())),
+            Self::from_wide(self.w.blend(t.w, f.w))
+        )
     }
 
     /// The larger lane.
@@ -607,19 +632,28 @@ impl<L: Level> i32x8<L> {
     /// All ones where the lanes are equal.
     #[inline(always)]
     pub fn cmp_eq(self, rhs: Self) -> Self {
-        at_level!(Self::from_m(_mm256_cmpeq_epi32(self.m(), rhs.m())), Self::from_wide(wide::CmpEq::cmp_eq(self.w, rhs.w)))
+        at_level!(
+            Self::from_m(_mm256_cmpeq_epi32(self.m(), rhs.m())),
+            Self::from_wide(wide::CmpEq::cmp_eq(self.w, rhs.w))
+        )
     }
 
     /// All ones where `self` > `rhs`.
     #[inline(always)]
     pub fn cmp_gt(self, rhs: Self) -> Self {
-        at_level!(Self::from_m(_mm256_cmpgt_epi32(self.m(), rhs.m())), Self::from_wide(wide::CmpGt::cmp_gt(self.w, rhs.w)))
+        at_level!(
+            Self::from_m(_mm256_cmpgt_epi32(self.m(), rhs.m())),
+            Self::from_wide(wide::CmpGt::cmp_gt(self.w, rhs.w))
+        )
     }
 
     /// All ones where `self` < `rhs`.
     #[inline(always)]
     pub fn cmp_lt(self, rhs: Self) -> Self {
-        at_level!(Self::from_m(_mm256_cmpgt_epi32(rhs.m(), self.m())), Self::from_wide(wide::CmpLt::cmp_lt(self.w, rhs.w)))
+        at_level!(
+            Self::from_m(_mm256_cmpgt_epi32(rhs.m(), self.m())),
+            Self::from_wide(wide::CmpLt::cmp_lt(self.w, rhs.w))
+        )
     }
 
     /// The lanes' sign bits, lane k in bit k.

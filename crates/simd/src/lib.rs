@@ -125,7 +125,11 @@ pub fn gather_texels_x8_at<L: lanes::Level>(texels: &[[f32; 4]], idx: [i32; 8]) 
 
 /// [`gather_texel_pairs_x8`] at level `L`.
 #[inline(always)]
-pub fn gather_texel_pairs_x8_at<L: lanes::Level>(texels: &[[f32; 4]], a: [i32; 8], b: [i32; 8]) -> [[f32; 8]; 8] {
+pub fn gather_texel_pairs_x8_at<L: lanes::Level>(
+    texels: &[[f32; 4]],
+    a: [i32; 8],
+    b: [i32; 8],
+) -> [[f32; 8]; 8] {
     #[cfg(target_arch = "x86_64")]
     if L::V3 {
         return avx2::Avx2::at_v3().gather_texel_pairs_x8(texels, a, b);

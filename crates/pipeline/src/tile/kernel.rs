@@ -17,9 +17,9 @@
 //!
 //! [`Kernel`]: crate::setup::Kernel
 
-use zline_simd::lanes::{f32x8, i32x8, Level};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, Span, LANES};
 use zline_shading::Vec3x8;
+use zline_simd::lanes::{f32x8, i32x8, Level};
 
 use super::target::{load, load_for_blend, store, FrameTexture, ShadeContext, TileTarget};
 use crate::fog::FogPass;
@@ -238,11 +238,7 @@ impl Derivatives {
         let (dx, dy) = (planes.dx(), planes.dy());
         let (q, s, t) = (textured::Q, textured::S, textured::T);
         let (w, h) = (texture.texture.width(), texture.texture.height());
-        Derivatives {
-            dx: [dx[q], dx[s], dx[t]],
-            dy: [dy[q], dy[s], dy[t]],
-            size: (w as f32, h as f32),
-        }
+        Derivatives { dx: [dx[q], dx[s], dx[t]], dy: [dy[q], dy[s], dy[t]], size: (w as f32, h as f32) }
     }
 }
 
@@ -267,13 +263,16 @@ impl Lod for DerivativeLod {
     #[inline(always)]
     fn lods<I: Interp, S: Level>(d: &Derivatives, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S> {
         // s = S/Q with S = s/w and Q = 1/w planes: ∂s/∂x = (∂S/∂x − s·∂Q/∂x)/Q.
-        let derivative = zline_simd::inlined(#[inline(always)] |ds: f32, dq: f32, v: f32x8<S>| {
-            if I::PERSPECTIVE {
-                (f32x8::splat(ds) - v * f32x8::splat(dq)) * inv
-            } else {
-                f32x8::splat(ds)
-            }
-        });
+        let derivative = zline_simd::inlined(
+            #[inline(always)]
+            |ds: f32, dq: f32, v: f32x8<S>| {
+                if I::PERSPECTIVE {
+                    (f32x8::splat(ds) - v * f32x8::splat(dq)) * inv
+                } else {
+                    f32x8::splat(ds)
+                }
+            },
+        );
         let (fw, fh) = (f32x8::splat(d.size.0), f32x8::splat(d.size.1));
         let (dx, dy) = (d.dx, d.dy);
         let (sx, tx) = (derivative(dx[1], dx[0], s) * fw, derivative(dx[2], dx[0], t) * fh);
@@ -324,7 +323,11 @@ impl TileTarget {
     ) -> u64 {
         let (depth, planes) = (*depth, *planes);
         let mut n = 0;
-        edges.scan(self.rect, #[inline(always)] |s| n += self.blocks(&depth, &planes, s, pass, alpha, shade));
+        edges.scan(
+            self.rect,
+            #[inline(always)]
+            |s| n += self.blocks(&depth, &planes, s, pass, alpha, shade),
+        );
         n
     }
 
@@ -352,44 +355,61 @@ impl TileTarget {
         // The alpha plane, blended like a colour of 1 (coverage only).
         let mut coverage = (P::BLENDS && self.coverage).then_some(&mut self.alpha);
         let mut n = 0;
-        for_each_block(depth, attrs, span, #[inline(always)] |b| {
-            let i = row + (b.x - origin) as usize;
-            let (z, stored) = (f32x8::from(b.z), load(zbuf, i));
-            let live = lane_mask(b.mask) & z.cmp_lt(stored);
-            if live.none() {
-                return;
-            }
-            let mask = shadow.get(i / LANES).map_or(i32x8::ZERO, #[inline(always)] |m| m.at());
-            let (c, alpha) = shade(&b.attrs.map(f32x8::from), mask);
-            let live = alpha_use.test(live, alpha);
-            let bits = live.move_mask();
-            if bits == 0 {
-                return;
-            }
-            n += u64::from(bits.count_ones());
-            if P::BLENDS {
-                // C = (1 − kt)·C_surface + kt·C_behind with 1 − kt =
-                // opacity·alpha (alpha is 1 but for textures whose alpha
-                // blends).
-                let keep = opacity * A::weight(alpha);
-                let behind = f32x8::ONE - keep;
-                let c = pass.fog(c, b.x, span.y, z);
-                for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
-                    let old = load_for_blend(plane, i);
-                    store(plane, i, live.blend(v * keep + old * behind, old));
+        for_each_block(
+            depth,
+            attrs,
+            span,
+            #[inline(always)]
+            |b| {
+                let i = row + (b.x - origin) as usize;
+                let (z, stored) = (f32x8::from(b.z), load(zbuf, i));
+                let live = lane_mask(b.mask) & z.cmp_lt(stored);
+                if live.none() {
+                    return;
                 }
-                if let Some(alpha) = coverage.as_deref_mut() {
-                    let old = load_for_blend(alpha, i);
-                    store(alpha, i, live.blend(keep + old * behind, old));
+                let mask = shadow.get(i / LANES).map_or(
+                    i32x8::ZERO,
+                    #[inline(always)]
+                    |m| m.at(),
+                );
+                // Element by element: `map` and `array::from_fn` stay calls
+                // (`try_map`) plus a copy of the array in some kernels (the
+                // normal-mapped one measured 1.1x).
+                let mut attrs = [f32x8::ZERO; N];
+                for (a, w) in attrs.iter_mut().zip(&b.attrs) {
+                    *a = f32x8::from(*w);
                 }
-            } else {
-                store(zbuf, i, live.blend(z, stored));
-                for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
-                    let old = load_for_blend(plane, i);
-                    store(plane, i, live.blend(v, old));
+                let (c, alpha) = shade(&attrs, mask);
+                let live = alpha_use.test(live, alpha);
+                let bits = live.move_mask();
+                if bits == 0 {
+                    return;
                 }
-            }
-        });
+                n += u64::from(bits.count_ones());
+                if P::BLENDS {
+                    // C = (1 − kt)·C_surface + kt·C_behind with 1 − kt =
+                    // opacity·alpha (alpha is 1 but for textures whose alpha
+                    // blends).
+                    let keep = opacity * A::weight(alpha);
+                    let behind = f32x8::ONE - keep;
+                    let c = pass.fog(c, b.x, span.y, z);
+                    for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
+                        let old = load_for_blend(plane, i);
+                        store(plane, i, live.blend(v * keep + old * behind, old));
+                    }
+                    if let Some(alpha) = coverage.as_deref_mut() {
+                        let old = load_for_blend(alpha, i);
+                        store(alpha, i, live.blend(keep + old * behind, old));
+                    }
+                } else {
+                    store(zbuf, i, live.blend(z, stored));
+                    for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
+                        let old = load_for_blend(plane, i);
+                        store(plane, i, live.blend(v, old));
+                    }
+                }
+            },
+        );
         n
     }
 
@@ -398,18 +418,37 @@ impl TileTarget {
     pub(super) fn flat<P: Pass, S: Level>(&mut self, p: &Primitive<Flat>, pass: &P) -> u64 {
         let c = Vec3x8::<S>::splat(p.shader.color);
         let planes = AttributePlanes::NONE;
-        self.scan::<_, _, _, S>((&p.edges, &p.depth), &planes, pass, &IgnoreAlpha, #[inline(always)] |_, _| (c, f32x8::ONE))
+        self.scan::<_, _, _, S>(
+            (&p.edges, &p.depth),
+            &planes,
+            pass,
+            &IgnoreAlpha,
+            #[inline(always)]
+            |_, _| (c, f32x8::ONE),
+        )
     }
 
     /// SPEC §6 Gouraud: the lit vertex colours interpolated (and clamped
     /// per sample when `C` says so).
     #[inline(always)]
-    pub(super) fn gouraud<I: Interp, C: Clamp, P: Pass, S: Level>(&mut self, p: &Primitive<Gouraud>, pass: &P) -> u64 {
-        self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
-            let (q, c) = (a[gouraud::Q], gouraud::COLOR);
-            let c = Vec3x8 { x: I::divide(a[c], q), y: I::divide(a[c + 1], q), z: I::divide(a[c + 2], q) };
-            (C::clamp(c), f32x8::ONE)
-        })
+    pub(super) fn gouraud<I: Interp, C: Clamp, P: Pass, S: Level>(
+        &mut self,
+        p: &Primitive<Gouraud>,
+        pass: &P,
+    ) -> u64 {
+        self.scan::<_, _, _, S>(
+            (&p.edges, &p.depth),
+            &p.shader.planes,
+            pass,
+            &IgnoreAlpha,
+            #[inline(always)]
+            |a, _| {
+                let (q, c) = (a[gouraud::Q], gouraud::COLOR);
+                let c =
+                    Vec3x8 { x: I::divide(a[c], q), y: I::divide(a[c + 1], q), z: I::divide(a[c + 2], q) };
+                (C::clamp(c), f32x8::ONE)
+            },
+        )
     }
 
     /// SPEC §6 Phong: normal and eye position interpolated, the normal
@@ -424,27 +463,59 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
         if ctx.normals {
-            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
-                (encode_normal(phong_point::<_, I, _>(a).2), f32x8::ONE)
-            });
+            return self.scan::<_, _, _, S>(
+                edges,
+                planes,
+                pass,
+                &IgnoreAlpha,
+                #[inline(always)]
+                |a, _| (encode_normal(phong_point::<_, I, _>(a).2), f32x8::ONE),
+            );
         }
         if let Some(maps) = ctx.maps {
-            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
-                let (_, eye, normal) = phong_point::<_, I, _>(a);
-                let (ad, sp) = l.shade_parts_x8_shared(m, eye, normal, #[inline(always)] |k, p, n| maps.visibility_x8(k, p, n));
-                ((ad + sp).clamp01(), f32x8::ONE)
-            });
+            return self.scan::<_, _, _, S>(
+                edges,
+                planes,
+                pass,
+                &IgnoreAlpha,
+                #[inline(always)]
+                |a, _| {
+                    let (_, eye, normal) = phong_point::<_, I, _>(a);
+                    let (ad, sp) = l.shade_parts_x8_shared(
+                        m,
+                        eye,
+                        normal,
+                        #[inline(always)]
+                        |k, p, n| maps.visibility_x8(k, p, n),
+                    );
+                    ((ad + sp).clamp01(), f32x8::ONE)
+                },
+            );
         }
         if m.shadow_bits.is_some() {
-            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, mask| {
-                let (_, eye, normal) = phong_point::<_, I, _>(a);
-                (l.shade_x8_shadowed(m, eye, normal, mask), f32x8::ONE)
-            });
+            return self.scan::<_, _, _, S>(
+                edges,
+                planes,
+                pass,
+                &IgnoreAlpha,
+                #[inline(always)]
+                |a, mask| {
+                    let (_, eye, normal) = phong_point::<_, I, _>(a);
+                    (l.shade_x8_shadowed(m, eye, normal, mask), f32x8::ONE)
+                },
+            );
         }
-        self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
-            let (_, eye, normal) = phong_point::<_, I, _>(a);
-            (l.shade_x8(m, eye, normal), f32x8::ONE)
-        })
+        self.scan::<_, _, _, S>(
+            edges,
+            planes,
+            pass,
+            &IgnoreAlpha,
+            #[inline(always)]
+            |a, _| {
+                let (_, eye, normal) = phong_point::<_, I, _>(a);
+                (l.shade_x8(m, eye, normal), f32x8::ONE)
+            },
+        )
     }
 
     /// [`Self::phong`] with the vertex colour interpolated too, multiplying
@@ -459,25 +530,51 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
         if let Some(maps) = ctx.maps {
-            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
-                let (w, eye, normal) = phong_point::<_, I, _>(a);
-                let (ambient_diffuse, specular) =
-                    l.shade_parts_x8_shared(m, eye, normal, #[inline(always)] |k, p, n| maps.visibility_x8(k, p, n));
-                ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
-            });
+            return self.scan::<_, _, _, S>(
+                edges,
+                planes,
+                pass,
+                &IgnoreAlpha,
+                #[inline(always)]
+                |a, _| {
+                    let (w, eye, normal) = phong_point::<_, I, _>(a);
+                    let (ambient_diffuse, specular) = l.shade_parts_x8_shared(
+                        m,
+                        eye,
+                        normal,
+                        #[inline(always)]
+                        |k, p, n| maps.visibility_x8(k, p, n),
+                    );
+                    ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
+                },
+            );
         }
         if m.shadow_bits.is_some() {
-            return self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, mask| {
-                let (w, eye, normal) = phong_point::<_, I, _>(a);
-                let (ambient_diffuse, specular) = l.shade_parts_x8_shadowed(m, eye, normal, mask);
-                ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
-            });
+            return self.scan::<_, _, _, S>(
+                edges,
+                planes,
+                pass,
+                &IgnoreAlpha,
+                #[inline(always)]
+                |a, mask| {
+                    let (w, eye, normal) = phong_point::<_, I, _>(a);
+                    let (ambient_diffuse, specular) = l.shade_parts_x8_shadowed(m, eye, normal, mask);
+                    ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
+                },
+            );
         }
-        self.scan::<_, _, _, S>(edges, planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
-            let (w, eye, normal) = phong_point::<_, I, _>(a);
-            let (ambient_diffuse, specular) = l.shade_parts_x8(m, eye, normal);
-            ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
-        })
+        self.scan::<_, _, _, S>(
+            edges,
+            planes,
+            pass,
+            &IgnoreAlpha,
+            #[inline(always)]
+            |a, _| {
+                let (w, eye, normal) = phong_point::<_, I, _>(a);
+                let (ambient_diffuse, specular) = l.shade_parts_x8(m, eye, normal);
+                ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
+            },
+        )
     }
 
     /// SPEC §7, the part every textured kernel shares: texture coordinates
@@ -494,15 +591,22 @@ impl TileTarget {
     ) -> u64 {
         let derivatives = Derivatives::new(planes, map);
         let (texture, sampler) = (&*map.texture, &map.sampler);
-        self.scan::<_, _, _, S>((edges, depth), planes, pass, &A::new(map), #[inline(always)] |a, mask| {
-            let inv = I::w(a[textured::Q]);
-            let (s, t) = (a[textured::S] * inv, a[textured::T] * inv);
-            let lods = L::lods::<I, _>(&derivatives, s, t, inv);
-            let [r, g, b, texel_alpha] = texture.sample_x8(sampler, s, t, lods);
-            let texel = Vec3x8 { x: r, y: g, z: b };
-            let (ambient_diffuse, specular) = parts(a, inv, mask);
-            ((texel * ambient_diffuse + specular).clamp01(), texel_alpha)
-        })
+        self.scan::<_, _, _, S>(
+            (edges, depth),
+            planes,
+            pass,
+            &A::new(map),
+            #[inline(always)]
+            |a, mask| {
+                let inv = I::w(a[textured::Q]);
+                let (s, t) = (a[textured::S] * inv, a[textured::T] * inv);
+                let lods = L::lods::<I, _>(&derivatives, s, t, inv);
+                let [r, g, b, texel_alpha] = texture.sample_x8(sampler, s, t, lods);
+                let texel = Vec3x8 { x: r, y: g, z: b };
+                let (ambient_diffuse, specular) = parts(a, inv, mask);
+                ((texel * ambient_diffuse + specular).clamp01(), texel_alpha)
+            },
+        )
     }
 
     /// Textured flat: the parts lit once at the centroid.
@@ -515,9 +619,13 @@ impl TileTarget {
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
         let (ad, spec) = (Vec3x8::splat(p.shader.ambient_diffuse), Vec3x8::splat(p.shader.specular));
-        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, #[inline(always)] |_, _, _| {
-            (ad, spec)
-        })
+        self.textured::<_, I, L, P, A, S>(
+            (&p.edges, &p.depth, &p.shader.planes),
+            map,
+            pass,
+            #[inline(always)]
+            |_, _, _| (ad, spec),
+        )
     }
 
     /// Textured Gouraud: the parts lit at the vertices, interpolated apart.
@@ -529,9 +637,13 @@ impl TileTarget {
         pass: &P,
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
-        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, #[inline(always)] |a, w, _| {
-            (triple(a, textured::AMBIENT_DIFFUSE, w), triple(a, textured::SPECULAR, w))
-        })
+        self.textured::<_, I, L, P, A, S>(
+            (&p.edges, &p.depth, &p.shader.planes),
+            map,
+            pass,
+            #[inline(always)]
+            |a, w, _| (triple(a, textured::AMBIENT_DIFFUSE, w), triple(a, textured::SPECULAR, w)),
+        )
     }
 
     /// Textured Phong: the parts lit per sample.
@@ -546,25 +658,46 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         let prim = (&p.edges, &p.depth, &p.shader.planes);
         if let Some(maps) = ctx.maps {
-            return self.textured::<_, I, L, P, A, S>(prim, map, pass, #[inline(always)] |a, w, _| {
-                let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-                let share = zline_simd::inlined(#[inline(always)] |k, p, n| maps.visibility_x8(k, p, n));
-                l.shade_parts_x8_shared(m, triple(a, textured::EYE, w), normal, share)
-            });
+            return self.textured::<_, I, L, P, A, S>(
+                prim,
+                map,
+                pass,
+                #[inline(always)]
+                |a, w, _| {
+                    let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
+                    let share = zline_simd::inlined(
+                        #[inline(always)]
+                        |k, p, n| maps.visibility_x8(k, p, n),
+                    );
+                    l.shade_parts_x8_shared(m, triple(a, textured::EYE, w), normal, share)
+                },
+            );
         }
         if m.shadow_bits.is_some() {
-            return self.textured::<_, I, L, P, A, S>(prim, map, pass, #[inline(always)] |a, w, mask| {
-                let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-                l.shade_parts_x8_shadowed(m, triple(a, textured::EYE, w), normal, mask)
-            });
+            return self.textured::<_, I, L, P, A, S>(
+                prim,
+                map,
+                pass,
+                #[inline(always)]
+                |a, w, mask| {
+                    let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
+                    l.shade_parts_x8_shadowed(m, triple(a, textured::EYE, w), normal, mask)
+                },
+            );
         }
-        self.textured::<_, I, L, P, A, S>(prim, map, pass, #[inline(always)] |a, w, _| {
-            l.shade_parts_x8(
-                m,
-                triple(a, textured::EYE, w),
-                triple(a, textured::NORMAL, w).normalize_or_zero(),
-            )
-        })
+        self.textured::<_, I, L, P, A, S>(
+            prim,
+            map,
+            pass,
+            #[inline(always)]
+            |a, w, _| {
+                l.shade_parts_x8(
+                    m,
+                    triple(a, textured::EYE, w),
+                    triple(a, textured::NORMAL, w).normalize_or_zero(),
+                )
+            },
+        )
     }
 
     /// Textured Phong with vertex colours: the interpolated colour
@@ -580,15 +713,27 @@ impl TileTarget {
         let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
         // Shadowed or not in one body: this kernel is out of line already.
         let maps = ctx.maps;
-        self.textured::<_, I, L, P, A, S>((&p.edges, &p.depth, &p.shader.planes), map, pass, #[inline(always)] |a, w, mask| {
-            let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-            let eye = triple(a, textured::EYE, w);
-            let (ambient_diffuse, specular) = match maps {
-                Some(maps) => l.shade_parts_x8_shared(m, eye, normal, #[inline(always)] |k, p, n| maps.visibility_x8(k, p, n)),
-                None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
-            };
-            (triple(a, textured::COLOR, w) * ambient_diffuse, specular)
-        })
+        self.textured::<_, I, L, P, A, S>(
+            (&p.edges, &p.depth, &p.shader.planes),
+            map,
+            pass,
+            #[inline(always)]
+            |a, w, mask| {
+                let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
+                let eye = triple(a, textured::EYE, w);
+                let (ambient_diffuse, specular) = match maps {
+                    Some(maps) => l.shade_parts_x8_shared(
+                        m,
+                        eye,
+                        normal,
+                        #[inline(always)]
+                        |k, p, n| maps.visibility_x8(k, p, n),
+                    ),
+                    None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
+                };
+                (triple(a, textured::COLOR, w) * ambient_diffuse, specular)
+            },
+        )
     }
 }
 

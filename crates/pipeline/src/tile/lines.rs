@@ -2,9 +2,9 @@
 //! depth-only pass that decides which lines are hidden when surfaces are
 //! not drawn (lines alone) or leave no depth (the painter's algorithm).
 
-use zline_simd::lanes::{f32x8, Baseline};
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, LANES};
 use zline_scene::WireframeMode;
+use zline_simd::lanes::{f32x8, Baseline};
 
 use super::target::{store, TileTarget};
 use crate::lines::{Lines, Segment, DASH_ON, DASH_PERIOD};

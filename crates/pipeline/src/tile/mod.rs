@@ -27,12 +27,11 @@ mod target;
 pub(crate) use target::{load, load_for_blend, sample, store};
 pub use target::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 
-
-use zline_simd::lanes::{f32x8, Level};
-use zline_simd::Vectorized;
 use zline_raster::LANES;
 use zline_scene::{GouraudClamp, Interpolation};
 use zline_shading::Vec3x8;
+use zline_simd::lanes::{f32x8, Level};
+use zline_simd::Vectorized;
 
 use crate::bin::{OpaqueRef, PrimitiveRef};
 use crate::fog::{FogFactors, FogPass, FogVisitor};
@@ -108,9 +107,18 @@ impl TileTarget {
         fog: Option<&FogPass>,
         order: &mut Vec<(f32, PrimitiveRef)>,
     ) -> u64 {
-        apart::<S, _>(#[inline(always)] || self.materialize_background::<S>());
+        apart::<S, _>(
+            #[inline(always)]
+            || self.materialize_background::<S>(),
+        );
         let draw = |r: &PrimitiveRef| chunks[r.chunk as usize].draws[r.index as usize];
-        back_to_front(order, bin.iter().map(#[inline(always)] |r| (draw(r).sort_depth, *r)));
+        back_to_front(
+            order,
+            bin.iter().map(
+                #[inline(always)]
+                |r| (draw(r).sort_depth, *r),
+            ),
+        );
         let mut shaded = 0;
         for (_, r) in order.iter() {
             let chunk = &chunks[r.chunk as usize];
@@ -156,11 +164,18 @@ impl TileTarget {
             };
             let p = &chunk.tables.flat[d.index as usize];
             let bit = 1i32 << bit;
-            p.edges.scan(rect, #[inline(always)] |s| {
-                let row = (s.y - rect.y0) as usize * stride;
-                let (a, b) = (row + (s.x0 - origin) as usize, row + (s.x1 - origin) as usize);
-                mask[a..b].iter_mut().for_each(#[inline(always)] |m| *m |= bit);
-            });
+            p.edges.scan(
+                rect,
+                #[inline(always)]
+                |s| {
+                    let row = (s.y - rect.y0) as usize * stride;
+                    let (a, b) = (row + (s.x0 - origin) as usize, row + (s.x1 - origin) as usize);
+                    mask[a..b].iter_mut().for_each(
+                        #[inline(always)]
+                        |m| *m |= bit,
+                    );
+                },
+            );
         }
     }
 
@@ -206,7 +221,10 @@ impl TileTarget {
     ) -> u64 {
         let (t, i) = (&chunk.tables, index as usize);
         match kernel {
-            Kernel::Flat => apart::<S, _>(#[inline(always)] || self.flat::<P, S>(&t.flat[i], pass)),
+            Kernel::Flat => apart::<S, _>(
+                #[inline(always)]
+                || self.flat::<P, S>(&t.flat[i], pass),
+            ),
             Kernel::Gouraud { interpolation, clamp } => {
                 let p = &t.gouraud[i];
                 match (interpolation, clamp) {
@@ -228,12 +246,14 @@ impl TileTarget {
                     ),
                 }
             }
-            Kernel::Phong(Interpolation::PerspectiveCorrect) => {
-                apart::<S, _>(#[inline(always)] || self.phong::<Perspective, P, S>(&t.phong[i], ctx, pass))
-            }
-            Kernel::Phong(Interpolation::ScreenLinear) => {
-                apart::<S, _>(#[inline(always)] || self.phong::<Linear, P, S>(&t.phong[i], ctx, pass))
-            }
+            Kernel::Phong(Interpolation::PerspectiveCorrect) => apart::<S, _>(
+                #[inline(always)]
+                || self.phong::<Perspective, P, S>(&t.phong[i], ctx, pass),
+            ),
+            Kernel::Phong(Interpolation::ScreenLinear) => apart::<S, _>(
+                #[inline(always)]
+                || self.phong::<Linear, P, S>(&t.phong[i], ctx, pass),
+            ),
             Kernel::ColoredPhong(Interpolation::PerspectiveCorrect) => apart::<S, _>(
                 #[inline(always)]
                 || self.phong_tinted::<Perspective, P, S>(&t.colored_phong[i], ctx, pass),
@@ -288,7 +308,9 @@ impl TileTarget {
                 self.textured_lighting::<I, L, P, IgnoreAlpha, S>(chunk, k, ctx, pass)
             }
             (AlphaUse::Mask, _) => self.textured_lighting::<I, L, P, MaskAlpha, S>(chunk, k, ctx, pass),
-            (AlphaUse::Blend, true) => self.textured_lighting::<I, L, P, TextureAlpha, S>(chunk, k, ctx, pass),
+            (AlphaUse::Blend, true) => {
+                self.textured_lighting::<I, L, P, TextureAlpha, S>(chunk, k, ctx, pass)
+            }
         }
     }
 
@@ -341,9 +363,15 @@ pub(super) fn apart<S: Level, R>(kernel: impl FnOnce() -> R) -> R {
 fn back_to_front(order: &mut Vec<(f32, PrimitiveRef)>, keyed: impl Iterator<Item = (f32, PrimitiveRef)>) {
     order.clear();
     order.extend(keyed);
-    order.sort_unstable_by(#[inline(always)] |a, b| {
-        b.0.total_cmp(&a.0).then_with(#[inline(always)] || (a.1.chunk, a.1.index).cmp(&(b.1.chunk, b.1.index)))
-    });
+    order.sort_unstable_by(
+        #[inline(always)]
+        |a, b| {
+            b.0.total_cmp(&a.0).then_with(
+                #[inline(always)]
+                || (a.1.chunk, a.1.index).cmp(&(b.1.chunk, b.1.index)),
+            )
+        },
+    );
 }
 
 /// The parts of a textured [`Kernel`] still to dispatch on, and the

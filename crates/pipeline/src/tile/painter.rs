@@ -25,9 +25,9 @@
 //! zline-pipeline --release --test it painter` prints the share of wrong
 //! pixels).
 
+use zline_shading::Vec3x8;
 use zline_simd::lanes::{f32x8, Level};
 use zline_simd::Vectorized;
-use zline_shading::Vec3x8;
 
 use super::kernel::{Blend, BlendFogged};
 use super::{apart, back_to_front, ShadeContext, TileTarget};
@@ -62,7 +62,10 @@ impl TileTarget {
         fog: Option<&FogPass>,
         order: &mut Vec<(f32, PrimitiveRef)>,
     ) -> u64 {
-        apart::<S, _>(#[inline(always)] || self.materialize_background::<S>());
+        apart::<S, _>(
+            #[inline(always)]
+            || self.materialize_background::<S>(),
+        );
         let draw = |r: &PrimitiveRef| chunks[r.chunk as usize].draws[r.index as usize];
         back_to_front(order, bin.iter().map(|r| (draw(r).far_depth, *r)));
         let mut painted = 0;

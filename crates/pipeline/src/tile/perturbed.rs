@@ -13,15 +13,15 @@
 //!
 //! [`Kernel::Perturbed`]: crate::setup::Kernel::Perturbed
 
-use zline_simd::lanes::{f32x8, Level};
 use zline_scene::{Interpolation, NormalEncoding};
 use zline_shading::{Filter, Sampler, Texture, Vec3x8};
+use zline_simd::lanes::{f32x8, Level};
 
+use super::apart;
 use super::kernel::{
     encode_normal, triple, Alpha, BaseLod, DerivativeLod, IgnoreAlpha, Interp, Linear, Lod, MaskAlpha, Pass,
     Perspective, TextureAlpha,
 };
-use super::apart;
 use super::target::{FrameTexture, ShadeContext, TileTarget};
 use crate::setup::layout::perturbed::{BITANGENT, EYE, NORMAL, Q, S, T, TANGENT};
 use crate::setup::{AlphaUse, LevelOfDetail, Perturbed, Primitive};
@@ -79,10 +79,16 @@ pub(crate) struct TangentNormal;
 impl Encoding for Height {
     #[inline(always)]
     fn tangent_normal<S: Level>(map: &MapReader<'_>, s: f32x8<S>, t: f32x8<S>) -> Vec3x8<S> {
-        let splat = zline_simd::inlined(#[inline(always)] |(a, b): (f32, f32)| (f32x8::<S>::splat(a), f32x8::<S>::splat(b)));
+        let splat = zline_simd::inlined(
+            #[inline(always)]
+            |(a, b): (f32, f32)| (f32x8::<S>::splat(a), f32x8::<S>::splat(b)),
+        );
         let ((ds, dt), (hw, hh)) = (splat(map.step), splat(map.half));
         let scale = f32x8::<S>::splat(map.scale);
-        let h = zline_simd::inlined(#[inline(always)] |s, t| map.read(s, t)[0]);
+        let h = zline_simd::inlined(
+            #[inline(always)]
+            |s, t| map.read(s, t)[0],
+        );
         let dh_ds = (h(s + ds, t) - h(s - ds, t)) * hw;
         let dh_dt = (h(s, t + dt) - h(s, t - dt)) * hh;
         Vec3x8 { x: -(scale * dh_ds), y: -(scale * dh_dt), z: f32x8::ONE }
@@ -107,7 +113,11 @@ fn scaled<S: Level>(v: Vec3x8<S>, f: f32x8<S>) -> Vec3x8<S> {
 /// The eye position and the perturbed normal
 /// normalize(m.x·T + m.y·B + m.z·normalize(N)) of eight samples.
 #[inline(always)]
-fn perturbed_point<E: Encoding, S: Level>(map: &MapReader<'_>, a: &[f32x8<S>; 15], w: f32x8<S>) -> (Vec3x8<S>, Vec3x8<S>) {
+fn perturbed_point<E: Encoding, S: Level>(
+    map: &MapReader<'_>,
+    a: &[f32x8<S>; 15],
+    w: f32x8<S>,
+) -> (Vec3x8<S>, Vec3x8<S>) {
     let (s, t) = (a[S] * w, a[T] * w);
     let n = triple(a, NORMAL, w).normalize_or_zero();
     let m = E::tangent_normal(map, s, t);
@@ -157,7 +167,10 @@ impl TileTarget {
         pass: &P,
     ) -> u64 {
         match texture {
-            None => apart::<S, _>(#[inline(always)] || self.perturbed_plain::<I, E, P, S>(p, ctx, pass)),
+            None => apart::<S, _>(
+                #[inline(always)]
+                || self.perturbed_plain::<I, E, P, S>(p, ctx, pass),
+            ),
             Some((LevelOfDetail::Base, alpha)) => {
                 self.perturbed_alpha::<I, E, BaseLod, P, S>(p, alpha, ctx, pass)
             }
@@ -206,18 +219,36 @@ impl TileTarget {
         let (m, l, maps) = (&ctx.materials[p.shader.material as usize], ctx.lighting, ctx.maps);
         let map = MapReader::new(&ctx.textures[p.shader.map as usize], p.shader.scale);
         if ctx.normals {
-            return self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, #[inline(always)] |a, _| {
-                (encode_normal(perturbed_point::<E, _>(&map, a, I::w(a[Q])).1), f32x8::ONE)
-            });
+            return self.scan::<_, _, _, S>(
+                (&p.edges, &p.depth),
+                &p.shader.planes,
+                pass,
+                &IgnoreAlpha,
+                #[inline(always)]
+                |a, _| (encode_normal(perturbed_point::<E, _>(&map, a, I::w(a[Q])).1), f32x8::ONE),
+            );
         }
-        self.scan::<_, _, _, S>((&p.edges, &p.depth), &p.shader.planes, pass, &IgnoreAlpha, #[inline(always)] |a, mask| {
-            let (eye, normal) = perturbed_point::<E, _>(&map, a, I::w(a[Q]));
-            let (ambient_diffuse, specular) = match maps {
-                Some(maps) => l.shade_parts_x8_shared(m, eye, normal, #[inline(always)] |k, p, n| maps.visibility_x8(k, p, n)),
-                None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
-            };
-            ((ambient_diffuse + specular).clamp01(), f32x8::ONE)
-        })
+        self.scan::<_, _, _, S>(
+            (&p.edges, &p.depth),
+            &p.shader.planes,
+            pass,
+            &IgnoreAlpha,
+            #[inline(always)]
+            |a, mask| {
+                let (eye, normal) = perturbed_point::<E, _>(&map, a, I::w(a[Q]));
+                let (ambient_diffuse, specular) = match maps {
+                    Some(maps) => l.shade_parts_x8_shared(
+                        m,
+                        eye,
+                        normal,
+                        #[inline(always)]
+                        |k, p, n| maps.visibility_x8(k, p, n),
+                    ),
+                    None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
+                };
+                ((ambient_diffuse + specular).clamp01(), f32x8::ONE)
+            },
+        )
     }
 
     /// Textured: c = clamp(texel ⊙ (ambient+diffuse) + specular) with the
@@ -233,12 +264,24 @@ impl TileTarget {
         let map = MapReader::new(&ctx.textures[p.shader.map as usize], p.shader.scale);
         let texture = &ctx.textures[p.shader.texture as usize];
         let prim = (&p.edges, &p.depth, &p.shader.planes);
-        self.textured::<_, I, L, P, A, S>(prim, texture, pass, #[inline(always)] |a, w, mask| {
-            let (eye, normal) = perturbed_point::<E, _>(&map, a, w);
-            match maps {
-                Some(maps) => l.shade_parts_x8_shared(m, eye, normal, #[inline(always)] |k, p, n| maps.visibility_x8(k, p, n)),
-                None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
-            }
-        })
+        self.textured::<_, I, L, P, A, S>(
+            prim,
+            texture,
+            pass,
+            #[inline(always)]
+            |a, w, mask| {
+                let (eye, normal) = perturbed_point::<E, _>(&map, a, w);
+                match maps {
+                    Some(maps) => l.shade_parts_x8_shared(
+                        m,
+                        eye,
+                        normal,
+                        #[inline(always)]
+                        |k, p, n| maps.visibility_x8(k, p, n),
+                    ),
+                    None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
+                }
+            },
+        )
     }
 }

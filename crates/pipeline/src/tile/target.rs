@@ -4,9 +4,9 @@
 use std::sync::Arc;
 
 use glam::Vec3;
-use zline_simd::lanes::{f32x8, i32x8, Level};
 use zline_raster::{Rect, LANES};
 use zline_shading::{PreparedLights, PreparedMaterial, Sampler, Texture};
+use zline_simd::lanes::{f32x8, i32x8, Level};
 
 /// NC depth initialised to the far plane (SPEC §4).
 pub const DEPTH_CLEAR: f32 = 1.0;

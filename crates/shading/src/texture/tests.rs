@@ -515,7 +515,11 @@ fn check_lanes(tex: &Texture, sm: Sampler, s: [f32; 8], t: [f32; 8], lod: [f32; 
         for k in 0..8 {
             let want = tex.sample(&sm, s[k], t[k], lod[k]).to_array().map(f32::to_bits);
             let lane = [got[0][k], got[1][k], got[2][k], got[3][k]].map(f32::to_bits);
-            assert_eq!(lane, want, "level {level}, lane {k} of {sm:?}: s {}, t {}, lod {}", s[k], t[k], lod[k]);
+            assert_eq!(
+                lane, want,
+                "level {level}, lane {k} of {sm:?}: s {}, t {}, lod {}",
+                s[k], t[k], lod[k]
+            );
         }
     }
 }

@@ -72,13 +72,31 @@ impl<L: LaneLevel> Levels<L> {
     /// Level `index[k]` in lane k.
     #[inline(always)]
     fn gather(levels: &[Level], index: [i32; 8]) -> Levels<L> {
-        let lv = index.map(#[inline(always)] |i| levels[i as usize]);
+        let lv = index.map(
+            #[inline(always)]
+            |i| levels[i as usize],
+        );
         Levels {
-            offset: i32x8::from(lv.map(#[inline(always)] |l| l.offset as i32)),
-            width: i32x8::from(lv.map(#[inline(always)] |l| l.width as i32)),
-            height: i32x8::from(lv.map(#[inline(always)] |l| l.height as i32)),
-            width_f: f32x8::from(lv.map(#[inline(always)] |l| l.width as f32)),
-            height_f: f32x8::from(lv.map(#[inline(always)] |l| l.height as f32)),
+            offset: i32x8::from(lv.map(
+                #[inline(always)]
+                |l| l.offset as i32,
+            )),
+            width: i32x8::from(lv.map(
+                #[inline(always)]
+                |l| l.width as i32,
+            )),
+            height: i32x8::from(lv.map(
+                #[inline(always)]
+                |l| l.height as i32,
+            )),
+            width_f: f32x8::from(lv.map(
+                #[inline(always)]
+                |l| l.width as f32,
+            )),
+            height_f: f32x8::from(lv.map(
+                #[inline(always)]
+                |l| l.height as f32,
+            )),
         }
     }
 }
@@ -87,7 +105,13 @@ impl Texture {
     /// [`Texture::sample`] for eight lanes: lane k of the result (R, G, B,
     /// A) is bit for bit `self.sample(sampler, s[k], t[k], lod[k])`.
     #[inline(always)]
-    pub fn sample_x8<L: LaneLevel>(&self, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>, lod: f32x8<L>) -> [f32x8<L>; 4] {
+    pub fn sample_x8<L: LaneLevel>(
+        &self,
+        sampler: &Sampler,
+        s: f32x8<L>,
+        t: f32x8<L>,
+        lod: f32x8<L>,
+    ) -> [f32x8<L>; 4] {
         match sampler.filter {
             Filter::Nearest => self.nearest_x8(Levels::splat(self.levels[0]), sampler, s, t),
             Filter::Bilinear => self.bilinear_x8(Levels::splat(self.levels[0]), sampler, s, t),
@@ -96,7 +120,13 @@ impl Texture {
     }
 
     #[inline(always)]
-    fn nearest_x8<L: LaneLevel>(&self, lv: Levels<L>, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>) -> [f32x8<L>; 4] {
+    fn nearest_x8<L: LaneLevel>(
+        &self,
+        lv: Levels<L>,
+        sampler: &Sampler,
+        s: f32x8<L>,
+        t: f32x8<L>,
+    ) -> [f32x8<L>; 4] {
         let x = nearest_index(s, lv.width_f, lv.width, sampler.wrap_s);
         let y = nearest_index(t, lv.height_f, lv.height, sampler.wrap_t);
         let idx = (lv.offset + y * lv.width + x).to_array();
@@ -106,7 +136,13 @@ impl Texture {
 
     /// The scalar bilinear's two-step interpolation, per lane.
     #[inline(always)]
-    fn bilinear_x8<L: LaneLevel>(&self, lv: Levels<L>, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>) -> [f32x8<L>; 4] {
+    fn bilinear_x8<L: LaneLevel>(
+        &self,
+        lv: Levels<L>,
+        sampler: &Sampler,
+        s: f32x8<L>,
+        t: f32x8<L>,
+    ) -> [f32x8<L>; 4] {
         let (x0, x1, fs) = linear_taps(s, lv.width_f, lv.width, sampler.wrap_s);
         let (y0, y1, ft) = linear_taps(t, lv.height_f, lv.height, sampler.wrap_t);
         let (row0, row1) = (lv.offset + y0 * lv.width, lv.offset + y1 * lv.width);
@@ -150,7 +186,13 @@ impl Texture {
     /// otherwise (NaN included). Every lane computes the finer level; the
     /// coarser one only when some lane blends.
     #[inline(always)]
-    fn trilinear_x8<L: LaneLevel>(&self, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>, lod: f32x8<L>) -> [f32x8<L>; 4] {
+    fn trilinear_x8<L: LaneLevel>(
+        &self,
+        sampler: &Sampler,
+        s: f32x8<L>,
+        t: f32x8<L>,
+        lod: f32x8<L>,
+    ) -> [f32x8<L>; 4] {
         let last = self.levels.len() - 1;
         let beyond = lod.cmp_ge(f32x8::splat(last as f32));
         let between = lod.cmp_gt(f32x8::ZERO) & !beyond;
@@ -165,7 +207,11 @@ impl Texture {
         let coarser = self.levels_of((finer + i32x8::splat(1)).min(i32x8::splat(last as i32)));
         let coarse = self.bilinear_x8(coarser, sampler, s, t);
         let blended = lerp4(fine, coarse, lod - level);
-        std::array::from_fn(#[inline(always)] |c| between.blend(blended[c], fine[c]))
+        let pick = zline_simd::inlined(
+            #[inline(always)]
+            |c: usize| between.blend(blended[c], fine[c]),
+        );
+        [pick(0), pick(1), pick(2), pick(3)]
     }
 
     /// The levels `index[k]` per lane, read once when all lanes agree.
@@ -233,7 +279,11 @@ fn is_floor_of(got: f32, v: f32) -> bool {
 /// a + (b − a)·f per channel, as the scalar `lerp`.
 #[inline(always)]
 fn lerp4<L: LaneLevel>(a: [f32x8<L>; 4], b: [f32x8<L>; 4], f: f32x8<L>) -> [f32x8<L>; 4] {
-    std::array::from_fn(#[inline(always)] |c| a[c] + (b[c] - a[c]) * f)
+    let lerp = zline_simd::inlined(
+        #[inline(always)]
+        |c: usize| a[c] + (b[c] - a[c]) * f,
+    );
+    [lerp(0), lerp(1), lerp(2), lerp(3)]
 }
 
 /// The scalar `nearest_index` per lane: ⌊coord·size⌋ wrapped, 0 where
@@ -251,7 +301,12 @@ fn nearest_index<L: LaneLevel>(coord: f32x8<L>, size_f: f32x8<L>, size: i32x8<L>
 /// The scalar `linear_taps` per lane: the two texels around the sample,
 /// wrapped, and the weight of the second.
 #[inline(always)]
-fn linear_taps<L: LaneLevel>(coord: f32x8<L>, size_f: f32x8<L>, size: i32x8<L>, wrap: Wrap) -> (i32x8<L>, i32x8<L>, f32x8<L>) {
+fn linear_taps<L: LaneLevel>(
+    coord: f32x8<L>,
+    size_f: f32x8<L>,
+    size: i32x8<L>,
+    wrap: Wrap,
+) -> (i32x8<L>, i32x8<L>, f32x8<L>) {
     let u = coord * size_f - f32x8::splat(0.5);
     let finite = u.is_finite();
     let below = floor(u);
