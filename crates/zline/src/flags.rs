@@ -1,7 +1,15 @@
 //! The rendering flags applied to a loaded scene: camera, fog, shadows and
 //! the render settings (the flags override what the scene file says).
 
-use super::*;
+use glam::Vec3;
+use zline::scene::{
+    DepthMode, Fog, FogCoordinate, GouraudClamp, Interpolation, LightingSides, RenderSettings, Scene,
+    ShadingMode, ShadowMode,
+};
+use zline::shading::Filter;
+
+use crate::cli::choices::{Clamp, Depth, FogCoord, Interp, Shading, ShadowFilter, Sides, TexFilter};
+use crate::cli::common::Common;
 
 /// The camera flags and `--background`; a framed model is framed again
 /// for the final aspect ratio first. `turn` adds degrees to `--azimuth`
