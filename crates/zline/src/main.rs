@@ -5,45 +5,29 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-mod cli {
-    pub(crate) mod choices;
-    pub(crate) mod layers;
-    pub(crate) mod load;
-    pub(crate) mod parse;
-    pub(crate) mod visibility;
-}
+mod cli;
 
-use cli::choices::{
-    BuiltIn, Clamp, Depth, FogCoord, Interp, Shading, ShadowFilter, Shadows, Sides, TexFilter,
-};
+use cli::choices::BuiltIn;
+use cli::common::Common;
 use cli::load::{info, load_input};
-use cli::parse::{
-    parse_angle, parse_color, parse_direction, parse_fog, parse_fov, parse_positive, parse_size,
-    parse_tolerance,
-};
 
 use anyhow::{anyhow, bail, Context, Result};
-use clap::{Args, Parser, Subcommand};
+use clap::{Parser, Subcommand};
 use glam::Vec3;
 use zline::io::LoadOptions;
 use zline::pipeline::RenderOptions;
 use zline::pipeline::RenderStats;
-use zline::scene::{
-    DepthMode, Fog, FogCoordinate, FogMode, GouraudClamp, Interpolation, LightingSides, RenderSettings,
-    Scene, ShadingMode, ShadowMode, MAX_SAMPLES, MAX_SHADOW_MAP_SIZE, MAX_THREADS, MAX_TILE_SIZE,
-    MIN_TILE_SIZE,
-};
-use zline::shading::Filter;
+use zline::scene::{Scene, MAX_SAMPLES, MAX_THREADS};
 
 mod batch;
+mod flags;
 mod job;
 mod progress;
 mod terrain;
 mod turntable;
 mod view_command;
 
-/// The smallest `--shadow-map-size`, as the scene file's.
-const MIN_SHADOW_MAP_SIZE: u32 = 16;
+use flags::{apply_camera, apply_fog, apply_overrides, apply_shadows};
 
 /// zline — a CPU renderer for the classical rendering pipeline.
 #[derive(Parser)]
@@ -143,126 +127,6 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
-}
-
-#[derive(Args)]
-struct Common {
-    /// Output image: .png, or .jpg/.jpeg for JPEG at quality 90. Written to
-    /// a temporary file in the same folder, then renamed over OUT: a failed
-    /// write leaves an existing file as it was.
-    #[arg(short, long, value_name = "OUT.png")]
-    output: PathBuf,
-    /// Also print the time of each step: load, render, PNG encode and write.
-    #[arg(long)]
-    timings: bool,
-    /// Image size, e.g. 1280x720 (default: the scene's, or 800x600).
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    size: Option<(u32, u32)>,
-    /// Shading mode for objects that do not set their own.
-    #[arg(long, value_enum)]
-    shading: Option<Shading>,
-    /// Attribute interpolation.
-    #[arg(long, value_enum)]
-    interpolation: Option<Interp>,
-    /// Worker threads (default: one per core; more than 256 are taken as
-    /// 256, with a warning).
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
-    /// Texture filtering for every texture (default: each texture's own).
-    #[arg(long, value_enum)]
-    filter: Option<TexFilter>,
-    /// Fog (replaces the scene's): linear:START:END, exp:DENSITY or
-    /// exp2:DENSITY, distances in world units.
-    #[arg(long, value_name = "MODE", value_parser = parse_fog)]
-    fog: Option<FogMode>,
-    /// Fog colour as R,G,B in [0, 1] (default: the scene's, or 0.5 grey).
-    #[arg(long, value_name = "R,G,B", value_parser = parse_color)]
-    fog_color: Option<Vec3>,
-    /// Fog coordinate: distance to the eye plane or to the eye.
-    #[arg(long, value_enum)]
-    fog_coordinate: Option<FogCoord>,
-    /// Supersampling: N×N samples per pixel, box-filtered (1 = off). A
-    /// frame has at most 2^28 samples (width × height × N²).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=zline::scene::MAX_SSAA as i64))]
-    ssaa: Option<u32>,
-    /// Adaptive mode: per triangle, the cheapest evaluation whose colour
-    /// provably stays within TOL 8-bit steps of the full one.
-    #[arg(long, value_name = "TOL", value_parser = parse_tolerance)]
-    adaptive: Option<f32>,
-    /// What the depth buffer stores.
-    #[arg(long, value_enum)]
-    depth: Option<Depth>,
-    /// Where untextured Gouraud shading clamps the lit colour (docs/SPEC.md §11).
-    #[arg(long, value_enum)]
-    gouraud_clamp: Option<Clamp>,
-    /// How back faces drawn without culling are lit (docs/SPEC.md §11).
-    #[arg(long, value_enum)]
-    lighting: Option<Sides>,
-    /// Shadows (replaces the scene file's `[render] shadows`): planar ones
-    /// fall on the scene file's `shadow_plane` objects; shadow maps fall on
-    /// every object, from every object.
-    #[arg(long, value_enum)]
-    shadows: Option<Shadows>,
-    /// Shadow map side in texels, 16..=8192 (a point light renders six such
-    /// faces); replaces `[render] shadow_map_size`, default 1024.
-    #[arg(
-        long,
-        value_name = "N",
-        value_parser = clap::value_parser!(u32).range(MIN_SHADOW_MAP_SIZE as i64..=MAX_SHADOW_MAP_SIZE as i64)
-    )]
-    shadow_map_size: Option<u32>,
-    /// How shadow maps are sampled (replaces `[render] shadow_filter`).
-    #[arg(long, value_enum)]
-    shadow_filter: Option<ShadowFilter>,
-    /// Turn the camera about its target by this many degrees about the up
-    /// vector (positive: the camera moves to its right).
-    #[arg(long, value_name = "DEG", value_parser = parse_angle, allow_hyphen_values = true, help_heading = "Camera")]
-    azimuth: Option<f32>,
-    /// Raise the camera by this many degrees towards up (stops 1° short
-    /// of straight above or below).
-    #[arg(long, value_name = "DEG", value_parser = parse_angle, allow_hyphen_values = true, help_heading = "Camera")]
-    elevation: Option<f32>,
-    /// The camera's distance from its target, in world units.
-    #[arg(long, value_name = "D", value_parser = parse_positive, help_heading = "Camera")]
-    distance: Option<f32>,
-    /// Magnify by this factor (2: twice as close, or half the view height
-    /// of an orthographic camera).
-    #[arg(long, value_name = "F", value_parser = parse_positive, help_heading = "Camera")]
-    zoom: Option<f32>,
-    /// Vertical field of view in degrees (1..=179), perspective cameras.
-    #[arg(long, value_name = "DEG", value_parser = parse_fov, help_heading = "Camera")]
-    fov: Option<f32>,
-    /// The world's up direction (default: the scene's, +y for models).
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_direction, allow_hyphen_values = true, help_heading = "Camera")]
-    up: Option<Vec3>,
-    /// Background colour, each channel in [0, 1].
-    #[arg(long, value_name = "R,G,B", value_parser = parse_color)]
-    background: Option<Vec3>,
-    /// A height map (PNG or JPEG, red channel) on every mesh with texture
-    /// coordinates: bump mapping in Phong shading (flat and Gouraud ignore
-    /// it), with MikkTSpace tangents.
-    #[arg(long, value_name = "FILE")]
-    bump: Option<PathBuf>,
-    /// The bump map's scale k: a white texel's height in texture
-    /// coordinate units (the normal tilts by atan(k·∂h/∂s) along s).
-    #[arg(long, value_name = "K", default_value_t = 1.0, requires = "bump")]
-    bump_scale: f32,
-    /// Draw without bump and normal maps (the files' and --bump's): the
-    /// interpolated normal alone, as before they existed.
-    #[arg(long, conflicts_with = "bump")]
-    no_normal_maps: bool,
-    /// Tile edge in pixels, 8..=1024; the image does not depend on it.
-    #[arg(
-        long,
-        value_name = "PIXELS",
-        default_value_t = RenderOptions::default().tile_size,
-        value_parser = clap::value_parser!(u32).range(MIN_TILE_SIZE as i64..=MAX_TILE_SIZE as i64)
-    )]
-    tile_size: u32,
-    #[command(flatten)]
-    visibility: cli::visibility::VisibilityArgs,
-    #[command(flatten)]
-    layers: cli::layers::LayerArgs,
 }
 
 fn main() -> ExitCode {
@@ -559,120 +423,6 @@ fn short(v: Vec3) -> String {
     let num =
         |x: f32| if x == 0.0 || (1e-3..1e6).contains(&x.abs()) { format!("{x}") } else { format!("{x:e}") };
     format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
-}
-
-/// The camera flags and `--background`; a framed model is framed again
-/// for the final aspect ratio first. `turn` adds degrees to `--azimuth`
-/// (a turntable's frames).
-fn apply_camera(scene: &mut Scene, common: &Common, framed: bool, turn: f32) {
-    let aspect = zline::view::aspect_of(scene);
-    if framed {
-        scene.camera = zline::io::model_camera(&scene.objects, aspect);
-    }
-    let change = zline::view::ViewChange {
-        azimuth: if turn == 0.0 { common.azimuth } else { Some(common.azimuth.unwrap_or(0.0) + turn) },
-        elevation: common.elevation,
-        distance: common.distance,
-        zoom: common.zoom,
-        fov: common.fov,
-        up: common.up,
-    };
-    change.apply(scene, aspect, framed);
-    if let Some(c) = common.background {
-        scene.background = c;
-    }
-}
-
-/// The CLI's fog flags over the scene's fog: `--fog` sets the mode (keeping
-/// the scene's colour and coordinate if it had fog), the others adjust an
-/// existing fog.
-fn apply_fog(scene: &mut Scene, common: &Common) {
-    if let Some(mode) = common.fog {
-        let base =
-            scene.fog.unwrap_or(Fog { mode, color: Vec3::splat(0.5), coordinate: FogCoordinate::EyePlane });
-        scene.fog = Some(Fog { mode, ..base });
-    }
-    if let Some(fog) = &mut scene.fog {
-        if let Some(c) = common.fog_color {
-            fog.color = c;
-        }
-        if let Some(c) = common.fog_coordinate {
-            fog.coordinate = match c {
-                FogCoord::EyePlane => FogCoordinate::EyePlane,
-                FogCoord::Radial => FogCoordinate::Radial,
-            };
-        }
-    }
-}
-
-/// `--shadows`, `--shadow-map-size` and `--shadow-filter` over the
-/// scene's; planar shadows with no receiving plane draw none, which is
-/// worth a warning.
-fn apply_shadows(scene: &mut Scene, common: &Common) {
-    if let Some(size) = common.shadow_map_size {
-        scene.shadows.map_size = size;
-    }
-    if let Some(filter) = common.shadow_filter {
-        scene.shadows.pcf = matches!(filter, ShadowFilter::Pcf);
-    }
-    let Some(mode) = common.shadows else { return };
-    scene.shadows.mode = mode.into();
-    if scene.shadows.mode == ShadowMode::Planar && scene.shadows.planes.is_empty() {
-        eprintln!("warning: --shadows planar: the scene has no shadow_plane objects");
-    }
-}
-
-fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
-    if let Some((w, h)) = common.size {
-        settings.width = w;
-        settings.height = h;
-    }
-    if let Some(s) = common.shading {
-        settings.shading = match s {
-            Shading::Flat => ShadingMode::Flat,
-            Shading::Gouraud => ShadingMode::Gouraud,
-            Shading::Phong => ShadingMode::Phong,
-        };
-    }
-    if let Some(f) = common.filter {
-        settings.texture_filter = Some(match f {
-            TexFilter::Nearest => Filter::Nearest,
-            TexFilter::Bilinear => Filter::Bilinear,
-            TexFilter::Trilinear => Filter::Trilinear,
-        });
-    }
-    if let Some(t) = common.adaptive {
-        settings.adaptive_tolerance = Some(t);
-    }
-    if let Some(n) = common.ssaa {
-        settings.ssaa = n;
-    }
-    if let Some(d) = common.depth {
-        settings.depth = match d {
-            Depth::Normalized => DepthMode::Normalized,
-            Depth::Reversed => DepthMode::ReversedFloat,
-        };
-    }
-    if let Some(c) = common.gouraud_clamp {
-        settings.gouraud_clamp = match c {
-            Clamp::Vertex => GouraudClamp::PerVertex,
-            Clamp::Sample => GouraudClamp::PerSample,
-        };
-    }
-    if let Some(l) = common.lighting {
-        settings.lighting_sides = match l {
-            Sides::TwoSided => LightingSides::TwoSided,
-            Sides::OneSided => LightingSides::OneSided,
-        };
-    }
-    if let Some(i) = common.interpolation {
-        settings.interpolation = match i {
-            Interp::Perspective => Interpolation::PerspectiveCorrect,
-            Interp::Linear => Interpolation::ScreenLinear,
-        };
-    }
-    common.visibility.apply(settings);
-    common.layers.apply(settings);
 }
 
 #[cfg(test)]
