@@ -691,31 +691,3 @@ fn fill_rect(band: &mut [u32], width: usize, rect: Rect, color: u32) {
 fn gather<'a>(vertices: &'a [ClipVertex], t: &[u32; 3]) -> Option<[&'a ClipVertex; 3]> {
     Some([vertices.get(t[0] as usize)?, vertices.get(t[1] as usize)?, vertices.get(t[2] as usize)?])
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn any_tile_size_renders_the_same_image() {
-        let mut scene = zline_scenes::demo_scene();
-        (scene.settings.width, scene.settings.height) = (96, 40);
-        let reference = render(&scene, &RenderOptions::default()).0;
-        for tile_size in [0, 1, zline_scene::MAX_TILE_SIZE + 1, 1 << 31, u32::MAX] {
-            let image = render(&scene, &RenderOptions { tile_size }).0;
-            assert!(image == reference, "tile {tile_size}: a different image");
-        }
-        scene.settings.ssaa = 3;
-        let reference = render(&scene, &RenderOptions::default()).0;
-        assert!(render(&scene, &RenderOptions { tile_size: u32::MAX }).0 == reference, "ssaa 3");
-    }
-
-    #[test]
-    fn oversized_settings_are_taken_as_the_largest() {
-        let mut scene = zline_scenes::demo_scene();
-        (scene.settings.width, scene.settings.height) = (u32::MAX, 0);
-        scene.settings.ssaa = u32::MAX;
-        let image = render(&scene, &RenderOptions { tile_size: u32::MAX }).0;
-        assert_eq!((image.width, image.height), (zline_scene::MAX_IMAGE_SIDE, 1));
-    }
-}

@@ -109,20 +109,22 @@ pub(crate) trait Pass {
 /// The opaque pass.
 pub(crate) struct Opaque;
 
-/// The transparency pass without fog.
-pub(crate) struct Blend {
+/// The transparency pass, with per-sample fog when the frame has fog (one
+/// kernel for both: the branch is taken per block, the same way for the
+/// whole frame, and halves the transparency pass's kernel count).
+pub(crate) struct Blend<'a> {
     /// 1 − kt.
     pub(crate) opacity: f32x8,
+    /// The frame's fog and its colour.
+    pub(crate) fog: Option<(&'a FogPass, Vec3x8)>,
 }
 
-/// The transparency pass with fog.
-pub(crate) struct BlendFogged<'a> {
-    /// 1 − kt.
-    pub(crate) opacity: f32x8,
-    /// The frame's fog.
-    pub(crate) fog: &'a FogPass,
-    /// Its colour.
-    pub(crate) color: Vec3x8,
+impl<'a> Blend<'a> {
+    /// The pass for a surface of transmission `kt` under `fog`.
+    #[inline(always)]
+    pub(crate) fn new(kt: f32, fog: Option<&'a FogPass>) -> Self {
+        Blend { opacity: f32x8::splat(1.0 - kt), fog: fog.map(|f| (f, Vec3x8::splat(f.color()))) }
+    }
 }
 
 impl Pass for Opaque {
@@ -137,19 +139,7 @@ impl Pass for Opaque {
     }
 }
 
-impl Pass for Blend {
-    const BLENDS: bool = true;
-    #[inline(always)]
-    fn opacity<S: Level>(&self) -> f32x8<S> {
-        self.opacity.at()
-    }
-    #[inline(always)]
-    fn fog<S: Level>(&self, c: Vec3x8<S>, _: i32, _: i32, _: f32x8<S>) -> Vec3x8<S> {
-        c
-    }
-}
-
-impl Pass for BlendFogged<'_> {
+impl Pass for Blend<'_> {
     const BLENDS: bool = true;
     #[inline(always)]
     fn opacity<S: Level>(&self) -> f32x8<S> {
@@ -157,7 +147,8 @@ impl Pass for BlendFogged<'_> {
     }
     #[inline(always)]
     fn fog<S: Level>(&self, c: Vec3x8<S>, x: i32, y: i32, z: f32x8<S>) -> Vec3x8<S> {
-        let (f, fc) = (self.fog.factors(x, y, z), self.color.at::<S>());
+        let Some((fog, color)) = self.fog else { return c };
+        let (f, fc) = (fog.factors(x, y, z), color.at::<S>());
         let g = f32x8::ONE - f;
         Vec3x8 { x: c.x * f + fc.x * g, y: c.y * f + fc.y * g, z: c.z * f + fc.z * g }
     }

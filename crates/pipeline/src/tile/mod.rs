@@ -38,8 +38,8 @@ use crate::fog::{FogFactors, FogPass, FogVisitor};
 use crate::setup::{AlphaUse, Kernel, LevelOfDetail, PassKind, PrimitiveChunk, TexturedLighting};
 
 use kernel::{
-    Alpha, BaseLod, Blend, BlendFogged, ClampPerSample, ClampedAtVertices, DerivativeLod, IgnoreAlpha,
-    Interp, Linear, Lod, MaskAlpha, Opaque, Pass, Perspective, TextureAlpha,
+    Alpha, BaseLod, Blend, ClampPerSample, ClampedAtVertices, DerivativeLod, IgnoreAlpha, Interp, Linear,
+    Lod, MaskAlpha, Opaque, Pass, Perspective, TextureAlpha,
 };
 
 /// How many primitives ahead in a bin the opaque pass asks for.
@@ -125,15 +125,8 @@ impl TileTarget {
             let PassKind::Transparent { kt } = chunk.pass else {
                 continue; // binning puts only transparent chunks here
             };
-            let opacity = f32x8::splat(1.0 - kt);
             let d = draw(r);
-            shaded += match fog {
-                None => self.draw::<_, S>(chunk, (d.kernel, d.index), ctx, &Blend { opacity }),
-                Some(fog) => {
-                    let pass = BlendFogged { opacity, fog, color: Vec3x8::splat(fog.color()) };
-                    self.draw::<_, S>(chunk, (d.kernel, d.index), ctx, &pass)
-                }
-            };
+            shaded += self.draw::<_, S>(chunk, (d.kernel, d.index), ctx, &Blend::new(kt, fog));
         }
         shaded
     }

@@ -25,11 +25,10 @@
 //! zline-pipeline --release --test it painter` prints the share of wrong
 //! pixels).
 
-use zline_shading::Vec3x8;
-use zline_simd::lanes::{f32x8, Level};
+use zline_simd::lanes::Level;
 use zline_simd::Vectorized;
 
-use super::kernel::{Blend, BlendFogged};
+use super::kernel::Blend;
 use super::{apart, back_to_front, ShadeContext, TileTarget};
 use crate::bin::PrimitiveRef;
 use crate::fog::FogPass;
@@ -71,19 +70,13 @@ impl TileTarget {
         let mut painted = 0;
         for (_, r) in order.iter() {
             let chunk = &chunks[r.chunk as usize];
-            let opacity = match chunk.pass {
-                PassKind::Opaque => f32x8::ONE,
-                PassKind::Transparent { kt } => f32x8::splat(1.0 - kt),
+            let kt = match chunk.pass {
+                PassKind::Opaque => 0.0, // opacity 1 − 0 = 1 exactly
+                PassKind::Transparent { kt } => kt,
                 PassKind::Shadow { .. } => continue, // binned apart
             };
             let d = draw(r);
-            painted += match fog {
-                None => self.draw::<_, S>(chunk, (d.kernel, d.index), ctx, &Blend { opacity }),
-                Some(fog) => {
-                    let pass = BlendFogged { opacity, fog, color: Vec3x8::splat(fog.color()) };
-                    self.draw::<_, S>(chunk, (d.kernel, d.index), ctx, &pass)
-                }
-            };
+            painted += self.draw::<_, S>(chunk, (d.kernel, d.index), ctx, &Blend::new(kt, fog));
         }
         painted
     }

@@ -82,3 +82,29 @@ fn vertex_colours_do_not_change_a_byte_with_tile_size_or_thread_count() {
         }
     }
 }
+
+// Out-of-range tile sizes and image settings (moved from the crate's unit
+// tests, so that its unit-test build does not compile the kernels again).
+
+#[test]
+fn any_tile_size_even_out_of_range_renders_the_same_image() {
+    let mut scene = zline_scenes::demo_scene();
+    (scene.settings.width, scene.settings.height) = (96, 40);
+    let reference = render(&scene, &RenderOptions::default()).0;
+    for tile_size in [0, 1, zline_scene::MAX_TILE_SIZE + 1, 1 << 31, u32::MAX] {
+        let image = render(&scene, &RenderOptions { tile_size }).0;
+        assert!(image == reference, "tile {tile_size}: a different image");
+    }
+    scene.settings.ssaa = 3;
+    let reference = render(&scene, &RenderOptions::default()).0;
+    assert!(render(&scene, &RenderOptions { tile_size: u32::MAX }).0 == reference, "ssaa 3");
+}
+
+#[test]
+fn oversized_settings_are_taken_as_the_largest() {
+    let mut scene = zline_scenes::demo_scene();
+    (scene.settings.width, scene.settings.height) = (u32::MAX, 0);
+    scene.settings.ssaa = u32::MAX;
+    let image = render(&scene, &RenderOptions { tile_size: u32::MAX }).0;
+    assert_eq!((image.width, image.height), (zline_scene::MAX_IMAGE_SIDE, 1));
+}
