@@ -156,21 +156,6 @@ fn out_of_line<T>(twin: impl FnOnce() -> T) -> T {
     twin()
 }
 
-/// A job whose body [`vectorize`] compiles for the best level the CPU has.
-///
-/// [`Vectorized::run`] is generic over the [`lanes::Level`] its lane types
-/// use; implementations mark it `#[inline(always)]`, and everything hot
-/// that it calls `#[inline]` or `#[inline(always)]`: only what is inlined
-/// into the job's body is compiled with the level's instructions (a
-/// function called out of line is compiled for the build's baseline and
-/// reaches the level's lane operations through calls, correct but slow).
-pub trait Vectorized {
-    /// What the job returns.
-    type Output;
-    /// The job's body at level `L`.
-    fn run<L: lanes::Level>(self) -> Self::Output;
-}
-
 /// Runs `job` at the x86-64-v3 level (AVX2, FMA) when the CPU has it and
 /// [`Isa::current`] allows AVX2 (`ZLINE_SIMD` may lower it), else at
 /// [`lanes::Baseline`]. The two give the same results bit for bit.
@@ -257,6 +242,7 @@ pub fn v3_available() -> bool {
 }
 
 pub use isa::Isa;
+pub use lanes::Vectorized;
 pub use opaque::read_opaque;
 pub use prefetch::prefetch;
 
