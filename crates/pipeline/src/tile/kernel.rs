@@ -4,13 +4,14 @@
 //! [`TileTarget::blocks`] is the loop every kernel shares — depth test,
 //! alpha test, depth and colour writes or blending — and each kernel passes
 //! it the closure that shades eight samples from their interpolated
-//! attributes. What varies between primitives is a type parameter, never a
-//! branch in that loop:
+//! attributes. What varies between primitives is a type parameter, not a
+//! branch in that loop (the one exception, the transparency pass's fog, is
+//! the same for a whole frame):
 //!
 //! | parameter | types | decides |
 //! |---|---|---|
 //! | [`Interp`] | [`Perspective`], [`Linear`] | a/w ÷ 1/w per sample, or the plane value itself |
-//! | [`Pass`] | [`Opaque`], [`Blend`], [`BlendFogged`] | depth write and replace, or blend (fogged per sample) |
+//! | [`Pass`] | [`Opaque`], [`Blend`] | depth write and replace, or blend (fogged per sample when the frame has fog) |
 //! | [`Alpha`] | [`IgnoreAlpha`], [`MaskAlpha`], [`TextureAlpha`] | the texel's alpha ignored, tested against the cutoff, or blended |
 //! | [`Lod`] | [`BaseLod`], [`DerivativeLod`] | level 0, or the level from the exact derivatives of s and t |
 //! | [`Clamp`] | [`ClampedAtVertices`], [`ClampPerSample`] | Gouraud: colours used as interpolated, or clamped per sample |
