@@ -23,30 +23,29 @@ use std::path::{Path, PathBuf};
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
 use zline_scene::{
-    cube, plane, torus, uv_sphere, Camera, Mesh, Object, Projection, Scene, ShadowPlane,
-    MAX_PRIMITIVE_TRIANGLES,
+    cube, plane, torus, uv_sphere, Camera, Mesh, Object, Scene, ShadowPlane, MAX_PRIMITIVE_TRIANGLES,
 };
 
-use zline_shading::{Fog, FogCoordinate, FogMode, Material, ShadingMode};
+use zline_shading::{Fog, Material, ShadingMode};
 
 use crate::culling::default_culling;
 use crate::error::{line_column, SceneError};
 use crate::files::{read_text, resolve, FileKind, LoadOptions};
-use crate::framing::{
-    aspect, bounds_of, camera_is_finite, default_lights, model_camera, DEFAULT_AMBIENT, DEFAULT_BACKGROUND,
-};
+use crate::framing::{aspect, bounds_of, default_lights, model_camera, DEFAULT_AMBIENT, DEFAULT_BACKGROUND};
 
 mod bump;
 mod checks;
 mod lights;
 mod models;
 mod render;
+mod view;
 mod visibility;
 
 use checks::{Checker, Result, S};
 use lights::{LightDef, LightEntry};
 use models::{ModelCache, ModelPart};
 use render::{settings, shadows, RenderDef, ShadingDef};
+use view::{CameraDef, FogDef};
 
 /// Loads a TOML scene file. Warnings about model files (a missing MTL
 /// file, say) are printed to stderr as `warning: ...` lines.
@@ -196,54 +195,6 @@ struct SceneFile {
     objects: Vec<S<ObjectDef>>,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FogDef {
-    mode: FogKind,
-    start: Option<S<f32>>,
-    end: Option<S<f32>>,
-    density: Option<S<f32>>,
-    color: Option<S<[f32; 3]>>,
-    coordinate: Option<FogCoordinateDef>,
-}
-
-#[derive(Clone, Copy, Deserialize)]
-#[serde(rename_all = "lowercase")]
-enum FogKind {
-    Linear,
-    Exp,
-    Exp2,
-}
-
-#[derive(Clone, Copy, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-enum FogCoordinateDef {
-    EyePlane,
-    Radial,
-}
-
-#[derive(Clone, Copy, Default, Deserialize)]
-#[serde(rename_all = "lowercase")]
-enum ProjectionDef {
-    #[default]
-    Perspective,
-    Orthographic,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct CameraDef {
-    eye: S<[f32; 3]>,
-    target: Option<S<[f32; 3]>>,
-    up: Option<S<[f32; 3]>>,
-    #[serde(default)]
-    projection: ProjectionDef,
-    fovy: Option<S<f32>>,
-    height: Option<S<f32>>,
-    near: Option<S<f32>>,
-    far: Option<S<f32>>,
-}
-
 #[derive(Clone, Copy, Deserialize, PartialEq)]
 #[serde(rename_all = "lowercase")]
 enum PrimitiveKind {
@@ -391,104 +342,14 @@ impl Builder<'_> {
             .collect()
     }
 
+    /// The `[camera]` table (see [`view::camera`]).
     fn camera(&self, def: &S<CameraDef>, bounds: (Vec3, Vec3), aspect: f32) -> Result<Camera> {
-        let c = def.get_ref();
-        let eye = self.check.vec3(&c.eye, "camera.eye")?;
-        let target = c.target.as_ref().map_or(Ok(Vec3::ZERO), |t| self.check.vec3(t, "camera.target"))?;
-        let up = c.up.as_ref().map_or(Ok(Vec3::Y), |u| self.check.vec3(u, "camera.up"))?;
-        if eye == target {
-            return Err(self.check.error(c.eye.span(), "camera.eye", "must differ from camera.target"));
-        }
-        let direction = target - eye;
-        if (direction / direction.abs().max_element()).cross(up).length() < 1e-6 {
-            let span = c.up.as_ref().map_or(def.span(), |u| u.span());
-            return Err(self.check.error(span, "camera.up", "must not be parallel to the view direction"));
-        }
-        let fitted = fitted_depth_range(eye, target, bounds);
-        let near = self.check.optional(&c.near, "camera.near", fitted.0, f32::MIN, f32::MAX)?;
-        let far = self.check.optional(&c.far, "camera.far", fitted.1, f32::MIN, f32::MAX)?;
-        let projection = match c.projection {
-            ProjectionDef::Perspective => {
-                let fovy = self.check.optional(&c.fovy, "camera.fovy", 45.0, 0.0, 180.0)?;
-                if fovy <= 0.0 || fovy >= 180.0 {
-                    return Err(self.check.value_error(
-                        c.fovy.as_ref(),
-                        def,
-                        "camera.fovy",
-                        "must be in (0, 180) degrees",
-                    ));
-                }
-                if near <= 0.0 {
-                    return Err(self.check.value_error(
-                        c.near.as_ref(),
-                        def,
-                        "camera.near",
-                        "must be > 0 for perspective",
-                    ));
-                }
-                Projection::Perspective { fovy_degrees: fovy, near, far }
-            }
-            ProjectionDef::Orthographic => {
-                let fitted_height = 2.2 * (bounds.1 - bounds.0).length().max(1e-6) / 2.0;
-                let height = self.check.optional(&c.height, "camera.height", fitted_height, 0.0, f32::MAX)?;
-                if height <= 0.0 {
-                    return Err(self.check.value_error(
-                        c.height.as_ref(),
-                        def,
-                        "camera.height",
-                        "must be > 0",
-                    ));
-                }
-                Projection::Orthographic { height, near, far }
-            }
-        };
-        if far <= near {
-            let message = format!("must be greater than camera.near ({near}), got {far}");
-            return Err(self.check.value_error(c.far.as_ref(), def, "camera.far", message));
-        }
-        let camera = Camera { eye, target, up, projection };
-        if !camera_is_finite(&camera, aspect) {
-            return Err(self.check.error(def.span(), "camera", "its values give a non-finite projection"));
-        }
-        Ok(camera)
+        view::camera(&self.check, def, bounds, aspect)
     }
 
+    /// The `[fog]` table (see [`view::fog`]).
     fn fog(&self, def: &S<FogDef>) -> Result<Fog> {
-        let f = def.get_ref();
-        let color = match &f.color {
-            Some(c) => self.check.vec3_in(c, "fog.color", 0.0, 1.0)?,
-            None => Vec3::splat(0.5),
-        };
-        let mode = match f.mode {
-            FogKind::Linear => {
-                self.check.not_allowed(&f.density, "fog", "density", "linear fog")?;
-                let start = self.check.optional(&f.start, "fog.start", 0.0, 0.0, f32::MAX)?;
-                let end = self.check.optional(&f.end, "fog.end", 1.0, 0.0, f32::MAX)?;
-                if end < start {
-                    let span = f.end.as_ref().map_or(def.span(), |e| e.span());
-                    return Err(self.check.error(
-                        span,
-                        "fog.end",
-                        format!("must be ≥ start ({start}), got {end}"),
-                    ));
-                }
-                FogMode::Linear { start, end }
-            }
-            FogKind::Exp | FogKind::Exp2 => {
-                self.check.not_allowed(&f.start, "fog", "start", "exponential fog")?;
-                self.check.not_allowed(&f.end, "fog", "end", "exponential fog")?;
-                let density = self.check.optional(&f.density, "fog.density", 1.0, 0.0, f32::MAX)?;
-                match f.mode {
-                    FogKind::Exp => FogMode::Exponential { density },
-                    _ => FogMode::SquaredExponential { density },
-                }
-            }
-        };
-        let coordinate = match f.coordinate {
-            Some(FogCoordinateDef::Radial) => FogCoordinate::Radial,
-            _ => FogCoordinate::EyePlane,
-        };
-        Ok(Fog { mode, color, coordinate })
+        view::fog(&self.check, def)
     }
 
     /// One `[[lights]]` entry (see [`lights::light`]).
@@ -690,17 +551,4 @@ fn world_bounds(objects: &[Object]) -> (Vec3, Vec3) {
         })
     });
     bounds_of(corners).unwrap_or((Vec3::ZERO, Vec3::ZERO))
-}
-
-/// Near and far planes hugging the scene's bounding sphere seen from `eye`
-/// along the view direction.
-fn fitted_depth_range(eye: Vec3, target: Vec3, (min, max): (Vec3, Vec3)) -> (f32, f32) {
-    let (eye, target) = (eye.as_dvec3(), target.as_dvec3());
-    let center = (min.as_dvec3() + max.as_dvec3()) / 2.0;
-    let radius = ((max.as_dvec3() - min.as_dvec3()).length() / 2.0).max(1e-6);
-    let forward = (target - eye).normalize();
-    let d = (center - eye).dot(forward);
-    let far = (d + 1.1 * radius).max(radius);
-    let near = (d - 1.1 * radius).max(far * 1e-4);
-    (near as f32, far as f32)
 }
