@@ -60,7 +60,7 @@ pub(crate) fn v3_token() -> Option<V3Token> {
 /// The CPU has AVX2 and FMA.
 #[target_feature(enable = "avx2,fma")]
 #[inline(never)]
-unsafe fn run_v3<V: crate::lanes::Vectorized>(job: V) -> V::Output {
+unsafe fn run_v3<V: crate::job::Vectorized>(job: V) -> V::Output {
     job.run::<crate::lanes::private::V3>()
 }
 
@@ -74,7 +74,7 @@ impl V3Token {
 
     /// [`crate::vectorize`] on this CPU.
     #[inline(always)]
-    pub(crate) fn vectorize<V: crate::lanes::Vectorized>(self, job: V) -> V::Output {
+    pub(crate) fn vectorize<V: crate::job::Vectorized>(self, job: V) -> V::Output {
         // SAFETY: the token exists only when the CPU has AVX2 and FMA.
         unsafe { run_v3(job) }
     }

@@ -36,21 +36,6 @@ use core::arch::x86_64::*;
 
 use bytemuck::{Pod, Zeroable};
 
-/// A job whose body [`crate::vectorize`] compiles for the best level the CPU has.
-///
-/// [`Vectorized::run`] is generic over the [`Level`] its lane types
-/// use; implementations mark it `#[inline(always)]`, and everything hot
-/// that it calls `#[inline]` or `#[inline(always)]`: only what is inlined
-/// into the job's body is compiled with the level's instructions (a
-/// function called out of line is compiled for the build's baseline and
-/// reaches the level's lane operations through calls, correct but slow).
-pub trait Vectorized {
-    /// What the job returns.
-    type Output;
-    /// The job's body at level `L`.
-    fn run<L: Level>(self) -> Self::Output;
-}
-
 /// An instruction-set level the lane types are compiled for. Sealed: the
 /// two levels are [`Baseline`] and the x86-64-v3 level that only
 /// [`crate::vectorize`] names.

@@ -38,6 +38,7 @@
 mod avx2;
 mod bounds;
 mod isa;
+mod job;
 #[allow(unsafe_code, reason = "the x86-64-v3 lanes call std::arch intrinsics (see the module)")]
 pub mod lanes;
 #[allow(
@@ -216,21 +217,6 @@ pub fn inlined<F>(f: F) -> F {
     f
 }
 
-/// A closure as a job of [`vectorize_at`]. The closure takes no level: it
-/// runs the code its caller instantiated, for the level the caller was
-/// given (so it is sound by the caller's own level), and it should be
-/// marked `#[inline(always)]` so that its body lands in the job's function.
-#[derive(Debug)]
-pub struct Call<F>(pub F);
-
-impl<R, F: FnOnce() -> R> Vectorized for Call<F> {
-    type Output = R;
-    #[inline(always)]
-    fn run<L: lanes::Level>(self) -> R {
-        (self.0)()
-    }
-}
-
 /// The x86-64-v3 level when [`vectorize`] would choose it (for tests and
 /// reports).
 pub fn v3_available() -> bool {
@@ -242,7 +228,7 @@ pub fn v3_available() -> bool {
 }
 
 pub use isa::Isa;
-pub use lanes::Vectorized;
+pub use job::{Call, Vectorized};
 pub use opaque::read_opaque;
 pub use prefetch::prefetch;
 

@@ -21,6 +21,7 @@
 mod kernel;
 mod lines;
 mod painter;
+mod params;
 mod perturbed;
 mod target;
 
@@ -37,7 +38,7 @@ use crate::bin::{OpaqueRef, PrimitiveRef};
 use crate::fog::{FogFactors, FogPass, FogVisitor};
 use crate::setup::{AlphaUse, Kernel, LevelOfDetail, PassKind, PrimitiveChunk, TexturedLighting};
 
-use kernel::{
+use params::{
     Alpha, BaseLod, Blend, ClampPerSample, ClampedAtVertices, DerivativeLod, IgnoreAlpha, Interp, Linear,
     Lod, MaskAlpha, Opaque, Pass, Perspective, TextureAlpha,
 };

@@ -28,7 +28,7 @@
 use zline_simd::lanes::Level;
 use zline_simd::Vectorized;
 
-use super::kernel::Blend;
+use super::params::Blend;
 use super::{apart, back_to_front, ShadeContext, TileTarget};
 use crate::bin::PrimitiveRef;
 use crate::fog::FogPass;

@@ -18,9 +18,10 @@ use zline_shading::{Filter, Sampler, Texture, Vec3x8};
 use zline_simd::lanes::{f32x8, Level};
 
 use super::apart;
-use super::kernel::{
-    encode_normal, triple, Alpha, BaseLod, DerivativeLod, IgnoreAlpha, Interp, Linear, Lod, MaskAlpha, Pass,
-    Perspective, TextureAlpha,
+use super::kernel::{encode_normal, triple};
+use super::params::{
+    Alpha, BaseLod, DerivativeLod, IgnoreAlpha, Interp, Linear, Lod, MaskAlpha, Pass, Perspective,
+    TextureAlpha,
 };
 use super::target::{FrameTexture, ShadeContext, TileTarget};
 use crate::setup::layout::perturbed::{BITANGENT, EYE, NORMAL, Q, S, T, TANGENT};
