@@ -23,11 +23,11 @@ use crate::scalar;
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Avx2(());
 
-/// The token when [`Isa::current`] chose AVX2. The CPU is asked again
-/// ([`detect`]), so safety does not rest on how `Isa::current` decided.
+/// The token when [`Isa::current`] chose AVX2 or better. The CPU is asked
+/// again ([`detect`]), so safety does not rest on how `Isa::current` decided.
 #[inline(always)]
 pub(crate) fn token() -> Option<Avx2> {
-    if Isa::current() == Isa::Avx2 {
+    if Isa::current() >= Isa::Avx2 {
         detect()
     } else {
         None
@@ -62,6 +62,53 @@ pub(crate) fn v3_token() -> Option<V3Token> {
 #[inline(never)]
 unsafe fn run_v3<V: crate::job::Vectorized>(job: V) -> V::Output {
     job.run::<crate::lanes::private::V3>()
+}
+
+/// Proof that the CPU has the x86-64-v4 features [`run_v4`] enables.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct V4Token(());
+
+/// The token when [`Isa::current`] chose AVX-512; the CPU is asked again
+/// for every feature [`run_v4`] enables.
+#[inline(always)]
+pub(crate) fn v4_token() -> Option<V4Token> {
+    let ok = Isa::current() == Isa::Avx512
+        && v3_token().is_some()
+        && std::is_x86_feature_detected!("avx512f")
+        && std::is_x86_feature_detected!("avx512vl")
+        && std::is_x86_feature_detected!("avx512bw")
+        && std::is_x86_feature_detected!("avx512dq");
+    ok.then_some(V4Token(()))
+}
+
+/// `job.run()` at the x86-64-v4 level: the v3 lane code (its AVX2
+/// intrinsics), compiled where LLVM may encode it with AVX-512VL and use
+/// its 32 vector registers and mask registers. No operation changes its
+/// result: the intrinsics are the same, and FMA is still never formed.
+///
+/// # Safety
+/// The CPU has AVX2, FMA and AVX-512 F, VL, BW and DQ.
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512bw,avx512dq")]
+#[inline(never)]
+unsafe fn run_v4<V: crate::job::Vectorized>(job: V) -> V::Output {
+    job.run::<crate::lanes::private::V4>()
+}
+
+impl V4Token {
+    /// The token inside code running at the x86-64-v4 level (which
+    /// [`crate::vectorize`] and [`crate::dispatch`] enter only with a token).
+    #[inline(always)]
+    pub(crate) fn within_v4() -> V4Token {
+        V4Token(())
+    }
+
+    /// [`crate::vectorize`] on this CPU.
+    #[inline(always)]
+    pub(crate) fn vectorize<V: crate::job::Vectorized>(self, job: V) -> V::Output {
+        // SAFETY: the token exists only when the CPU has every feature
+        // `run_v4` enables.
+        unsafe { run_v4(job) }
+    }
 }
 
 impl V3Token {

@@ -17,15 +17,20 @@ pub enum Isa {
     /// x86-64 with AVX2 (Intel Haswell, AMD Excavator and later), detected
     /// at run time.
     Avx2,
+    /// x86-64 with AVX-512 F, VL, BW and DQ besides AVX2 and FMA (Intel
+    /// Skylake-SP, Ice Lake; AMD Zen 4 and later), detected at run time:
+    /// the same eight-lane kernels, encoded with AVX-512VL and its 32
+    /// vector registers.
+    Avx512,
 }
 
 impl Isa {
     /// Every instruction set, least capable first.
-    pub const ALL: [Isa; 3] = [Isa::Scalar, Isa::Sse2, Isa::Avx2];
+    pub const ALL: [Isa; 4] = [Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512];
 
     /// The instruction set in use: the best one this CPU has, lowered to
     /// `ZLINE_SIMD` when the environment names a less capable one
-    /// ("scalar", "sse2"). Detected on the first call, then cached (one
+    /// ("scalar", "sse2", "avx2"). Detected on the first call, then cached (one
     /// relaxed atomic load).
     #[inline]
     pub fn current() -> Isa {
@@ -52,7 +57,12 @@ impl Isa {
     pub fn best() -> Isa {
         #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
-            return Isa::Avx2;
+            let avx512 = std::is_x86_feature_detected!("fma")
+                && std::is_x86_feature_detected!("avx512f")
+                && std::is_x86_feature_detected!("avx512vl")
+                && std::is_x86_feature_detected!("avx512bw")
+                && std::is_x86_feature_detected!("avx512dq");
+            return if avx512 { Isa::Avx512 } else { Isa::Avx2 };
         }
         if cfg!(all(target_arch = "x86_64", target_feature = "sse2")) {
             Isa::Sse2
@@ -61,12 +71,13 @@ impl Isa {
         }
     }
 
-    /// The name `ZLINE_SIMD` takes: "scalar", "sse2", "avx2".
+    /// The name `ZLINE_SIMD` takes: "scalar", "sse2", "avx2", "avx512".
     pub fn name(self) -> &'static str {
         match self {
             Isa::Scalar => "scalar",
             Isa::Sse2 => "sse2",
             Isa::Avx2 => "avx2",
+            Isa::Avx512 => "avx512",
         }
     }
 }

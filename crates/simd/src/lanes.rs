@@ -40,8 +40,12 @@ use bytemuck::{Pod, Zeroable};
 /// two levels are [`Baseline`] and the x86-64-v3 level that only
 /// [`crate::vectorize`] names.
 pub trait Level: Copy + Send + Sync + Default + core::fmt::Debug + 'static + private::Sealed {
-    /// True at the x86-64-v3 level (AVX2 and FMA present).
+    /// True at the x86-64-v3 level and above (AVX2 and FMA present): the
+    /// lane operations use their AVX2 intrinsics.
     const V3: bool;
+    /// True at the x86-64-v4 level (AVX-512 F, VL, BW, DQ present too):
+    /// the same intrinsics as v3, in code compiled for AVX-512.
+    const V4: bool;
 }
 
 /// The level the build targets: `wide`'s own code paths.
@@ -50,6 +54,7 @@ pub struct Baseline;
 
 impl Level for Baseline {
     const V3: bool = false;
+    const V4: bool = false;
 }
 
 impl private::Sealed for Baseline {}
@@ -69,6 +74,21 @@ pub(crate) mod private {
 
     impl super::Level for V3 {
         const V3: bool = true;
+        const V4: bool = false;
+    }
+
+    /// The x86-64-v4 level (AVX-512 F, VL, BW, DQ besides v3's). Its lane
+    /// operations are v3's; only the code around them is compiled for
+    /// AVX-512.
+    #[allow(unreachable_pub, reason = "public so that it may be a type argument of public generics")]
+    #[derive(Clone, Copy, Default, Debug, PartialEq, Eq)]
+    pub struct V4;
+
+    impl Sealed for V4 {}
+
+    impl super::Level for V4 {
+        const V3: bool = true;
+        const V4: bool = true;
     }
 }
 
@@ -78,7 +98,7 @@ macro_rules! at_level {
     ($v3:expr, $base:expr) => {{
         #[cfg(target_arch = "x86_64")]
         if L::V3 {
-            // SAFETY: `L::V3` is true only for the level that
+            // SAFETY: `L::V3` is true only for the levels (v3, v4) that
             // `crate::vectorize` and `crate::dispatch` instantiate after
             // they detected AVX2 and FMA (module docs), so the CPU has these instructions.
             #[allow(unused_unsafe, reason = "some intrinsics are safe to call in an AVX2 context")]

@@ -157,11 +157,16 @@ fn out_of_line<T>(twin: impl FnOnce() -> T) -> T {
     twin()
 }
 
-/// Runs `job` at the x86-64-v3 level (AVX2, FMA) when the CPU has it and
-/// [`Isa::current`] allows AVX2 (`ZLINE_SIMD` may lower it), else at
-/// [`lanes::Baseline`]. The two give the same results bit for bit.
+/// Runs `job` at the x86-64-v4 level (AVX-512) or the x86-64-v3 level
+/// (AVX2, FMA) when the CPU has it and [`Isa::current`] allows it
+/// (`ZLINE_SIMD` may lower it), else at [`lanes::Baseline`]. All give the
+/// same results bit for bit.
 #[inline(always)]
 pub fn vectorize<V: Vectorized>(job: V) -> V::Output {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(v4) = avx2::v4_token() {
+        return v4.vectorize(job);
+    }
     #[cfg(target_arch = "x86_64")]
     if let Some(v3) = avx2::v3_token() {
         return v3.vectorize(job);
@@ -180,6 +185,10 @@ pub fn vectorize<V: Vectorized>(job: V) -> V::Output {
 #[inline(always)]
 pub fn dispatch<V: Vectorized>(job: V) -> V::Output {
     #[cfg(target_arch = "x86_64")]
+    if avx2::v4_token().is_some() {
+        return job.run::<lanes::private::V4>();
+    }
+    #[cfg(target_arch = "x86_64")]
     if avx2::v3_token().is_some() {
         return job.run::<lanes::private::V3>();
     }
@@ -193,6 +202,10 @@ pub fn dispatch<V: Vectorized>(job: V) -> V::Output {
 /// of a job kept out of line on purpose, such as a rare kernel.
 #[inline(always)]
 pub fn vectorize_at<L: lanes::Level, V: Vectorized>(job: V) -> V::Output {
+    #[cfg(target_arch = "x86_64")]
+    if L::V4 {
+        return avx2::V4Token::within_v4().vectorize(job);
+    }
     #[cfg(target_arch = "x86_64")]
     if L::V3 {
         return avx2::V3Token::within_v3().vectorize(job);
@@ -217,8 +230,18 @@ pub fn inlined<F>(f: F) -> F {
     f
 }
 
-/// The x86-64-v3 level when [`vectorize`] would choose it (for tests and
+/// The x86-64-v4 level when [`vectorize`] would choose it (for tests and
 /// reports).
+pub fn v4_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if avx2::v4_token().is_some() {
+        return true;
+    }
+    false
+}
+
+/// The x86-64-v3 level or better when [`vectorize`] would choose it (for
+/// tests and reports).
 pub fn v3_available() -> bool {
     #[cfg(target_arch = "x86_64")]
     if avx2::v3_token().is_some() {

@@ -177,8 +177,19 @@ fn the_environment_can_only_lower_the_instruction_set() {
         assert_eq!(current, Isa::best());
     }
     #[cfg(target_arch = "x86_64")]
-    assert_eq!(Isa::best() == Isa::Avx2, std::is_x86_feature_detected!("avx2"));
+    assert_eq!(Isa::best() >= Isa::Avx2, std::is_x86_feature_detected!("avx2"));
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::is_x86_feature_detected as has;
+        let v4 = has!("avx2")
+            && has!("fma")
+            && has!("avx512f")
+            && has!("avx512vl")
+            && has!("avx512bw")
+            && has!("avx512dq");
+        assert_eq!(Isa::best() == Isa::Avx512, v4);
+    }
     #[cfg(target_arch = "x86_64")]
     assert!(Isa::best() >= Isa::Sse2);
-    assert_eq!(Isa::ALL.map(Isa::name), ["scalar", "sse2", "avx2"]);
+    assert_eq!(Isa::ALL.map(Isa::name), ["scalar", "sse2", "avx2", "avx512"]);
 }

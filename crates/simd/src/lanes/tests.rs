@@ -139,7 +139,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(512))]
 
     #[test]
-    fn v3_lanes_equal_baseline_lanes(
+    fn v3_and_v4_lanes_equal_baseline_lanes(
         a in proptest::array::uniform8(lane()),
         b in proptest::array::uniform8(lane()),
         i in proptest::array::uniform8(int_lane()),
@@ -148,9 +148,22 @@ proptest! {
     ) {
         let ops = Ops { a, b, i, j, shift };
         let base = (&ops).run::<super::Baseline>();
-        let best = vectorize(&ops);
-        for (k, (x, y)) in base.iter().zip(&best).enumerate() {
-            prop_assert_eq!(x, y, "operation {} differs (a = {:?}, b = {:?}, i = {:?}, j = {:?})", k, a, b, i, j);
+        let mut levels = vec![("best", vectorize(&ops))];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if let Some(v3) = crate::avx2::v3_token() {
+                levels.push(("v3", v3.vectorize(&ops)));
+            }
+            if let Some(v4) = crate::avx2::v4_token() {
+                levels.push(("v4", v4.vectorize(&ops)));
+            }
+        }
+        for (level, got) in &levels {
+            for (k, (x, y)) in base.iter().zip(got).enumerate() {
+                prop_assert_eq!(
+                    x, y, "{}: operation {} differs (a = {:?}, b = {:?}, i = {:?}, j = {:?})", level, k, a, b, i, j
+                );
+            }
         }
     }
 }
@@ -161,5 +174,8 @@ fn the_v3_level_is_used_where_the_cpu_has_it() {
     // different code paths; say so, so a run on an older CPU is visible.
     if !crate::v3_available() {
         eprintln!("note: no AVX2/FMA (or ZLINE_SIMD lowers it): the x86-64-v3 lanes are not exercised");
+    }
+    if !crate::v4_available() {
+        eprintln!("note: no AVX-512 (or ZLINE_SIMD lowers it): the x86-64-v4 level is not exercised");
     }
 }
