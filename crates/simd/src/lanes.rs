@@ -10,14 +10,15 @@
 //! compare them on random and special values: NaN, infinities, signed
 //! zeros, subnormals, the ends of the integer range).
 //!
-//! The x86-64-v3 level has no public name. Code generic over `L: Level`
-//! gets it only from [`crate::vectorize`], which instantiates a job with it
-//! after run-time detection found AVX2 and FMA, and calls that
-//! instantiation from a `#[target_feature]` function so that the job's
-//! inlined body is compiled for those instructions (or from
-//! [`crate::dispatch`], after the same detection, without that function).
-//! That is the soundness argument of every `unsafe` block here: a function that runs with
-//! `L::V3` true runs in a process whose CPU has AVX2 and FMA.
+//! The x86-64-v3 and v4 levels have no public name. Code generic over `L:
+//! Level` gets them only from [`crate::vectorize`], which instantiates a job
+//! with one after run-time detection found AVX2 and FMA (and AVX-512 for
+//! v4), and calls that instantiation from a `#[target_feature]` function so
+//! that the job's inlined body is compiled for those instructions (or from
+//! [`crate::dispatch`] and [`crate::vectorize_at`], after the same
+//! detection). That is the soundness argument of every `unsafe` block here:
+//! a function that runs with `L::V3` true runs in a process whose CPU has
+//! AVX2 and FMA (v4 uses v3's intrinsics).
 //!
 //! Storage is `wide`'s: `f32x8<L>` is `#[repr(transparent)]` over
 //! `wide::f32x8` (32 bytes, aligned to 32), so buffers of `wide` vectors
@@ -36,61 +37,10 @@ use core::arch::x86_64::*;
 
 use bytemuck::{Pod, Zeroable};
 
-/// An instruction-set level the lane types are compiled for. Sealed: the
-/// two levels are [`Baseline`] and the x86-64-v3 level that only
-/// [`crate::vectorize`] names.
-pub trait Level: Copy + Send + Sync + Default + core::fmt::Debug + 'static + private::Sealed {
-    /// True at the x86-64-v3 level and above (AVX2 and FMA present): the
-    /// lane operations use their AVX2 intrinsics.
-    const V3: bool;
-    /// True at the x86-64-v4 level (AVX-512 F, VL, BW, DQ present too):
-    /// the same intrinsics as v3, in code compiled for AVX-512.
-    const V4: bool;
-}
+mod level;
 
-/// The level the build targets: `wide`'s own code paths.
-#[derive(Clone, Copy, Default, Debug, PartialEq, Eq)]
-pub struct Baseline;
-
-impl Level for Baseline {
-    const V3: bool = false;
-    const V4: bool = false;
-}
-
-impl private::Sealed for Baseline {}
-
-pub(crate) mod private {
-    /// Keeps [`super::Level`] closed to this crate's types.
-    #[allow(unreachable_pub, reason = "a supertrait of the public `Level`")]
-    pub trait Sealed {}
-
-    /// The x86-64-v3 level (AVX2, FMA). Public in a private module: it can
-    /// appear as a type argument, but no other crate can name it.
-    #[allow(unreachable_pub, reason = "public so that it may be a type argument of public generics")]
-    #[derive(Clone, Copy, Default, Debug, PartialEq, Eq)]
-    pub struct V3;
-
-    impl Sealed for V3 {}
-
-    impl super::Level for V3 {
-        const V3: bool = true;
-        const V4: bool = false;
-    }
-
-    /// The x86-64-v4 level (AVX-512 F, VL, BW, DQ besides v3's). Its lane
-    /// operations are v3's; only the code around them is compiled for
-    /// AVX-512.
-    #[allow(unreachable_pub, reason = "public so that it may be a type argument of public generics")]
-    #[derive(Clone, Copy, Default, Debug, PartialEq, Eq)]
-    pub struct V4;
-
-    impl Sealed for V4 {}
-
-    impl super::Level for V4 {
-        const V3: bool = true;
-        const V4: bool = true;
-    }
-}
+pub(crate) use level::private;
+pub use level::{Baseline, Level};
 
 /// `$v3` (an expression using AVX2 intrinsics) at the x86-64-v3 level,
 /// `$base` otherwise.
