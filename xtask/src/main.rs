@@ -1,6 +1,7 @@
 //! zline developer tasks. `cargo xtask bench` measures frame times;
 //! `cargo xtask regress` compares renders with reference images;
-//! `cargo xtask modules` checks that no crate has a module cycle.
+//! `cargo xtask modules` checks that no crate has a module cycle;
+//! `cargo xtask kernels` counts the compiled kernel jobs against a budget.
 
 use std::path::PathBuf;
 
@@ -11,6 +12,7 @@ mod bench;
 mod chart;
 mod contact;
 mod docs;
+mod kernels;
 mod modules;
 mod ray_batch;
 mod regress;
@@ -51,6 +53,19 @@ enum Task {
         /// Tile edge in pixels.
         #[arg(long, default_value_t = zline::pipeline::RenderOptions::default().tile_size)]
         tile_size: u32,
+    },
+    /// Count the compiled kernel jobs per SIMD level in the zline binary,
+    /// hold them against the budget in xtask/kernels.toml and check that no
+    /// AVX intrinsic was left out of line (fails otherwise).
+    Kernels {
+        /// The binary to read (default: the zline beside this xtask, else
+        /// target/release/zline, else xtask itself).
+        #[arg(long)]
+        binary: Option<PathBuf>,
+        /// Build zline with v0 symbol names (target/kernels) and list the
+        /// jobs by the kernel they were made from.
+        #[arg(long)]
+        by_kernel: bool,
     },
     /// Render the texture-mapping pictures of the docs (checkerboard floor:
     /// perspective-correct vs affine, nearest vs trilinear).
@@ -236,6 +251,7 @@ fn main() -> Result<()> {
         Task::RayBatch { shards, size } => ray_batch::run(shards, &size),
         Task::ViewScreenshot { out, size, model, flags } => view_screenshot::run(&out, &model, size, &flags),
         Task::TerrainAsset { out } => terrain::write_assets(&out),
+        Task::Kernels { binary, by_kernel } => kernels::run(binary, by_kernel),
         Task::TerrainBench { size, terrain_error, frames } => terrain::bench(size, terrain_error, frames),
     }
 }

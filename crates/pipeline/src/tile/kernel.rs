@@ -1,30 +1,61 @@
-//! The span kernels: one monomorphized function per [`Kernel`], pass and
-//! texture use.
+//! The span kernels: one function per table of [`KernelTables`] (the
+//! planes a kernel reads are its type), each compiled once per SIMD level.
 //!
 //! [`TileTarget::blocks`] is the loop every kernel shares — depth test,
 //! alpha test, depth and colour writes or blending — and each kernel passes
 //! it the closure that shades eight samples from their interpolated
-//! attributes. What varies between primitives is a type parameter, not a
-//! branch in that loop (the one exception, the transparency pass's fog, is
-//! the same for a whole frame); [`super::params`] has the parameters.
+//! attributes. The choices that do not change the planes (interpolation,
+//! clamp, pass, alpha use, level of detail, shadows) are run-time values
+//! tested per block ([`super::params`]); the lighting of every Phong-family
+//! kernel goes through one seam, [`lit`].
 //!
-//! [`Kernel`]: crate::setup::Kernel
+//! [`KernelTables`]: crate::setup::KernelTables
 
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, Span, LANES};
 use zline_shading::Vec3x8;
 use zline_simd::lanes::{f32x8, i32x8, Level};
 
-use super::params::{Alpha, Clamp, Derivatives, IgnoreAlpha, Interp, Lod, Pass};
+use super::params::{AlphaTest, AnyPass, Interp, Lod, Pass};
 use super::target::{load, load_for_blend, store, FrameTexture, ShadeContext, TileTarget};
 use crate::setup::layout::{gouraud, phong, textured};
-use crate::setup::{Flat, Gouraud, Phong, Primitive, TexturedFlat, TexturedGouraud, TexturedPhong};
+use crate::setup::{
+    AlphaUse, Flat, Gouraud, LevelOfDetail, Phong, Primitive, TexturedFlat, TexturedGouraud, TexturedPhong,
+};
+use zline_shading::PreparedMaterial;
 
 /// What both Phong kernels recover per sample ([`phong`] layout): the
 /// factor w, the eye position and the re-normalized normal.
 #[inline(always)]
-fn phong_point<const N: usize, I: Interp, S: Level>(a: &[f32x8<S>; N]) -> (f32x8<S>, Vec3x8<S>, Vec3x8<S>) {
-    let w = I::w(a[phong::Q]);
+fn phong_point<const N: usize, S: Level>(
+    interp: Interp,
+    a: &[f32x8<S>; N],
+) -> (f32x8<S>, Vec3x8<S>, Vec3x8<S>) {
+    let w = interp.w(a[phong::Q]);
     (w, triple(a, phong::EYE, w), triple(a, phong::NORMAL, w).normalize_or_zero())
+}
+
+/// The lighting seam: the unclamped ambient+diffuse and specular parts of
+/// material `m` at eight samples (eye-space `eye`, unit `normal`), with each
+/// light's share from the frame's shadow maps when it has them, else with
+/// the lights the block's planar shadow `mask` hides left out. Every
+/// Phong-family kernel (Phong, tinted, textured, perturbed) lights through
+/// here, so a lighting model is one addition at this function.
+#[inline(always)]
+pub(super) fn lit<S: Level>(
+    ctx: &ShadeContext<'_>,
+    m: &PreparedMaterial,
+    eye: Vec3x8<S>,
+    normal: Vec3x8<S>,
+    mask: i32x8<S>,
+) -> (Vec3x8<S>, Vec3x8<S>) {
+    let share = match ctx.maps {
+        Some(maps) => Some(
+            #[inline(always)]
+            move |k: u32, p: Vec3x8<S>, n: Vec3x8<S>| maps.visibility_x8(k, p, n),
+        ),
+        None => None,
+    };
+    ctx.lighting.shade_parts_x8_with(m, eye, normal, mask, share)
 }
 
 /// A unit normal as a colour: (n + 1)/2 per axis (the normals frame).
@@ -50,12 +81,12 @@ impl TileTarget {
     /// block: 6 % more instructions in the Phong kernel, measured with
     /// callgrind).
     #[inline(always)]
-    pub(super) fn scan<const N: usize, P: Pass, A: Alpha, S: Level>(
+    pub(super) fn scan<const N: usize, P: Pass, S: Level>(
         &mut self,
         (edges, depth): (&EdgeTable, &DepthPlane),
         planes: &AttributePlanes<N>,
         pass: &P,
-        alpha: &A,
+        alpha: AlphaTest,
         shade: impl Fn(&[f32x8<S>; N], i32x8<S>) -> (Vec3x8<S>, f32x8<S>) + Copy,
     ) -> u64 {
         let (depth, planes) = (*depth, *planes);
@@ -63,7 +94,7 @@ impl TileTarget {
         edges.scan(
             self.rect,
             #[inline(always)]
-            |s| n += self.blocks(&depth, &planes, s, pass, alpha, shade),
+            |s| n += self.blocks(&depth, &planes, s, pass, &alpha, shade),
         );
         n
     }
@@ -76,21 +107,22 @@ impl TileTarget {
     /// (opaque) or fogs and blends the colour without writing depth
     /// (transparent). Returns the samples that passed.
     #[inline(always)]
-    fn blocks<const N: usize, P: Pass, A: Alpha, S: Level>(
+    fn blocks<const N: usize, P: Pass, S: Level>(
         &mut self,
         depth: &DepthPlane,
         attrs: &AttributePlanes<N>,
         span: Span,
         pass: &P,
-        alpha_use: &A,
+        alpha_use: &AlphaTest,
         shade: impl Fn(&[f32x8<S>; N], i32x8<S>) -> (Vec3x8<S>, f32x8<S>),
     ) -> u64 {
         let row = self.index(self.origin, span.y);
         let origin = self.origin;
         let opacity = pass.opacity();
+        let blends = pass.blends();
         let (zbuf, [red, green, blue], shadow) = (&mut self.depth, &mut self.rgb, &self.shadow);
         // The alpha plane, blended like a colour of 1 (coverage only).
-        let mut coverage = (P::BLENDS && self.coverage).then_some(&mut self.alpha);
+        let mut coverage = (blends && self.coverage).then_some(&mut self.alpha);
         let mut n = 0;
         for_each_block(
             depth,
@@ -123,11 +155,11 @@ impl TileTarget {
                     return;
                 }
                 n += u64::from(bits.count_ones());
-                if P::BLENDS {
+                if blends {
                     // C = (1 − kt)·C_surface + kt·C_behind with 1 − kt =
                     // opacity·alpha (alpha is 1 but for textures whose alpha
                     // blends).
-                    let keep = opacity * A::weight(alpha);
+                    let keep = opacity * alpha_use.weight(alpha);
                     let behind = f32x8::ONE - keep;
                     let c = pass.fog(c, b.x, span.y, z);
                     for (plane, v) in [(&mut *red, c.x), (&mut *green, c.y), (&mut *blue, c.z)] {
@@ -155,102 +187,70 @@ impl TileTarget {
     pub(super) fn flat<P: Pass, S: Level>(&mut self, p: &Primitive<Flat>, pass: &P) -> u64 {
         let c = Vec3x8::<S>::splat(p.shader.color);
         let planes = AttributePlanes::NONE;
-        self.scan::<_, _, _, S>(
+        self.scan::<_, _, S>(
             (&p.edges, &p.depth),
             &planes,
             pass,
-            &IgnoreAlpha,
+            AlphaTest::Ignore,
             #[inline(always)]
             |_, _| (c, f32x8::ONE),
         )
     }
 
     /// SPEC §6 Gouraud: the lit vertex colours interpolated (and clamped
-    /// per sample when `C` says so).
+    /// per sample when `clamp` says so: the vertex colours were left
+    /// unclamped).
     #[inline(always)]
-    pub(super) fn gouraud<I: Interp, C: Clamp, P: Pass, S: Level>(
+    pub(super) fn gouraud<P: Pass, S: Level>(
         &mut self,
         p: &Primitive<Gouraud>,
+        (interp, clamp): (Interp, bool),
         pass: &P,
     ) -> u64 {
-        self.scan::<_, _, _, S>(
+        self.scan::<_, _, S>(
             (&p.edges, &p.depth),
             &p.shader.planes,
             pass,
-            &IgnoreAlpha,
+            AlphaTest::Ignore,
             #[inline(always)]
             |a, _| {
                 let (q, c) = (a[gouraud::Q], gouraud::COLOR);
-                let c =
-                    Vec3x8 { x: I::divide(a[c], q), y: I::divide(a[c + 1], q), z: I::divide(a[c + 2], q) };
-                (C::clamp(c), f32x8::ONE)
+                let c = Vec3x8 {
+                    x: interp.divide(a[c], q),
+                    y: interp.divide(a[c + 1], q),
+                    z: interp.divide(a[c + 2], q),
+                };
+                (if clamp { c.clamp01() } else { c }, f32x8::ONE)
             },
         )
     }
 
     /// SPEC §6 Phong: normal and eye position interpolated, the normal
-    /// re-normalized per sample, the lighting model per sample.
+    /// re-normalized per sample, the lighting model per sample ([`lit`]);
+    /// in the normals frame, the normal encoded instead.
     #[inline(always)]
-    pub(super) fn phong<I: Interp, P: Pass, S: Level>(
+    pub(super) fn phong<S: Level>(
         &mut self,
         p: &Primitive<Phong<{ phong::LEN }>>,
+        interp: Interp,
         ctx: &ShadeContext<'_>,
-        pass: &P,
+        pass: &AnyPass<'_>,
     ) -> u64 {
-        let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
-        let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
-        if ctx.normals {
-            return self.scan::<_, _, _, S>(
-                edges,
-                planes,
-                pass,
-                &IgnoreAlpha,
-                #[inline(always)]
-                |a, _| (encode_normal(phong_point::<_, I, _>(a).2), f32x8::ONE),
-            );
-        }
-        if let Some(maps) = ctx.maps {
-            return self.scan::<_, _, _, S>(
-                edges,
-                planes,
-                pass,
-                &IgnoreAlpha,
-                #[inline(always)]
-                |a, _| {
-                    let (_, eye, normal) = phong_point::<_, I, _>(a);
-                    let (ad, sp) = l.shade_parts_x8_shared(
-                        m,
-                        eye,
-                        normal,
-                        #[inline(always)]
-                        |k, p, n| maps.visibility_x8(k, p, n),
-                    );
-                    ((ad + sp).clamp01(), f32x8::ONE)
-                },
-            );
-        }
-        if m.shadow_bits.is_some() {
-            return self.scan::<_, _, _, S>(
-                edges,
-                planes,
-                pass,
-                &IgnoreAlpha,
-                #[inline(always)]
-                |a, mask| {
-                    let (_, eye, normal) = phong_point::<_, I, _>(a);
-                    (l.shade_x8_shadowed(m, eye, normal, mask), f32x8::ONE)
-                },
-            );
-        }
-        self.scan::<_, _, _, S>(
-            edges,
-            planes,
+        let m = &ctx.materials[p.shader.material as usize];
+        let normals = ctx.normals;
+        self.scan::<_, _, S>(
+            (&p.edges, &p.depth),
+            &p.shader.planes,
             pass,
-            &IgnoreAlpha,
+            AlphaTest::Ignore,
             #[inline(always)]
-            |a, _| {
-                let (_, eye, normal) = phong_point::<_, I, _>(a);
-                (l.shade_x8(m, eye, normal), f32x8::ONE)
+            |a, mask| {
+                let (_, eye, normal) = phong_point(interp, a);
+                if normals {
+                    return (encode_normal(normal), f32x8::ONE);
+                }
+                let (ad, sp) = lit(ctx, m, eye, normal, mask);
+                ((ad + sp).clamp01(), f32x8::ONE)
             },
         )
     }
@@ -258,57 +258,23 @@ impl TileTarget {
     /// [`Self::phong`] with the vertex colour interpolated too, multiplying
     /// ka and kd like a texel: c ⊙ (ambient+diffuse) + specular, clamped.
     #[inline(always)]
-    pub(super) fn phong_tinted<I: Interp, P: Pass, S: Level>(
+    pub(super) fn phong_tinted<S: Level>(
         &mut self,
         p: &Primitive<Phong<{ phong::COLORED_LEN }>>,
+        interp: Interp,
         ctx: &ShadeContext<'_>,
-        pass: &P,
+        pass: &AnyPass<'_>,
     ) -> u64 {
-        let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
-        let (edges, planes) = ((&p.edges, &p.depth), &p.shader.planes);
-        if let Some(maps) = ctx.maps {
-            return self.scan::<_, _, _, S>(
-                edges,
-                planes,
-                pass,
-                &IgnoreAlpha,
-                #[inline(always)]
-                |a, _| {
-                    let (w, eye, normal) = phong_point::<_, I, _>(a);
-                    let (ambient_diffuse, specular) = l.shade_parts_x8_shared(
-                        m,
-                        eye,
-                        normal,
-                        #[inline(always)]
-                        |k, p, n| maps.visibility_x8(k, p, n),
-                    );
-                    ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
-                },
-            );
-        }
-        if m.shadow_bits.is_some() {
-            return self.scan::<_, _, _, S>(
-                edges,
-                planes,
-                pass,
-                &IgnoreAlpha,
-                #[inline(always)]
-                |a, mask| {
-                    let (w, eye, normal) = phong_point::<_, I, _>(a);
-                    let (ambient_diffuse, specular) = l.shade_parts_x8_shadowed(m, eye, normal, mask);
-                    ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
-                },
-            );
-        }
-        self.scan::<_, _, _, S>(
-            edges,
-            planes,
+        let m = &ctx.materials[p.shader.material as usize];
+        self.scan::<_, _, S>(
+            (&p.edges, &p.depth),
+            &p.shader.planes,
             pass,
-            &IgnoreAlpha,
+            AlphaTest::Ignore,
             #[inline(always)]
-            |a, _| {
-                let (w, eye, normal) = phong_point::<_, I, _>(a);
-                let (ambient_diffuse, specular) = l.shade_parts_x8(m, eye, normal);
+            |a, mask| {
+                let (w, eye, normal) = phong_point(interp, a);
+                let (ambient_diffuse, specular) = lit(ctx, m, eye, normal, mask);
                 ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
             },
         )
@@ -316,28 +282,27 @@ impl TileTarget {
 
     /// SPEC §7, the part every textured kernel shares: texture coordinates
     /// interpolated, the texel sampled with the map's sampler at the level
-    /// `L` finds, and c = texel ⊙ (ambient+diffuse) + specular, clamped,
-    /// with the parts from `parts(attributes, w)`.
+    /// `lod` finds, and c = texel ⊙ (ambient+diffuse) + specular, clamped,
+    /// with the parts from `parts(attributes, w, mask)`.
     #[inline(always)]
-    pub(super) fn textured<const N: usize, I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
+    pub(super) fn textured<const N: usize, S: Level>(
         &mut self,
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
-        map: &FrameTexture,
-        pass: &P,
+        (map, interp, lod, alpha): (&FrameTexture, Interp, Lod, AlphaTest),
+        pass: &AnyPass<'_>,
         parts: impl Fn(&[f32x8<S>; N], f32x8<S>, i32x8<S>) -> (Vec3x8<S>, Vec3x8<S>) + Copy,
     ) -> u64 {
-        let derivatives = Derivatives::new(planes, map);
         let (texture, sampler) = (&*map.texture, &map.sampler);
-        self.scan::<_, _, _, S>(
+        self.scan::<_, _, S>(
             (edges, depth),
             planes,
             pass,
-            &A::new(map),
+            alpha,
             #[inline(always)]
             |a, mask| {
-                let inv = I::w(a[textured::Q]);
+                let inv = interp.w(a[textured::Q]);
                 let (s, t) = (a[textured::S] * inv, a[textured::T] * inv);
-                let lods = L::lods::<I, _>(&derivatives, s, t, inv);
+                let lods = lod.lods(interp, s, t, inv);
                 let [r, g, b, texel_alpha] = texture.sample_x8(sampler, s, t, lods);
                 let texel = Vec3x8 { x: r, y: g, z: b };
                 let (ambient_diffuse, specular) = parts(a, inv, mask);
@@ -348,17 +313,20 @@ impl TileTarget {
 
     /// Textured flat: the parts lit once at the centroid.
     #[inline(always)]
-    pub(super) fn textured_flat<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
+    pub(super) fn textured_flat<S: Level>(
         &mut self,
         p: &Primitive<TexturedFlat>,
+        (interp, lod, alpha): (Interp, LevelOfDetail, AlphaUse),
         ctx: &ShadeContext<'_>,
-        pass: &P,
+        pass: &AnyPass<'_>,
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
+        let uses =
+            (map, interp, Lod::new(lod, &p.shader.planes, map), AlphaTest::new(alpha, pass.blends(), map));
         let (ad, spec) = (Vec3x8::splat(p.shader.ambient_diffuse), Vec3x8::splat(p.shader.specular));
-        self.textured::<_, I, L, P, A, S>(
+        self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
-            map,
+            uses,
             pass,
             #[inline(always)]
             |_, _, _| (ad, spec),
@@ -367,16 +335,19 @@ impl TileTarget {
 
     /// Textured Gouraud: the parts lit at the vertices, interpolated apart.
     #[inline(always)]
-    pub(super) fn textured_gouraud<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
+    pub(super) fn textured_gouraud<S: Level>(
         &mut self,
         p: &Primitive<TexturedGouraud>,
+        (interp, lod, alpha): (Interp, LevelOfDetail, AlphaUse),
         ctx: &ShadeContext<'_>,
-        pass: &P,
+        pass: &AnyPass<'_>,
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
-        self.textured::<_, I, L, P, A, S>(
+        let uses =
+            (map, interp, Lod::new(lod, &p.shader.planes, map), AlphaTest::new(alpha, pass.blends(), map));
+        self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
-            map,
+            uses,
             pass,
             #[inline(always)]
             |a, w, _| (triple(a, textured::AMBIENT_DIFFUSE, w), triple(a, textured::SPECULAR, w)),
@@ -385,54 +356,25 @@ impl TileTarget {
 
     /// Textured Phong: the parts lit per sample.
     #[inline(always)]
-    pub(super) fn textured_phong<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
+    pub(super) fn textured_phong<S: Level>(
         &mut self,
         p: &Primitive<TexturedPhong<{ textured::PHONG_LEN }>>,
+        (interp, lod, alpha): (Interp, LevelOfDetail, AlphaUse),
         ctx: &ShadeContext<'_>,
-        pass: &P,
+        pass: &AnyPass<'_>,
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
-        let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
-        let prim = (&p.edges, &p.depth, &p.shader.planes);
-        if let Some(maps) = ctx.maps {
-            return self.textured::<_, I, L, P, A, S>(
-                prim,
-                map,
-                pass,
-                #[inline(always)]
-                |a, w, _| {
-                    let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-                    let share = zline_simd::inlined(
-                        #[inline(always)]
-                        |k, p, n| maps.visibility_x8(k, p, n),
-                    );
-                    l.shade_parts_x8_shared(m, triple(a, textured::EYE, w), normal, share)
-                },
-            );
-        }
-        if m.shadow_bits.is_some() {
-            return self.textured::<_, I, L, P, A, S>(
-                prim,
-                map,
-                pass,
-                #[inline(always)]
-                |a, w, mask| {
-                    let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-                    l.shade_parts_x8_shadowed(m, triple(a, textured::EYE, w), normal, mask)
-                },
-            );
-        }
-        self.textured::<_, I, L, P, A, S>(
-            prim,
-            map,
+        let uses =
+            (map, interp, Lod::new(lod, &p.shader.planes, map), AlphaTest::new(alpha, pass.blends(), map));
+        let m = &ctx.materials[p.shader.material as usize];
+        self.textured::<_, S>(
+            (&p.edges, &p.depth, &p.shader.planes),
+            uses,
             pass,
             #[inline(always)]
-            |a, w, _| {
-                l.shade_parts_x8(
-                    m,
-                    triple(a, textured::EYE, w),
-                    triple(a, textured::NORMAL, w).normalize_or_zero(),
-                )
+            |a, w, mask| {
+                let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
+                lit(ctx, m, triple(a, textured::EYE, w), normal, mask)
             },
         )
     }
@@ -440,34 +382,25 @@ impl TileTarget {
     /// Textured Phong with vertex colours: the interpolated colour
     /// multiplies ambient+diffuse like the texel.
     #[inline(always)]
-    pub(super) fn textured_colored_phong<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
+    pub(super) fn textured_colored_phong<S: Level>(
         &mut self,
         p: &Primitive<TexturedPhong<{ textured::COLORED_PHONG_LEN }>>,
+        (interp, lod, alpha): (Interp, LevelOfDetail, AlphaUse),
         ctx: &ShadeContext<'_>,
-        pass: &P,
+        pass: &AnyPass<'_>,
     ) -> u64 {
         let map = &ctx.textures[p.shader.texture as usize];
-        let (m, l) = (&ctx.materials[p.shader.material as usize], ctx.lighting);
-        // Shadowed or not in one body: this kernel is out of line already.
-        let maps = ctx.maps;
-        self.textured::<_, I, L, P, A, S>(
+        let uses =
+            (map, interp, Lod::new(lod, &p.shader.planes, map), AlphaTest::new(alpha, pass.blends(), map));
+        let m = &ctx.materials[p.shader.material as usize];
+        self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
-            map,
+            uses,
             pass,
             #[inline(always)]
             |a, w, mask| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-                let eye = triple(a, textured::EYE, w);
-                let (ambient_diffuse, specular) = match maps {
-                    Some(maps) => l.shade_parts_x8_shared(
-                        m,
-                        eye,
-                        normal,
-                        #[inline(always)]
-                        |k, p, n| maps.visibility_x8(k, p, n),
-                    ),
-                    None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
-                };
+                let (ambient_diffuse, specular) = lit(ctx, m, triple(a, textured::EYE, w), normal, mask);
                 (triple(a, textured::COLOR, w) * ambient_diffuse, specular)
             },
         )

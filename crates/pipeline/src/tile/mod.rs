@@ -13,10 +13,11 @@
 //! any tile size.
 //!
 //! Each primitive names its kernel ([`Kernel`], chosen in setup); [`kernel`]
-//! holds one monomorphized span function per kernel, pass and texture use,
-//! so the per-sample loop contains only what that primitive needs. The
-//! pass (opaque, transparent, transparent with fog) is an argument of the
-//! draw, not state kept on the tile.
+//! holds one span function per kernel table, compiled once per SIMD level,
+//! and the choices that do not change the planes it reads are run-time
+//! values tested per block ([`params`]). The pass (opaque, transparent,
+//! transparent with fog) is an argument of the draw, not state kept on the
+//! tile.
 
 mod kernel;
 mod lines;
@@ -29,19 +30,16 @@ pub(crate) use target::{load, load_for_blend, sample, store};
 pub use target::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 
 use zline_raster::LANES;
-use zline_scene::{GouraudClamp, Interpolation};
+use zline_scene::GouraudClamp;
 use zline_shading::Vec3x8;
 use zline_simd::lanes::{f32x8, Level};
 use zline_simd::Vectorized;
 
 use crate::bin::{OpaqueRef, PrimitiveRef};
 use crate::fog::{FogFactors, FogPass, FogVisitor};
-use crate::setup::{AlphaUse, Kernel, LevelOfDetail, PassKind, PrimitiveChunk, TexturedLighting};
+use crate::setup::{Kernel, PassKind, PrimitiveChunk, TexturedLighting};
 
-use params::{
-    Alpha, BaseLod, Blend, ClampPerSample, ClampedAtVertices, DerivativeLod, IgnoreAlpha, Interp, Linear,
-    Lod, MaskAlpha, Opaque, Pass, Perspective, TextureAlpha,
-};
+use params::{AnyPass, Blend, Interp, Opaque, Pass};
 
 /// How many primitives ahead in a bin the opaque pass asks for.
 const PREFETCH_AHEAD: usize = 4;
@@ -202,9 +200,11 @@ impl TileTarget {
         pass.specialized(FogTile { target: self, color: pass.color() });
     }
 
-    /// Draws one primitive with its kernel in `pass`: the one place where a
-    /// primitive's [`Kernel`] becomes a monomorphized span function. Each
-    /// kernel runs as a job of its own at level `S` ([`apart`]).
+    /// Draws one primitive with its kernel in `pass`: where a primitive's
+    /// [`Kernel`] picks its span function, each a job of its own at level
+    /// `S` ([`apart`]). Flat and Gouraud primitives (a few instructions a
+    /// block) have a job per pass; the shading kernels take the pass as a
+    /// value ([`Self::draw_shaded`]).
     #[inline(always)]
     fn draw<P: Pass, S: Level>(
         &mut self,
@@ -220,122 +220,74 @@ impl TileTarget {
                 || self.flat::<P, S>(&t.flat[i], pass),
             ),
             Kernel::Gouraud { interpolation, clamp } => {
-                let p = &t.gouraud[i];
-                match (interpolation, clamp) {
-                    (Interpolation::PerspectiveCorrect, GouraudClamp::PerVertex) => apart::<S, _>(
-                        #[inline(always)]
-                        || self.gouraud::<Perspective, ClampedAtVertices, P, S>(p, pass),
-                    ),
-                    (Interpolation::ScreenLinear, GouraudClamp::PerVertex) => apart::<S, _>(
-                        #[inline(always)]
-                        || self.gouraud::<Linear, ClampedAtVertices, P, S>(p, pass),
-                    ),
-                    (Interpolation::PerspectiveCorrect, GouraudClamp::PerSample) => apart::<S, _>(
-                        #[inline(always)]
-                        || self.gouraud::<Perspective, ClampPerSample, P, S>(p, pass),
-                    ),
-                    (Interpolation::ScreenLinear, GouraudClamp::PerSample) => apart::<S, _>(
-                        #[inline(always)]
-                        || self.gouraud::<Linear, ClampPerSample, P, S>(p, pass),
-                    ),
-                }
+                let how = (Interp::of(interpolation), clamp == GouraudClamp::PerSample);
+                apart::<S, _>(
+                    #[inline(always)]
+                    || self.gouraud::<P, S>(&t.gouraud[i], how, pass),
+                )
             }
-            Kernel::Phong(Interpolation::PerspectiveCorrect) => apart::<S, _>(
+            _ => self.draw_shaded::<S>(chunk, (kernel, index), ctx, pass.any()),
+        }
+    }
+
+    /// The shading kernels of [`Self::draw`]: one job per table and level,
+    /// whatever the pass, interpolation, level of detail, alpha use, map
+    /// encoding or shadows (run-time values, see [`params`]). Generic over
+    /// the level only, so that each closure here is one job per level.
+    #[inline(always)]
+    fn draw_shaded<S: Level>(
+        &mut self,
+        chunk: &PrimitiveChunk,
+        (kernel, index): (Kernel, u32),
+        ctx: &ShadeContext<'_>,
+        pass: AnyPass<'_>,
+    ) -> u64 {
+        let (t, i, pass) = (&chunk.tables, index as usize, &pass);
+        match kernel {
+            // `draw` draws these with the pass as a type.
+            Kernel::Flat | Kernel::Gouraud { .. } => 0,
+            Kernel::Phong(interpolation) => apart::<S, _>(
                 #[inline(always)]
-                || self.phong::<Perspective, P, S>(&t.phong[i], ctx, pass),
+                || self.phong::<S>(&t.phong[i], Interp::of(interpolation), ctx, pass),
             ),
-            Kernel::Phong(Interpolation::ScreenLinear) => apart::<S, _>(
+            Kernel::ColoredPhong(interpolation) => apart::<S, _>(
                 #[inline(always)]
-                || self.phong::<Linear, P, S>(&t.phong[i], ctx, pass),
-            ),
-            Kernel::ColoredPhong(Interpolation::PerspectiveCorrect) => apart::<S, _>(
-                #[inline(always)]
-                || self.phong_tinted::<Perspective, P, S>(&t.colored_phong[i], ctx, pass),
-            ),
-            Kernel::ColoredPhong(Interpolation::ScreenLinear) => apart::<S, _>(
-                #[inline(always)]
-                || self.phong_tinted::<Linear, P, S>(&t.colored_phong[i], ctx, pass),
+                || self.phong_tinted::<S>(&t.colored_phong[i], Interp::of(interpolation), ctx, pass),
             ),
             Kernel::Textured { lighting, interpolation, lod, alpha } => {
-                let k = TexturedChoice { lighting, lod, alpha, index: i };
-                match interpolation {
-                    Interpolation::PerspectiveCorrect => {
-                        self.textured_lod::<Perspective, P, S>(chunk, k, ctx, pass)
-                    }
-                    Interpolation::ScreenLinear => self.textured_lod::<Linear, P, S>(chunk, k, ctx, pass),
+                let how = (Interp::of(interpolation), lod, alpha);
+                match lighting {
+                    TexturedLighting::Flat => apart::<S, _>(
+                        #[inline(always)]
+                        || self.textured_flat::<S>(&t.textured_flat[i], how, ctx, pass),
+                    ),
+                    TexturedLighting::Gouraud => apart::<S, _>(
+                        #[inline(always)]
+                        || self.textured_gouraud::<S>(&t.textured_gouraud[i], how, ctx, pass),
+                    ),
+                    TexturedLighting::Phong => apart::<S, _>(
+                        #[inline(always)]
+                        || self.textured_phong::<S>(&t.textured_phong[i], how, ctx, pass),
+                    ),
+                    TexturedLighting::ColoredPhong => apart::<S, _>(
+                        #[inline(always)]
+                        || self.textured_colored_phong::<S>(&t.textured_colored_phong[i], how, ctx, pass),
+                    ),
                 }
             }
             Kernel::Perturbed { encoding, interpolation, texture } => {
-                self.perturbed::<P, S>(&t.perturbed[i], (encoding, interpolation, texture), ctx, pass)
+                let (p, interp) = (&t.perturbed[i], Interp::of(interpolation));
+                match texture {
+                    None => apart::<S, _>(
+                        #[inline(always)]
+                        || self.perturbed_plain::<S>(p, (encoding, interp), ctx, pass),
+                    ),
+                    Some((lod, alpha)) => apart::<S, _>(
+                        #[inline(always)]
+                        || self.perturbed_textured::<S>(p, (encoding, interp, lod, alpha), ctx, pass),
+                    ),
+                }
             }
-        }
-    }
-
-    /// Textured kernels, step 2: the level of detail.
-    #[inline(always)]
-    fn textured_lod<I: Interp, P: Pass, S: Level>(
-        &mut self,
-        chunk: &PrimitiveChunk,
-        k: TexturedChoice,
-        ctx: &ShadeContext<'_>,
-        pass: &P,
-    ) -> u64 {
-        match k.lod {
-            LevelOfDetail::Base => self.textured_alpha::<I, BaseLod, P, S>(chunk, k, ctx, pass),
-            LevelOfDetail::Derivatives => self.textured_alpha::<I, DerivativeLod, P, S>(chunk, k, ctx, pass),
-        }
-    }
-
-    /// Textured kernels, step 3: what the texel's alpha does. A texture
-    /// whose alpha blends is drawn only in the transparency pass; in the
-    /// opaque pass its alpha is ignored.
-    #[inline(always)]
-    fn textured_alpha<I: Interp, L: Lod, P: Pass, S: Level>(
-        &mut self,
-        chunk: &PrimitiveChunk,
-        k: TexturedChoice,
-        ctx: &ShadeContext<'_>,
-        pass: &P,
-    ) -> u64 {
-        match (k.alpha, P::BLENDS) {
-            (AlphaUse::Ignore, _) | (AlphaUse::Blend, false) => {
-                self.textured_lighting::<I, L, P, IgnoreAlpha, S>(chunk, k, ctx, pass)
-            }
-            (AlphaUse::Mask, _) => self.textured_lighting::<I, L, P, MaskAlpha, S>(chunk, k, ctx, pass),
-            (AlphaUse::Blend, true) => {
-                self.textured_lighting::<I, L, P, TextureAlpha, S>(chunk, k, ctx, pass)
-            }
-        }
-    }
-
-    /// Textured kernels, step 4: the lighting combined with the texel, each
-    /// combination a job of its own.
-    #[inline(always)]
-    fn textured_lighting<I: Interp, L: Lod, P: Pass, A: Alpha, S: Level>(
-        &mut self,
-        chunk: &PrimitiveChunk,
-        k: TexturedChoice,
-        ctx: &ShadeContext<'_>,
-        pass: &P,
-    ) -> u64 {
-        let (t, i) = (&chunk.tables, k.index);
-        match k.lighting {
-            TexturedLighting::Flat => apart::<S, _>(
-                #[inline(always)]
-                || self.textured_flat::<I, L, P, A, S>(&t.textured_flat[i], ctx, pass),
-            ),
-            TexturedLighting::Gouraud => apart::<S, _>(
-                #[inline(always)]
-                || self.textured_gouraud::<I, L, P, A, S>(&t.textured_gouraud[i], ctx, pass),
-            ),
-            TexturedLighting::Phong => apart::<S, _>(
-                #[inline(always)]
-                || self.textured_phong::<I, L, P, A, S>(&t.textured_phong[i], ctx, pass),
-            ),
-            TexturedLighting::ColoredPhong => apart::<S, _>(
-                #[inline(always)]
-                || self.textured_colored_phong::<I, L, P, A, S>(&t.textured_colored_phong[i], ctx, pass),
-            ),
         }
     }
 }
@@ -366,16 +318,6 @@ fn back_to_front(order: &mut Vec<(f32, PrimitiveRef)>, keyed: impl Iterator<Item
             )
         },
     );
-}
-
-/// The parts of a textured [`Kernel`] still to dispatch on, and the
-/// primitive's index in its table.
-#[derive(Clone, Copy, Debug)]
-struct TexturedChoice {
-    lighting: TexturedLighting,
-    lod: LevelOfDetail,
-    alpha: AlphaUse,
-    index: usize,
 }
 
 /// The fog pass over one tile, generic over the fog's factors.

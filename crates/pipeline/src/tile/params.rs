@@ -1,91 +1,67 @@
-//! The type parameters of the span kernels ([`super::kernel`]): how
-//! attributes are recovered ([`Interp`]), how Gouraud colours are clamped
-//! ([`Clamp`]), the pass ([`Pass`]), the texel's alpha ([`Alpha`]) and the
-//! texture level of detail ([`Lod`]). Each is a choice made once per
-//! primitive, so none is a branch in the per-sample loop (but [`Blend`]'s
-//! fog, which is the same for a whole frame):
+//! What a span kernel ([`super::kernel`]) is told besides its primitive:
+//! how attributes are recovered ([`Interp`]), the pass ([`Pass`],
+//! [`AnyPass`]), the texel's alpha ([`AlphaTest`]) and the texture level of
+//! detail ([`Lod`]).
 //!
-//! | parameter | types | decides |
+//! Each is a choice made once per primitive that does not change the planes
+//! a kernel reads, so each is a **run-time value** tested once per block of
+//! eight samples (the branch goes the same way for the whole primitive and
+//! is predicted), not a type parameter: a choice added here adds a branch,
+//! not a copy of every kernel (`cargo xtask kernels` counts the copies).
+//! Only the pass of the two cheapest kernels (flat and Gouraud, whose
+//! blocks are a few instructions) is still a type, [`Opaque`] or [`Blend`];
+//! the shading kernels take the pass as an [`AnyPass`].
+//!
+//! | value | choices | decides |
 //! |---|---|---|
-//! | [`Interp`] | [`Perspective`], [`Linear`] | a/w ÷ 1/w per sample, or the plane value itself |
-//! | [`Pass`] | [`Opaque`], [`Blend`] | depth write and replace, or blend (fogged per sample when the frame has fog) |
-//! | [`Alpha`] | [`IgnoreAlpha`], [`MaskAlpha`], [`TextureAlpha`] | the texel's alpha ignored, tested against the cutoff, or blended |
-//! | [`Lod`] | [`BaseLod`], [`DerivativeLod`] | level 0, or the level from the exact derivatives of s and t |
-//! | [`Clamp`] | [`ClampedAtVertices`], [`ClampPerSample`] | Gouraud: colours used as interpolated, or clamped per sample |
+//! | [`Interp`] | perspective, screen-linear | a/w ÷ 1/w per sample, or the plane value itself |
+//! | [`Pass`] | [`Opaque`], [`Blend`], [`AnyPass`] | depth write and replace, or blend (fogged per sample when the frame has fog) |
+//! | [`AlphaTest`] | ignore, mask, blend | the texel's alpha ignored, tested against the cutoff, or blended |
+//! | [`Lod`] | base, derivatives | level 0, or the level from the exact derivatives of s and t |
 
 use zline_raster::AttributePlanes;
+use zline_scene::Interpolation;
 use zline_shading::Vec3x8;
 use zline_simd::lanes::{f32x8, Level};
 
 use super::target::FrameTexture;
 use crate::fog::FogPass;
 use crate::setup::layout::textured;
+use crate::setup::{AlphaUse, LevelOfDetail};
 
-/// How attributes are recovered from their planes.
-pub(crate) trait Interp {
-    /// True for perspective-correct planes (a/w and 1/w).
-    const PERSPECTIVE: bool;
+/// How attributes are recovered from their planes: perspective-correct
+/// (planes hold a/w and 1/w) or screen-linear (planes hold a; no divide).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Interp {
+    /// True for perspective-correct planes.
+    pub(crate) perspective: bool,
+}
+
+impl Interp {
+    /// The recovery for `interpolation`.
+    #[inline(always)]
+    pub(crate) fn of(interpolation: Interpolation) -> Interp {
+        Interp { perspective: interpolation == Interpolation::PerspectiveCorrect }
+    }
+
     /// The factor that turns a plane value into the attribute: 1/(1/w) or 1.
-    fn w<S: Level>(q: f32x8<S>) -> f32x8<S>;
+    #[inline(always)]
+    pub(crate) fn w<S: Level>(self, q: f32x8<S>) -> f32x8<S> {
+        if self.perspective {
+            f32x8::ONE / q
+        } else {
+            f32x8::ONE
+        }
+    }
+
     /// `v` over `q` (perspective) or `v` itself.
-    fn divide<S: Level>(v: f32x8<S>, q: f32x8<S>) -> f32x8<S>;
-}
-
-/// Perspective-correct interpolation: planes hold a/w and 1/w.
-pub(crate) struct Perspective;
-
-/// Screen-linear interpolation: planes hold a; no divide.
-pub(crate) struct Linear;
-
-impl Interp for Perspective {
-    const PERSPECTIVE: bool = true;
     #[inline(always)]
-    fn w<S: Level>(q: f32x8<S>) -> f32x8<S> {
-        f32x8::ONE / q
-    }
-    #[inline(always)]
-    fn divide<S: Level>(v: f32x8<S>, q: f32x8<S>) -> f32x8<S> {
-        v / q
-    }
-}
-
-impl Interp for Linear {
-    const PERSPECTIVE: bool = false;
-    #[inline(always)]
-    fn w<S: Level>(_: f32x8<S>) -> f32x8<S> {
-        f32x8::ONE
-    }
-    #[inline(always)]
-    fn divide<S: Level>(v: f32x8<S>, _: f32x8<S>) -> f32x8<S> {
-        v
-    }
-}
-
-/// What the Gouraud kernel does with a sample's interpolated colour
-/// (`zline_scene::GouraudClamp`).
-pub(crate) trait Clamp {
-    /// The colour drawn.
-    fn clamp<S: Level>(c: Vec3x8<S>) -> Vec3x8<S>;
-}
-
-/// The vertex colours were clamped to [0, 1]: their interpolation is used
-/// as it is.
-pub(crate) struct ClampedAtVertices;
-
-/// The vertex colours are unclamped: each sample is clamped to [0, 1].
-pub(crate) struct ClampPerSample;
-
-impl Clamp for ClampedAtVertices {
-    #[inline(always)]
-    fn clamp<S: Level>(c: Vec3x8<S>) -> Vec3x8<S> {
-        c
-    }
-}
-
-impl Clamp for ClampPerSample {
-    #[inline(always)]
-    fn clamp<S: Level>(c: Vec3x8<S>) -> Vec3x8<S> {
-        c.clamp01()
+    pub(crate) fn divide<S: Level>(self, v: f32x8<S>, q: f32x8<S>) -> f32x8<S> {
+        if self.perspective {
+            v / q
+        } else {
+            v
+        }
     }
 }
 
@@ -93,12 +69,16 @@ impl Clamp for ClampPerSample {
 pub(crate) trait Pass {
     /// False: depth is written and the colour replaced (opaque). True: depth
     /// is only tested and the colour blended over the stored one.
-    const BLENDS: bool;
+    fn blends(&self) -> bool;
     /// The surface's weight 1 − kt in the blend.
     fn opacity<S: Level>(&self) -> f32x8<S>;
     /// The fragment's colour after fog (blending passes fog per sample; the
     /// opaque pass leaves fog to [`TileTarget::fog_pass`]).
+    ///
+    /// [`TileTarget::fog_pass`]: super::TileTarget::fog_pass
     fn fog<S: Level>(&self, c: Vec3x8<S>, x: i32, y: i32, z: f32x8<S>) -> Vec3x8<S>;
+    /// The same pass as a run-time value.
+    fn any(&self) -> AnyPass<'_>;
 }
 
 /// The opaque pass.
@@ -106,7 +86,8 @@ pub(crate) struct Opaque;
 
 /// The transparency pass, with per-sample fog when the frame has fog (one
 /// kernel for both: the branch is taken per block, the same way for the
-/// whole frame, and halves the transparency pass's kernel count).
+/// whole frame).
+#[derive(Clone, Copy)]
 pub(crate) struct Blend<'a> {
     /// 1 − kt.
     pub(crate) opacity: f32x8,
@@ -122,8 +103,21 @@ impl<'a> Blend<'a> {
     }
 }
 
+/// Either pass as a value, for the shading kernels: the blocks branch on
+/// it after shading.
+#[derive(Clone, Copy)]
+pub(crate) enum AnyPass<'a> {
+    /// [`Opaque`].
+    Opaque,
+    /// [`Blend`].
+    Blend(Blend<'a>),
+}
+
 impl Pass for Opaque {
-    const BLENDS: bool = false;
+    #[inline(always)]
+    fn blends(&self) -> bool {
+        false
+    }
     #[inline(always)]
     fn opacity<S: Level>(&self) -> f32x8<S> {
         f32x8::ONE
@@ -132,10 +126,17 @@ impl Pass for Opaque {
     fn fog<S: Level>(&self, c: Vec3x8<S>, _: i32, _: i32, _: f32x8<S>) -> Vec3x8<S> {
         c
     }
+    #[inline(always)]
+    fn any(&self) -> AnyPass<'_> {
+        AnyPass::Opaque
+    }
 }
 
 impl Pass for Blend<'_> {
-    const BLENDS: bool = true;
+    #[inline(always)]
+    fn blends(&self) -> bool {
+        true
+    }
     #[inline(always)]
     fn opacity<S: Level>(&self) -> f32x8<S> {
         self.opacity.at()
@@ -147,112 +148,138 @@ impl Pass for Blend<'_> {
         let g = f32x8::ONE - f;
         Vec3x8 { x: c.x * f + fc.x * g, y: c.y * f + fc.y * g, z: c.z * f + fc.z * g }
     }
+    #[inline(always)]
+    fn any(&self) -> AnyPass<'_> {
+        AnyPass::Blend(*self)
+    }
 }
 
-/// What the texel's alpha does. By default nothing: every lane stays live
-/// and the pass's opacity is used as it is.
-pub(crate) trait Alpha: Sized {
-    /// The use for a texture.
-    fn new(texture: &FrameTexture) -> Self;
+impl Pass for AnyPass<'_> {
+    #[inline(always)]
+    fn blends(&self) -> bool {
+        matches!(self, AnyPass::Blend(_))
+    }
+    #[inline(always)]
+    fn opacity<S: Level>(&self) -> f32x8<S> {
+        match self {
+            AnyPass::Opaque => f32x8::ONE,
+            AnyPass::Blend(b) => b.opacity(),
+        }
+    }
+    #[inline(always)]
+    fn fog<S: Level>(&self, c: Vec3x8<S>, x: i32, y: i32, z: f32x8<S>) -> Vec3x8<S> {
+        match self {
+            AnyPass::Opaque => c,
+            AnyPass::Blend(b) => b.fog(c, x, y, z),
+        }
+    }
+    #[inline(always)]
+    fn any(&self) -> AnyPass<'_> {
+        *self
+    }
+}
+
+/// What the texel's alpha does: nothing (every lane stays live and the
+/// pass's opacity is used as it is), a test against the cutoff, or a
+/// factor on the opacity.
+#[derive(Clone, Copy)]
+pub(crate) enum AlphaTest {
+    /// The alpha is ignored (and untextured kernels have none).
+    Ignore,
+    /// Samples whose alpha is below the cutoff are discarded before they
+    /// write depth; the rest are drawn opaque.
+    Mask(f32x8),
+    /// The alpha multiplies the pass's opacity.
+    Blend,
+}
+
+impl AlphaTest {
+    /// The test for `texture` used as `alpha` says, in a pass that blends
+    /// or not: a texture whose alpha blends is drawn in the transparency
+    /// pass only, and its alpha ignored in the opaque pass.
+    #[inline(always)]
+    pub(crate) fn new(alpha: AlphaUse, blends: bool, texture: &FrameTexture) -> AlphaTest {
+        match (alpha, blends) {
+            (AlphaUse::Ignore, _) | (AlphaUse::Blend, false) => AlphaTest::Ignore,
+            (AlphaUse::Mask, _) => AlphaTest::Mask(f32x8::splat(texture.cutoff)),
+            (AlphaUse::Blend, true) => AlphaTest::Blend,
+        }
+    }
+
     /// The lanes still live after the alpha test.
     #[inline(always)]
-    fn test<S: Level>(&self, live: f32x8<S>, _alpha: f32x8<S>) -> f32x8<S> {
-        live
+    pub(crate) fn test<S: Level>(&self, live: f32x8<S>, alpha: f32x8<S>) -> f32x8<S> {
+        match self {
+            AlphaTest::Mask(cutoff) => live & alpha.cmp_ge(cutoff.at()),
+            AlphaTest::Ignore | AlphaTest::Blend => live,
+        }
     }
+
     /// The factor on the pass's opacity.
     #[inline(always)]
-    fn weight<S: Level>(_alpha: f32x8<S>) -> f32x8<S> {
-        f32x8::ONE
+    pub(crate) fn weight<S: Level>(&self, alpha: f32x8<S>) -> f32x8<S> {
+        match self {
+            AlphaTest::Blend => alpha,
+            AlphaTest::Ignore | AlphaTest::Mask(_) => f32x8::ONE,
+        }
     }
 }
 
-/// The alpha is ignored (and untextured kernels have none).
-pub(crate) struct IgnoreAlpha;
-
-/// Samples whose alpha is below the cutoff are discarded before they write
-/// depth; the rest are drawn opaque.
-pub(crate) struct MaskAlpha(f32x8);
-
-/// The alpha multiplies the pass's opacity.
-pub(crate) struct TextureAlpha;
-
-impl Alpha for IgnoreAlpha {
-    #[inline(always)]
-    fn new(_: &FrameTexture) -> Self {
-        IgnoreAlpha
-    }
+/// How a textured kernel finds the level of detail: level 0 (nearest and
+/// bilinear filtering), or the level from the exact per-sample derivatives
+/// (trilinear filtering), read from the plane gradients.
+#[derive(Clone, Copy)]
+pub(crate) struct Lod {
+    /// `None` for level 0.
+    derivatives: Option<Derivatives>,
 }
 
-impl Alpha for MaskAlpha {
-    #[inline(always)]
-    fn new(texture: &FrameTexture) -> Self {
-        MaskAlpha(f32x8::splat(texture.cutoff))
-    }
-    #[inline(always)]
-    fn test<S: Level>(&self, live: f32x8<S>, alpha: f32x8<S>) -> f32x8<S> {
-        live & alpha.cmp_ge(self.0.at())
-    }
-}
-
-impl Alpha for TextureAlpha {
-    #[inline(always)]
-    fn new(_: &FrameTexture) -> Self {
-        TextureAlpha
-    }
-    #[inline(always)]
-    fn weight<S: Level>(alpha: f32x8<S>) -> f32x8<S> {
-        alpha
-    }
-}
-
-/// How a textured kernel finds the level of detail.
-pub(crate) trait Lod {
-    /// The levels of eight samples at (s, t), from the plane gradients
-    /// `dx`, `dy` (planes Q, S, T) and `inv` (the [`Interp::w`] factor).
-    fn lods<I: Interp, S: Level>(d: &Derivatives, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S>;
-}
-
-/// The plane gradients a [`DerivativeLod`] reads, in texels.
-pub(crate) struct Derivatives {
+/// The plane gradients a derivative level of detail reads, in texels.
+#[derive(Clone, Copy)]
+struct Derivatives {
     dx: [f32; 3],
     dy: [f32; 3],
     size: (f32, f32),
 }
 
-impl Derivatives {
-    pub(super) fn new<const N: usize>(planes: &AttributePlanes<N>, texture: &FrameTexture) -> Derivatives {
-        let (dx, dy) = (planes.dx(), planes.dy());
-        let (q, s, t) = (textured::Q, textured::S, textured::T);
-        let (w, h) = (texture.texture.width(), texture.texture.height());
-        Derivatives { dx: [dx[q], dx[s], dx[t]], dy: [dy[q], dy[s], dy[t]], size: (w as f32, h as f32) }
+impl Lod {
+    /// The rule `lod` names, for `planes` (textured layout) over `texture`.
+    pub(super) fn new<const N: usize>(
+        lod: LevelOfDetail,
+        planes: &AttributePlanes<N>,
+        texture: &FrameTexture,
+    ) -> Lod {
+        let derivatives = match lod {
+            LevelOfDetail::Base => None,
+            LevelOfDetail::Derivatives => {
+                let (dx, dy) = (planes.dx(), planes.dy());
+                let (q, s, t) = (textured::Q, textured::S, textured::T);
+                let (w, h) = (texture.texture.width(), texture.texture.height());
+                Some(Derivatives {
+                    dx: [dx[q], dx[s], dx[t]],
+                    dy: [dy[q], dy[s], dy[t]],
+                    size: (w as f32, h as f32),
+                })
+            }
+        };
+        Lod { derivatives }
     }
-}
 
-/// Level 0 (nearest and bilinear filtering).
-pub(crate) struct BaseLod;
-
-/// The level from the exact per-sample derivatives (trilinear filtering).
-pub(crate) struct DerivativeLod;
-
-impl Lod for BaseLod {
-    #[inline(always)]
-    fn lods<I: Interp, S: Level>(_: &Derivatives, _: f32x8<S>, _: f32x8<S>, _: f32x8<S>) -> f32x8<S> {
-        f32x8::ZERO
-    }
-}
-
-impl Lod for DerivativeLod {
+    /// The levels of eight samples at (s, t), with `inv` the
+    /// [`Interp::w`] factor.
+    ///
     /// `shading::lod` for eight lanes: ½·log2 of the larger squared
     /// footprint in texels, with `wide`'s vector log2 (one call instead of
     /// eight of libm's, which measured ~12 % of a textured frame). Zero or
     /// NaN footprints read level 0.
     #[inline(always)]
-    fn lods<I: Interp, S: Level>(d: &Derivatives, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S> {
+    pub(crate) fn lods<S: Level>(&self, interp: Interp, s: f32x8<S>, t: f32x8<S>, inv: f32x8<S>) -> f32x8<S> {
+        let Some(d) = &self.derivatives else { return f32x8::ZERO };
         // s = S/Q with S = s/w and Q = 1/w planes: ∂s/∂x = (∂S/∂x − s·∂Q/∂x)/Q.
         let derivative = zline_simd::inlined(
             #[inline(always)]
             |ds: f32, dq: f32, v: f32x8<S>| {
-                if I::PERSPECTIVE {
+                if interp.perspective {
                     (f32x8::splat(ds) - v * f32x8::splat(dq)) * inv
                 } else {
                     f32x8::splat(ds)

@@ -3,26 +3,22 @@
 //! interpolated tangent frame (`zline_scene::NormalMap` states the
 //! formulas), untextured or with a diffuse texture.
 //!
-//! Separate from the other kernels and reached through one out-of-line
-//! dispatch, so objects without a map compile and run exactly as before.
-//! The map's encoding is a type parameter ([`Encoding`]) like the
-//! interpolation, the pass, the level of detail and the alpha use; the
-//! map is sampled eight lanes at a time (`Texture::sample_x8` at level 0:
-//! one read for a normal map, four for a height map's central
-//! differences).
+//! Two kernels, untextured and textured, each a job of its own per SIMD
+//! level like the other kernels. The map's encoding is a run-time value
+//! tested per block like the interpolation, the pass, the level of detail
+//! and the alpha use; the map is sampled eight lanes at a time
+//! (`Texture::sample_x8` at level 0: one read for a normal map, four for a
+//! height map's central differences, in one loop so the sampler is
+//! compiled once).
 //!
 //! [`Kernel::Perturbed`]: crate::setup::Kernel::Perturbed
 
-use zline_scene::{Interpolation, NormalEncoding};
+use zline_scene::NormalEncoding;
 use zline_shading::{Filter, Sampler, Texture, Vec3x8};
 use zline_simd::lanes::{f32x8, Level};
 
-use super::apart;
-use super::kernel::{encode_normal, triple};
-use super::params::{
-    Alpha, BaseLod, DerivativeLod, IgnoreAlpha, Interp, Linear, Lod, MaskAlpha, Pass, Perspective,
-    TextureAlpha,
-};
+use super::kernel::{encode_normal, lit, triple};
+use super::params::{AlphaTest, AnyPass, Interp, Lod, Pass};
 use super::target::{FrameTexture, ShadeContext, TileTarget};
 use crate::setup::layout::perturbed::{BITANGENT, EYE, NORMAL, Q, S, T, TANGENT};
 use crate::setup::{AlphaUse, LevelOfDetail, Perturbed, Primitive};
@@ -64,44 +60,44 @@ impl<'a> MapReader<'a> {
     }
 }
 
-/// What a map's texels hold: the tangent-space normal m at (s, t).
-pub(crate) trait Encoding {
-    /// m = (x, y, z) in the frame (T, B, N).
-    fn tangent_normal<S: Level>(map: &MapReader<'_>, s: f32x8<S>, t: f32x8<S>) -> Vec3x8<S>;
-}
-
-/// A height map: m = (−k·∂h/∂s, −k·∂h/∂t, 1), central differences one
-/// texel apart.
-pub(crate) struct Height;
-
-/// A normal map: m = ((2r − 1)·k, (2g − 1)·k, 2b − 1).
-pub(crate) struct TangentNormal;
-
-impl Encoding for Height {
-    #[inline(always)]
-    fn tangent_normal<S: Level>(map: &MapReader<'_>, s: f32x8<S>, t: f32x8<S>) -> Vec3x8<S> {
-        let splat = zline_simd::inlined(
-            #[inline(always)]
-            |(a, b): (f32, f32)| (f32x8::<S>::splat(a), f32x8::<S>::splat(b)),
-        );
-        let ((ds, dt), (hw, hh)) = (splat(map.step), splat(map.half));
-        let scale = f32x8::<S>::splat(map.scale);
-        let h = zline_simd::inlined(
-            #[inline(always)]
-            |s, t| map.read(s, t)[0],
-        );
-        let dh_ds = (h(s + ds, t) - h(s - ds, t)) * hw;
-        let dh_dt = (h(s, t + dt) - h(s, t - dt)) * hh;
-        Vec3x8 { x: -(scale * dh_ds), y: -(scale * dh_dt), z: f32x8::ONE }
-    }
-}
-
-impl Encoding for TangentNormal {
-    #[inline(always)]
-    fn tangent_normal<S: Level>(map: &MapReader<'_>, s: f32x8<S>, t: f32x8<S>) -> Vec3x8<S> {
-        let [r, g, b, _] = map.read(s, t);
-        let (one, two, scale) = (f32x8::ONE, f32x8::splat(2.0), f32x8::splat(map.scale));
-        Vec3x8 { x: (two * r - one) * scale, y: (two * g - one) * scale, z: two * b - one }
+/// The tangent-space normal m = (x, y, z) in the frame (T, B, N) at
+/// (s, t), from a map of `encoding`:
+/// - a height map: m = (−k·∂h/∂s, −k·∂h/∂t, 1), central differences one
+///   texel apart;
+/// - a normal map: m = ((2r − 1)·k, (2g − 1)·k, 2b − 1).
+#[inline(always)]
+fn tangent_normal<S: Level>(
+    encoding: NormalEncoding,
+    map: &MapReader<'_>,
+    s: f32x8<S>,
+    t: f32x8<S>,
+) -> Vec3x8<S> {
+    let scale = f32x8::<S>::splat(map.scale);
+    match encoding {
+        NormalEncoding::Height => {
+            let (ds, dt) = (f32x8::<S>::splat(map.step.0), f32x8::<S>::splat(map.step.1));
+            let (hw, hh) = (f32x8::<S>::splat(map.half.0), f32x8::<S>::splat(map.half.1));
+            // h(s + ds, t), h(s − ds, t), h(s, t + dt), h(s, t − dt): one
+            // read in a loop.
+            let mut h = [f32x8::<S>::ZERO; 4];
+            for (k, h) in h.iter_mut().enumerate() {
+                let (u, v) = match k {
+                    0 => (s + ds, t),
+                    1 => (s - ds, t),
+                    2 => (s, t + dt),
+                    _ => (s, t - dt),
+                };
+                *h = map.read(u, v)[0];
+            }
+            let dh_ds = (h[0] - h[1]) * hw;
+            let dh_dt = (h[2] - h[3]) * hh;
+            Vec3x8 { x: -(scale * dh_ds), y: -(scale * dh_dt), z: f32x8::ONE }
+        }
+        NormalEncoding::Tangent => {
+            let [r, g, b, _] = map.read(s, t);
+            let (one, two) = (f32x8::ONE, f32x8::splat(2.0));
+            Vec3x8 { x: (two * r - one) * scale, y: (two * g - one) * scale, z: two * b - one }
+        }
     }
 }
 
@@ -114,139 +110,47 @@ fn scaled<S: Level>(v: Vec3x8<S>, f: f32x8<S>) -> Vec3x8<S> {
 /// The eye position and the perturbed normal
 /// normalize(m.x·T + m.y·B + m.z·normalize(N)) of eight samples.
 #[inline(always)]
-fn perturbed_point<E: Encoding, S: Level>(
+fn perturbed_point<S: Level>(
+    encoding: NormalEncoding,
     map: &MapReader<'_>,
     a: &[f32x8<S>; 15],
     w: f32x8<S>,
 ) -> (Vec3x8<S>, Vec3x8<S>) {
     let (s, t) = (a[S] * w, a[T] * w);
     let n = triple(a, NORMAL, w).normalize_or_zero();
-    let m = E::tangent_normal(map, s, t);
+    let m = tangent_normal(encoding, map, s, t);
     let perturbed =
         scaled(triple(a, TANGENT, w), m.x) + scaled(triple(a, BITANGENT, w), m.y) + scaled(n, m.z);
     (triple(a, EYE, w), perturbed.normalize_or_zero())
 }
 
 impl TileTarget {
-    /// Draws a [`Perturbed`] primitive: the one dispatch from the kernel's
-    /// choices to a monomorphized span function, each a job of its own.
-    #[inline(always)]
-    pub(super) fn perturbed<P: Pass, S: Level>(
-        &mut self,
-        p: &Primitive<Perturbed>,
-        (encoding, interpolation, texture): (
-            NormalEncoding,
-            Interpolation,
-            Option<(LevelOfDetail, AlphaUse)>,
-        ),
-        ctx: &ShadeContext<'_>,
-        pass: &P,
-    ) -> u64 {
-        use Interpolation::{PerspectiveCorrect, ScreenLinear};
-        match (encoding, interpolation) {
-            (NormalEncoding::Height, PerspectiveCorrect) => {
-                self.perturbed_texture::<Perspective, Height, P, S>(p, texture, ctx, pass)
-            }
-            (NormalEncoding::Height, ScreenLinear) => {
-                self.perturbed_texture::<Linear, Height, P, S>(p, texture, ctx, pass)
-            }
-            (NormalEncoding::Tangent, PerspectiveCorrect) => {
-                self.perturbed_texture::<Perspective, TangentNormal, P, S>(p, texture, ctx, pass)
-            }
-            (NormalEncoding::Tangent, ScreenLinear) => {
-                self.perturbed_texture::<Linear, TangentNormal, P, S>(p, texture, ctx, pass)
-            }
-        }
-    }
-
-    #[inline(always)]
-    fn perturbed_texture<I: Interp, E: Encoding, P: Pass, S: Level>(
-        &mut self,
-        p: &Primitive<Perturbed>,
-        texture: Option<(LevelOfDetail, AlphaUse)>,
-        ctx: &ShadeContext<'_>,
-        pass: &P,
-    ) -> u64 {
-        match texture {
-            None => apart::<S, _>(
-                #[inline(always)]
-                || self.perturbed_plain::<I, E, P, S>(p, ctx, pass),
-            ),
-            Some((LevelOfDetail::Base, alpha)) => {
-                self.perturbed_alpha::<I, E, BaseLod, P, S>(p, alpha, ctx, pass)
-            }
-            Some((LevelOfDetail::Derivatives, alpha)) => {
-                self.perturbed_alpha::<I, E, DerivativeLod, P, S>(p, alpha, ctx, pass)
-            }
-        }
-    }
-
-    /// As `TileTarget::textured_alpha`: a texture whose alpha blends is
-    /// drawn in the transparency pass only, and its alpha ignored in the
-    /// opaque pass.
-    #[inline(always)]
-    fn perturbed_alpha<I: Interp, E: Encoding, L: Lod, P: Pass, S: Level>(
-        &mut self,
-        p: &Primitive<Perturbed>,
-        alpha: AlphaUse,
-        ctx: &ShadeContext<'_>,
-        pass: &P,
-    ) -> u64 {
-        match (alpha, P::BLENDS) {
-            (AlphaUse::Ignore, _) | (AlphaUse::Blend, false) => apart::<S, _>(
-                #[inline(always)]
-                || self.perturbed_textured::<I, E, L, P, IgnoreAlpha, S>(p, ctx, pass),
-            ),
-            (AlphaUse::Mask, _) => apart::<S, _>(
-                #[inline(always)]
-                || self.perturbed_textured::<I, E, L, P, MaskAlpha, S>(p, ctx, pass),
-            ),
-            (AlphaUse::Blend, true) => apart::<S, _>(
-                #[inline(always)]
-                || self.perturbed_textured::<I, E, L, P, TextureAlpha, S>(p, ctx, pass),
-            ),
-        }
-    }
-
     /// Untextured: c = clamp(ambient+diffuse + specular) with the perturbed
-    /// normal (planar shadows and shadow maps as in the Phong kernel).
+    /// normal (planar shadows and shadow maps as in the Phong kernel); in
+    /// the normals frame, the perturbed normal encoded.
     #[inline(always)]
-    fn perturbed_plain<I: Interp, E: Encoding, P: Pass, S: Level>(
+    pub(super) fn perturbed_plain<S: Level>(
         &mut self,
         p: &Primitive<Perturbed>,
+        (encoding, interp): (NormalEncoding, Interp),
         ctx: &ShadeContext<'_>,
-        pass: &P,
+        pass: &AnyPass<'_>,
     ) -> u64 {
-        let (m, l, maps) = (&ctx.materials[p.shader.material as usize], ctx.lighting, ctx.maps);
+        let m = &ctx.materials[p.shader.material as usize];
         let map = MapReader::new(&ctx.textures[p.shader.map as usize], p.shader.scale);
-        if ctx.normals {
-            return self.scan::<_, _, _, S>(
-                (&p.edges, &p.depth),
-                &p.shader.planes,
-                pass,
-                &IgnoreAlpha,
-                #[inline(always)]
-                |a, _| (encode_normal(perturbed_point::<E, _>(&map, a, I::w(a[Q])).1), f32x8::ONE),
-            );
-        }
-        self.scan::<_, _, _, S>(
+        let normals = ctx.normals;
+        self.scan::<_, _, S>(
             (&p.edges, &p.depth),
             &p.shader.planes,
             pass,
-            &IgnoreAlpha,
+            AlphaTest::Ignore,
             #[inline(always)]
             |a, mask| {
-                let (eye, normal) = perturbed_point::<E, _>(&map, a, I::w(a[Q]));
-                let (ambient_diffuse, specular) = match maps {
-                    Some(maps) => l.shade_parts_x8_shared(
-                        m,
-                        eye,
-                        normal,
-                        #[inline(always)]
-                        |k, p, n| maps.visibility_x8(k, p, n),
-                    ),
-                    None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
-                };
+                let (eye, normal) = perturbed_point(encoding, &map, a, interp.w(a[Q]));
+                if normals {
+                    return (encode_normal(normal), f32x8::ONE);
+                }
+                let (ambient_diffuse, specular) = lit(ctx, m, eye, normal, mask);
                 ((ambient_diffuse + specular).clamp01(), f32x8::ONE)
             },
         )
@@ -255,33 +159,30 @@ impl TileTarget {
     /// Textured: c = clamp(texel ⊙ (ambient+diffuse) + specular) with the
     /// perturbed normal.
     #[inline(always)]
-    fn perturbed_textured<I: Interp, E: Encoding, L: Lod, P: Pass, A: Alpha, S: Level>(
+    pub(super) fn perturbed_textured<S: Level>(
         &mut self,
         p: &Primitive<Perturbed>,
+        (encoding, interp, lod, alpha): (NormalEncoding, Interp, LevelOfDetail, AlphaUse),
         ctx: &ShadeContext<'_>,
-        pass: &P,
+        pass: &AnyPass<'_>,
     ) -> u64 {
-        let (m, l, maps) = (&ctx.materials[p.shader.material as usize], ctx.lighting, ctx.maps);
+        let m = &ctx.materials[p.shader.material as usize];
         let map = MapReader::new(&ctx.textures[p.shader.map as usize], p.shader.scale);
         let texture = &ctx.textures[p.shader.texture as usize];
-        let prim = (&p.edges, &p.depth, &p.shader.planes);
-        self.textured::<_, I, L, P, A, S>(
-            prim,
+        let uses = (
             texture,
+            interp,
+            Lod::new(lod, &p.shader.planes, texture),
+            AlphaTest::new(alpha, pass.blends(), texture),
+        );
+        self.textured::<_, S>(
+            (&p.edges, &p.depth, &p.shader.planes),
+            uses,
             pass,
             #[inline(always)]
             |a, w, mask| {
-                let (eye, normal) = perturbed_point::<E, _>(&map, a, w);
-                match maps {
-                    Some(maps) => l.shade_parts_x8_shared(
-                        m,
-                        eye,
-                        normal,
-                        #[inline(always)]
-                        |k, p, n| maps.visibility_x8(k, p, n),
-                    ),
-                    None => l.shade_parts_x8_shadowed(m, eye, normal, mask),
-                }
+                let (eye, normal) = perturbed_point(encoding, &map, a, w);
+                lit(ctx, m, eye, normal, mask)
             },
         )
     }

@@ -353,10 +353,16 @@ fn repeat<L: LaneLevel>(i: i32x8<L>, size: i32x8<L>) -> i32x8<L> {
 #[inline(always)]
 fn rem_euclid<L: LaneLevel>(i: i32x8<L>, size: i32x8<L>) -> i32x8<L> {
     let size_f = f32x8::from_i32x8(size);
-    let step = |v: i32x8<L>| {
-        let q = floor(f32x8::from_i32x8(v) / size_f).trunc_int();
-        v - q * size
-    };
+    // Inlined like every lane operation: a closure left out of line runs
+    // at the baseline and reaches the level's intrinsics through calls
+    // (`cargo xtask kernels` finds such calls in the binary).
+    let step = zline_simd::inlined(
+        #[inline(always)]
+        |v: i32x8<L>| {
+            let q = floor(f32x8::from_i32x8(v) / size_f).trunc_int();
+            v - q * size
+        },
+    );
     step(step(i))
 }
 
