@@ -77,6 +77,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, LazyLock, Mutex, OnceLock, PoisonError, Weak};
 
 use glam::{Mat4, Vec3, Vec4Swizzles};
+#[cfg(feature = "simplify")]
 use meshopt::{SimplifyOptions, VertexDataAdapter};
 use zline_scene::{Mesh, Object, Scene};
 use zline_shading::Material;
@@ -193,8 +194,19 @@ fn simplifiable(mesh: &Mesh) -> bool {
         && per_vertex(mesh.tangents.len())
 }
 
+/// True when this build has the simplifier (the `simplify` feature);
+/// without it no level is ever built and every mesh is drawn in full.
+pub const SIMPLIFIER: bool = cfg!(feature = "simplify");
+
+/// Without the simplifier (the `simplify` feature off): no level.
+#[cfg(not(feature = "simplify"))]
+fn simplify(_: &Mesh, _: f32, _: f32) -> Option<Level> {
+    None
+}
+
 /// The level of `mesh` with absolute target error `target`: meshopt's
 /// simplification, its vertices compacted in order of first use.
+#[cfg(feature = "simplify")]
 fn simplify(mesh: &Mesh, target: f32, radius: f32) -> Option<Level> {
     if !simplifiable(mesh) {
         return None;
@@ -235,6 +247,7 @@ fn simplify(mesh: &Mesh, target: f32, radius: f32) -> Option<Level> {
 
 /// The mesh of the triangles `indices` (into `mesh`), with only the
 /// vertices they use, numbered in order of first use.
+#[cfg(feature = "simplify")]
 fn compact(mesh: &Mesh, indices: &[u32]) -> Mesh {
     let mut remap = vec![u32::MAX; mesh.positions.len()];
     let mut order = Vec::new();
@@ -438,7 +451,7 @@ fn largest_scale(m: Mat4) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::{Quat, Vec2};
+    use glam::Quat;
 
     #[test]
     fn the_pixel_budget_is_a_32nd_of_the_tolerance_up_to_a_quarter() {
@@ -481,12 +494,13 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "simplify")]
     fn compaction_keeps_every_attribute_of_the_kept_vertices() {
         let positions: Vec<Vec3> = (0..6).map(|i| Vec3::new(i as f32, (i * i) as f32, 0.0)).collect();
         let mesh = Mesh {
             name: "m".into(),
             normals: (0..6).map(|i| Vec3::new(0.0, (i as f32).sin(), (i as f32).cos())).collect(),
-            uvs: (0..6).map(|i| Vec2::new(i as f32 * 0.1, 0.5)).collect(),
+            uvs: (0..6).map(|i| glam::Vec2::new(i as f32 * 0.1, 0.5)).collect(),
             colors: (0..6).map(|i| Vec3::splat(i as f32 / 6.0)).collect(),
             positions,
             triangles: vec![[0, 1, 2], [3, 4, 5]],

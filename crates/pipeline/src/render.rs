@@ -103,8 +103,12 @@ pub struct Renderer {
     buffers: Vec<Mutex<BandBuffers>>,
     /// Scratch for one (plane, light) pair's planar shadow mesh.
     shadow_mesh: Option<zline_scene::Mesh>,
+    /// Scratch for a caster's world-space vertices (planar shadows).
+    shadow_world: Vec<glam::DVec3>,
     /// The frame's shadow maps (`ShadowMode::Map`).
-    maps: Option<ShadowMaps>,
+    maps: ShadowMaps,
+    /// True when this frame reads `maps` (`ShadowMode::Map` with lights).
+    maps_drawn: bool,
     /// The frame's lines (`RenderSettings::wireframe`).
     lines: Lines,
     /// This frame is the normals frame (`Renderer::render_normals_into`).
@@ -256,8 +260,10 @@ impl Renderer {
         if scene.shadows.mode == ShadowMode::Planar {
             self.setup_shadows(scene, &frame);
         }
-        self.maps = (scene.shadows.mode == ShadowMode::Map && !scene.lights.is_empty())
-            .then(|| ShadowMaps::build(scene, &frame.eye_from_world));
+        self.maps_drawn = scene.shadows.mode == ShadowMode::Map && !scene.lights.is_empty();
+        if self.maps_drawn {
+            self.maps.rebuild(scene, &frame.eye_from_world);
+        }
         if scene.settings.wireframe.drawn() {
             self.setup_lines(scene, &frame);
         }
@@ -434,7 +440,8 @@ impl Renderer {
                 continue;
             };
             let casters = casters.map(|(_, o)| o);
-            shadow::project_casters(&planes[p], &scene.lights[k], (receiver, casters), &mut mesh);
+            let out = (&mut mesh, &mut self.shadow_world);
+            shadow::project_casters(&planes[p], &scene.lights[k], (receiver, casters), out);
             if mesh.triangles.is_empty() {
                 continue;
             }
@@ -487,7 +494,8 @@ impl Renderer {
 
     /// Every tile, bands of tiles in parallel: each tile clears its depth,
     /// draws its opaque bin, fogs, draws its transparent bin and resolves
-    /// into the image rows it owns. Returns the samples shaded.
+    /// into the image rows it owns ([`TilePasses::draw`]). Returns the
+    /// samples shaded.
     fn draw_tiles(
         &mut self,
         scene: &Scene,
@@ -503,31 +511,17 @@ impl Renderer {
         image.transparent = coverage;
         image.pixels.resize(width as usize * frame.height as usize, 0);
         let band_len = width as usize * tile_size as usize;
-        let threads = rayon::current_num_threads().max(1);
-        if self.buffers.len() < threads {
-            self.buffers.resize_with(threads, Mutex::default);
-        }
+        let threads = self.prepare_band_buffers(grid, coverage);
         let buffers = &self.buffers[..threads];
-        let shadows = self.bins.shadow.iter().any(|b| !b.is_empty());
-        let transparent = self.bins.transparent.iter().map(Vec::len).max().unwrap_or(0);
-        for b in buffers {
-            let mut guard = b.lock().unwrap_or_else(PoisonError::into_inner);
-            guard.target.set_coverage(coverage);
-            guard.target.reserve(grid.tile_size, shadows);
-            let order = &mut guard.order;
-            order.reserve(transparent.saturating_sub(order.len()));
-        }
         let t = &self.tables;
         let shade = ShadeContext {
             lighting: &t.lighting,
             materials: &t.materials,
             textures: &t.textures,
-            maps: self.maps.as_ref(),
+            maps: self.maps_drawn.then_some(&self.maps),
             normals: self.normals,
         };
-        let (bins, chunks) = (&self.bins, &self.chunks[..self.used]);
         let (vw, vh) = (frame.viewport.width, frame.viewport.height);
-        let fog = scene.fog.map(|f| FogPass::new(f, frame.clip_from_eye, vw, vh, frame.depth));
         let clear = match frame.depth {
             DepthEncoding::Normalized => DEPTH_CLEAR,
             DepthEncoding::Reversed { .. } => DEPTH_CLEAR_REVERSED,
@@ -538,19 +532,30 @@ impl Renderer {
             false => (scene.background, quantize_rgba(scene.background.extend(1.0))),
             true => (Vec3::ZERO, 0),
         };
-        let far_pixel = clear;
         let depth_bands = match depth {
             Some(d) => {
                 d.clear();
-                d.resize(image.pixels.len(), far_pixel);
+                d.resize(image.pixels.len(), clear);
                 Either::Left(d.par_chunks_mut(band_len).map(Some))
             }
             None => Either::Right((0..image.pixels.len().div_ceil(band_len)).into_par_iter().map(|_| None)),
         };
-        let export_depth = matches!(depth_bands, Either::Left(_));
-        let painter = scene.settings.visibility == Visibility::Painter;
         let wireframe = scene.settings.wireframe;
-        let lines = wireframe.drawn().then_some(&self.lines);
+        let passes = TilePasses {
+            grid,
+            bins: &self.bins,
+            chunks: &self.chunks[..self.used],
+            shade,
+            fog: scene.fog.map(|f| FogPass::new(f, frame.clip_from_eye, vw, vh, frame.depth)),
+            lines: wireframe.drawn().then_some(&self.lines),
+            lines_only: wireframe.only,
+            painter: scene.settings.visibility == Visibility::Painter,
+            export_depth: matches!(depth_bands, Either::Left(_)),
+            clear,
+            background: (background_color, background),
+            coverage,
+            size: (width, n),
+        };
         image
             .pixels
             .par_chunks_mut(band_len)
@@ -562,55 +567,116 @@ impl Renderer {
                 let thread = rayon::current_thread_index().unwrap_or(0) % threads;
                 let mut guard = buffers[thread].lock().unwrap_or_else(PoisonError::into_inner);
                 let BandBuffers { target, order } = &mut *guard;
-                let mut shaded = 0;
-                for col in 0..grid.cols {
-                    let tile = row * grid.cols as usize + col as usize;
-                    let (rect, opaque, transparent) =
-                        (grid.rect(col, row as u32), &bins.opaque[tile], &bins.transparent[tile]);
-                    let line_bin = lines.map_or(&[][..], |l| l.bin_of(tile));
-                    if opaque.is_empty() && transparent.is_empty() && line_bin.is_empty() {
-                        // Nothing to draw: the background's bytes, without the buffers.
-                        fill_rect(band, width as usize, pixels_of(rect, n), background);
-                        continue;
-                    }
-                    target.clear(rect, background_color, clear);
-                    if wireframe.only && lines.is_some() {
-                        // Lines alone: the surfaces only decide which lines are hidden.
-                        target.depth_only_pass(chunks, opaque_primitives(chunks, opaque, transparent));
-                        target.fill_background();
-                    } else if painter {
-                        target.shadow_pass(chunks, &bins.shadow[tile]);
-                        shaded += target.painter_pass(chunks, transparent, &shade, fog.as_ref(), order);
-                        if export_depth || lines.is_some_and(|l| l.mode.hides() && !line_bin.is_empty()) {
-                            target.depth_only_pass(chunks, opaque_primitives(chunks, opaque, transparent));
-                        }
-                    } else {
-                        target.shadow_pass(chunks, &bins.shadow[tile]);
-                        shaded += target.opaque_pass(chunks, opaque, &shade);
-                        if let Some(fog) = &fog {
-                            target.fog_pass(fog);
-                        }
-                        if !transparent.is_empty() {
-                            shaded +=
-                                target.transparency_pass(chunks, transparent, &shade, fog.as_ref(), order);
-                        }
-                    }
-                    if let Some(lines) = lines {
-                        target.line_pass(lines, line_bin, n);
-                    }
-                    if let Some(depth_band) = depth_band.as_deref_mut() {
-                        target.export_depth(depth_band, width as usize, n);
-                    }
-                    match (coverage, n) {
-                        (false, 1) => target.resolve(band, width as usize),
-                        (false, _) => target.resolve_supersampled(band, width as usize, n),
-                        (true, 1) => target.resolve_coverage(band, width as usize),
-                        (true, _) => target.resolve_coverage_supersampled(band, width as usize, n),
-                    }
-                }
-                shaded
+                (0..grid.cols)
+                    .map(|col| {
+                        passes.draw((target, order), (col, row as u32), band, depth_band.as_deref_mut())
+                    })
+                    .sum::<u64>()
             })
             .sum()
+    }
+
+    /// One set of tile buffers per thread, each reserved for this frame's
+    /// tiles (size, coverage plane, shadow mask, transparent sort); returns
+    /// the thread count.
+    fn prepare_band_buffers(&mut self, grid: &TileGrid, coverage: bool) -> usize {
+        let threads = rayon::current_num_threads().max(1);
+        if self.buffers.len() < threads {
+            self.buffers.resize_with(threads, Mutex::default);
+        }
+        let shadows = self.bins.shadow.iter().any(|b| !b.is_empty());
+        let transparent = self.bins.transparent.iter().map(Vec::len).max().unwrap_or(0);
+        for b in &self.buffers[..threads] {
+            let mut guard = b.lock().unwrap_or_else(PoisonError::into_inner);
+            guard.target.set_coverage(coverage);
+            guard.target.reserve(grid.tile_size, shadows);
+            let order = &mut guard.order;
+            order.reserve(transparent.saturating_sub(order.len()));
+        }
+        threads
+    }
+}
+
+/// What every tile of a frame draws with: the bins, the primitives, the
+/// shading context and the frame's choices of passes.
+struct TilePasses<'a> {
+    grid: &'a TileGrid,
+    bins: &'a Bins,
+    chunks: &'a [PrimitiveChunk],
+    shade: ShadeContext<'a>,
+    fog: Option<FogPass>,
+    lines: Option<&'a Lines>,
+    /// `--wireframe-only`: the surfaces only decide which lines are hidden.
+    lines_only: bool,
+    painter: bool,
+    export_depth: bool,
+    /// The depth buffer's far value.
+    clear: f32,
+    /// The background as a colour and as a quantized pixel.
+    background: (Vec3, u32),
+    coverage: bool,
+    /// The image width and the supersampling factor.
+    size: (u32, u32),
+}
+
+impl TilePasses<'_> {
+    /// Draws tile (`col`, `row`) with `target` and resolves it into `band`
+    /// (and its depth into `depth_band` when the depth image is asked
+    /// for). Returns the samples shaded.
+    fn draw(
+        &self,
+        (target, order): (&mut TileTarget, &mut Vec<(f32, PrimitiveRef)>),
+        (col, row): (u32, u32),
+        band: &mut [u32],
+        depth_band: Option<&mut [f32]>,
+    ) -> u64 {
+        let ((width, n), chunks, bins) = (self.size, self.chunks, self.bins);
+        let width = width as usize;
+        let tile = row as usize * self.grid.cols as usize + col as usize;
+        let (rect, opaque, transparent) =
+            (self.grid.rect(col, row), &bins.opaque[tile], &bins.transparent[tile]);
+        let line_bin = self.lines.map_or(&[][..], |l| l.bin_of(tile));
+        if opaque.is_empty() && transparent.is_empty() && line_bin.is_empty() {
+            // Nothing to draw: the background's bytes, without the buffers.
+            fill_rect(band, width, pixels_of(rect, n), self.background.1);
+            return 0;
+        }
+        target.clear(rect, self.background.0, self.clear);
+        let (shade, fog) = (&self.shade, self.fog.as_ref());
+        let mut shaded = 0;
+        if self.lines_only && self.lines.is_some() {
+            target.depth_only_pass(chunks, opaque_primitives(chunks, opaque, transparent));
+            target.fill_background();
+        } else if self.painter {
+            target.shadow_pass(chunks, &bins.shadow[tile]);
+            shaded += target.painter_pass(chunks, transparent, shade, fog, order);
+            let hidden_lines = self.lines.is_some_and(|l| l.mode.hides() && !line_bin.is_empty());
+            if self.export_depth || hidden_lines {
+                target.depth_only_pass(chunks, opaque_primitives(chunks, opaque, transparent));
+            }
+        } else {
+            target.shadow_pass(chunks, &bins.shadow[tile]);
+            shaded += target.opaque_pass(chunks, opaque, shade);
+            if let Some(fog) = fog {
+                target.fog_pass(fog);
+            }
+            if !transparent.is_empty() {
+                shaded += target.transparency_pass(chunks, transparent, shade, fog, order);
+            }
+        }
+        if let Some(lines) = self.lines {
+            target.line_pass(lines, line_bin, n);
+        }
+        if let Some(depth_band) = depth_band {
+            target.export_depth(depth_band, width, n);
+        }
+        match (self.coverage, n) {
+            (false, 1) => target.resolve(band, width),
+            (false, _) => target.resolve_supersampled(band, width, n),
+            (true, 1) => target.resolve_coverage(band, width),
+            (true, _) => target.resolve_coverage_supersampled(band, width, n),
+        }
+        shaded
     }
 }
 

@@ -27,14 +27,15 @@ pub(crate) const SLAB_MARGIN: f64 = 1e-6;
 
 /// The shadow of `casters` on `plane` from `light`, as world-space
 /// triangles in `out` (cleared first; positions, a normal per vertex —
-/// the plane's — and triangles). Casters whose vertices are not finite
+/// the plane's — and triangles); `world` is scratch for a caster's
+/// vertices, kept by the caller so that frames allocate nothing. Casters whose vertices are not finite
 /// cast nothing; a light in the plane or a directional light parallel to
 /// it casts nothing.
 pub(crate) fn project_casters<'a>(
     plane: &ShadowPlane,
     light: &Light,
     (receiver, casters): (&Object, impl Iterator<Item = &'a Object>),
-    out: &mut Mesh,
+    (out, world): (&mut Mesh, &mut Vec<DVec3>),
 ) {
     out.positions.clear();
     out.normals.clear();
@@ -62,8 +63,8 @@ pub(crate) fn project_casters<'a>(
     let (lo, hi) = (lo - pad, hi + pad);
     for object in casters {
         let to_world = object.world_from_object.as_dmat4();
-        let world: Vec<DVec3> =
-            object.mesh.positions.iter().map(|&p| to_world.transform_point3(p.as_dvec3())).collect();
+        world.clear();
+        world.extend(object.mesh.positions.iter().map(|&p| to_world.transform_point3(p.as_dvec3())));
         for t in &object.mesh.triangles {
             let (Some(&a), Some(&b), Some(&c)) =
                 (world.get(t[0] as usize), world.get(t[1] as usize), world.get(t[2] as usize))
@@ -247,7 +248,12 @@ mod tests {
             attenuation: Attenuation::NONE,
         };
         let mut out = empty_mesh();
-        project_casters(&ground(), &light, (&quad(0.0, 10.0), [quad(1.0, 0.5)].iter()), &mut out);
+        project_casters(
+            &ground(),
+            &light,
+            (&quad(0.0, 10.0), [quad(1.0, 0.5)].iter()),
+            (&mut out, &mut Vec::new()),
+        );
         assert_eq!(out.triangles.len(), 2);
         let (lo, hi) = bounds(&out);
         let h = 2.0 / 3.0;
@@ -268,7 +274,7 @@ mod tests {
             &ground(),
             &light,
             (&quad(0.0, 10.0), [quad(5.0, 0.5), quad(-1.0, 0.5)].iter()),
-            &mut out,
+            (&mut out, &mut Vec::new()),
         );
         assert!(out.triangles.is_empty(), "{:?}", out.positions);
         // A light under the plane lights its underside: the quad at y = -1
@@ -282,7 +288,7 @@ mod tests {
             &ground(),
             &under,
             (&quad(0.0, 10.0), [quad(1.0, 0.5), quad(-1.0, 0.5)].iter()),
-            &mut out,
+            (&mut out, &mut Vec::new()),
         );
         assert_eq!(out.triangles.len(), 2);
     }
@@ -301,7 +307,7 @@ mod tests {
         let wall = Object { mesh: Arc::new(tri), ..quad(0.0, 1.0) };
         let sun = Light::Directional { direction: Vec3::new(0.0, -1.0, -1.0), color: Vec3::ONE };
         let mut out = empty_mesh();
-        project_casters(&ground(), &sun, (&quad(0.0, 10.0), [wall].iter()), &mut out);
+        project_casters(&ground(), &sun, (&quad(0.0, 10.0), [wall].iter()), (&mut out, &mut Vec::new()));
         // The cut is the triangle's tip above y = 0: (±0.5, 0, 0) and (0, 1, 0),
         // whose tip falls along (0, −1, −1) to (0, 0, −1).
         let (lo, hi) = bounds(&out);

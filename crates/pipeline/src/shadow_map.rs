@@ -38,25 +38,22 @@ struct DepthMap {
 }
 
 impl DepthMap {
-    fn new(size: u32) -> DepthMap {
-        DepthMap { size, depth: vec![f32::INFINITY; size as usize * size as usize] }
+    /// Empties the map and sizes it `size` × `size`, keeping its buffer.
+    fn reset(&mut self, size: u32) {
+        self.size = size;
+        self.depth.clear();
+        self.depth.resize(size as usize * size as usize, f32::INFINITY);
     }
 
     /// Draws a triangle given in map texel coordinates (x, y) with the value
     /// `v` per vertex interpolated affinely; stores `depth(v)` where it is
     /// nearer than what is there.
     fn draw(&mut self, p: [(f32, f32); 3], v: [f64; 3], depth: impl Fn(f64) -> f32) {
-        let Some(fixed) = p
-            .iter()
-            .map(
-                #[inline(always)]
-                |&(x, y)| FixedPoint::snap(x, y),
-            )
-            .collect::<Option<Vec<_>>>()
-        else {
+        let snap = |k: usize| FixedPoint::snap(p[k].0, p[k].1);
+        let (Some(a), Some(b), Some(c)) = (snap(0), snap(1), snap(2)) else {
             return;
         };
-        let fixed = [fixed[0], fixed[1], fixed[2]];
+        let fixed = [a, b, c];
         let (Some(edges), Some(basis)) = (EdgeTable::new(fixed), PlaneBasis::new(fixed)) else {
             return;
         };
@@ -100,12 +97,18 @@ enum LightMap {
 }
 
 /// The frame's shadow maps, one entry per scene light, and the filter.
+/// Kept from frame to frame ([`ShadowMaps::rebuild`]): the maps' buffers
+/// and the scratch of triangles are reused.
 #[derive(Clone, Debug, Default)]
 pub struct ShadowMaps {
     lights: Vec<LightMap>,
     pcf: bool,
     /// The scale on the slope-scaled bias (`Shadows::bias`).
     bias: f32,
+    /// Scratch: every triangle of the scene in eye space.
+    tris: Vec<[Vec3; 3]>,
+    /// Scratch: one object's vertices in eye space.
+    positions: Vec<Vec3>,
 }
 
 /// The two axes that span a cube face of `axis` (texel x, texel y).
@@ -121,20 +124,25 @@ impl ShadowMaps {
     /// Draws the maps of every light of `scene` with `eye_from_world` as
     /// the frame's view.
     pub fn build(scene: &Scene, eye_from_world: &Mat4) -> ShadowMaps {
+        let mut maps = ShadowMaps::default();
+        maps.rebuild(scene, eye_from_world);
+        maps
+    }
+
+    /// [`Self::build`] into these maps, reusing their buffers: a steady
+    /// stream of frames of one scene allocates nothing here.
+    pub fn rebuild(&mut self, scene: &Scene, eye_from_world: &Mat4) {
         let size = scene.shadows.map_size.clamp(16, zline_scene::MAX_SHADOW_MAP_SIZE);
         // Every triangle of the scene in eye space.
-        let mut tris: Vec<[Vec3; 3]> = Vec::new();
+        let (tris, p) = (&mut self.tris, &mut self.positions);
+        tris.clear();
         for o in &scene.objects {
             let m = *eye_from_world * o.world_from_object;
-            let p: Vec<Vec3> = o
-                .mesh
-                .positions
-                .iter()
-                .map(
-                    #[inline(always)]
-                    |&p| m.transform_point3(p),
-                )
-                .collect();
+            p.clear();
+            p.extend(o.mesh.positions.iter().map(
+                #[inline(always)]
+                |&p| m.transform_point3(p),
+            ));
             for t in &o.mesh.triangles {
                 let v = t.map(
                     #[inline(always)]
@@ -156,24 +164,26 @@ impl ShadowMaps {
         let extent = (hi - lo).max_element();
         // Lights, and a point light's faces, are drawn in parallel: each
         // map is its own, so the result does not depend on the threads.
-        let lights = scene
-            .lights
-            .par_iter()
-            .map(
-                #[inline(always)]
-                |light| {
-                    if tris.is_empty() || !(extent.is_finite() && extent > 0.0) {
-                        return LightMap::Unshadowed;
+        let tris = &*tris;
+        self.lights.truncate(scene.lights.len());
+        self.lights.resize_with(scene.lights.len(), || LightMap::Unshadowed);
+        self.lights.par_iter_mut().zip(&scene.lights).for_each(
+            #[inline(always)]
+            |(slot, light)| {
+                if tris.is_empty() || !(extent.is_finite() && extent > 0.0) {
+                    *slot = LightMap::Unshadowed;
+                    return;
+                }
+                match light.transformed(eye_from_world) {
+                    Light::Directional { direction, .. } => {
+                        directional(tris, (lo, hi), direction, size, slot)
                     }
-                    match light.transformed(eye_from_world) {
-                        Light::Directional { direction, .. } => directional(&tris, (lo, hi), direction, size),
-                        Light::Point { position, .. } => point(&tris, position, extent, size),
-                    }
-                },
-            )
-            .collect();
-        let bias = if scene.shadows.bias.is_finite() { scene.shadows.bias.max(0.0) } else { 1.0 };
-        ShadowMaps { lights, pcf: scene.shadows.pcf, bias }
+                    Light::Point { position, .. } => point(tris, position, extent, size, slot),
+                }
+            },
+        );
+        self.bias = if scene.shadows.bias.is_finite() { scene.shadows.bias.max(0.0) } else { 1.0 };
+        self.pcf = scene.shadows.pcf;
     }
 
     /// The share of light `k` that reaches each lane's eye-space `point`
@@ -309,11 +319,13 @@ fn slope_bias(n_dot_l: f32) -> f32 {
 }
 
 /// The orthographic map of a directional light travelling along
-/// `direction` (eye space) over the bounds (lo, hi).
-fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size: u32) -> LightMap {
+/// `direction` (eye space) over the bounds (lo, hi), into `slot` (its
+/// buffer reused).
+fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size: u32, slot: &mut LightMap) {
     let forward = direction.normalize_or_zero();
     if forward == Vec3::ZERO {
-        return LightMap::Unshadowed;
+        *slot = LightMap::Unshadowed;
+        return;
     }
     let (right, up) = forward.any_orthonormal_pair();
     let view =
@@ -343,7 +355,12 @@ fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size
     // Texels: x = (v.x − a.x)/span·size; depth from the box's near side.
     let to_texels = Mat4::from_scale(Vec3::new(s / span, s / span, 1.0)) * Mat4::from_translation(-a);
     let from_eye = to_texels * view;
-    let mut map = DepthMap::new(size);
+    let mut map = match std::mem::replace(slot, LightMap::Unshadowed) {
+        LightMap::Directional { map, .. } => map,
+        LightMap::Point { mut faces, .. } => faces.pop().unwrap_or_default(),
+        LightMap::Unshadowed => DepthMap::default(),
+    };
+    map.reset(size);
     for t in tris {
         let q = t.map(
             #[inline(always)]
@@ -362,19 +379,26 @@ fn directional(tris: &[[Vec3; 3]], (lo, hi): (Vec3, Vec3), direction: Vec3, size
             |d| d as f32,
         );
     }
-    LightMap::Directional { from_eye, map, texel: span / s, to_light: -forward }
+    *slot = LightMap::Directional { from_eye, map, texel: span / s, to_light: -forward };
 }
 
-/// The six faces of a point light at `position` (eye space).
-fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32) -> LightMap {
+/// The six faces of a point light at `position` (eye space), into `slot`
+/// (its buffers reused).
+fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32, slot: &mut LightMap) {
     let near = NEAR * extent;
     let s = size as f32;
-    let faces = (0..6usize).into_par_iter().map(
+    let mut faces = match std::mem::replace(slot, LightMap::Unshadowed) {
+        LightMap::Point { faces, .. } => faces,
+        LightMap::Directional { map, .. } => vec![map],
+        LightMap::Unshadowed => Vec::new(),
+    };
+    faces.resize_with(6, DepthMap::default);
+    faces.par_iter_mut().enumerate().for_each(
         #[inline(always)]
-        |face| {
+        |(face, map)| {
             let (axis, sign) = (face / 2, if face % 2 == 0 { 1.0 } else { -1.0 });
             let (ua, ub) = face_axes(axis);
-            let mut map = DepthMap::new(size);
+            map.reset(size);
             for t in tris {
                 // Face space: (a, b, depth) with depth along the face's axis.
                 let q = t.map(
@@ -405,10 +429,9 @@ fn point(tris: &[[Vec3; 3]], position: Vec3, extent: f32, size: u32) -> LightMap
                     },
                 );
             }
-            map
         },
     );
-    LightMap::Point { position, faces: faces.collect() }
+    *slot = LightMap::Point { position, faces };
 }
 
 /// The parts of triangle `q` (face space) with depth ≥ `near`, as a fan
@@ -439,7 +462,8 @@ mod tests {
 
     #[test]
     fn a_drawn_triangle_keeps_the_nearest_depth() {
-        let mut m = DepthMap::new(16);
+        let mut m = DepthMap::default();
+        m.reset(16);
         m.draw([(0.0, 0.0), (16.0, 0.0), (0.0, 16.0)], [5.0; 3], |d| d as f32);
         m.draw([(0.0, 0.0), (16.0, 0.0), (0.0, 16.0)], [7.0; 3], |d| d as f32);
         assert_eq!(m.at(2, 2), 5.0);

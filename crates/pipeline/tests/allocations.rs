@@ -1,15 +1,16 @@
 //! A steady stream of frames allocates nothing: after a first frame has
 //! sized the renderer's buffers, rendering the same scene again makes no
 //! heap allocation, on one thread or several, with or without
-//! supersampling. This test binary's global allocator counts every
+//! supersampling, with planar shadows or shadow maps, with lines, and with
+//! the painter's algorithm. This test binary's global allocator counts every
 //! allocation and reallocation, on every thread, while frames render.
 
 use std::alloc::System;
 
 use stats_alloc::{Region, StatsAlloc, INSTRUMENTED_SYSTEM};
 use zline_pipeline::{Image, RenderOptions, Renderer};
-use zline_scene::Scene;
-use zline_scenes::demo_scene;
+use zline_scene::{Scene, ShadowMode, Visibility, WireframeMode};
+use zline_scenes::{demo_scene, room_scene};
 
 #[global_allocator]
 static GLOBAL: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
@@ -38,6 +39,14 @@ fn demo(ssaa: u32) -> Scene {
     scene
 }
 
+/// The room (planar shadows on the floor) in `mode`, small.
+fn room(mode: ShadowMode) -> Scene {
+    let mut scene = room_scene();
+    (scene.settings.width, scene.settings.height) = (160, 90);
+    scene.shadows.mode = mode;
+    scene
+}
+
 // One test function: the count is global, so no other test may run
 // (and allocate) in this binary while it counts.
 //
@@ -50,16 +59,29 @@ fn demo(ssaa: u32) -> Scene {
 // renderer would show in every attempt.
 #[test]
 fn steady_frames_allocate_nothing() {
-    for (threads, ssaa) in [(1, 1), (2, 1), (2, 2)] {
-        let scene = demo(ssaa);
+    let mut lines = demo(1);
+    lines.settings.wireframe.mode = WireframeMode::HiddenRemoved;
+    let mut painter = demo(1);
+    painter.settings.visibility = Visibility::Painter;
+    let scenes = [
+        ("demo", 1, demo(1)),
+        ("demo", 2, demo(1)),
+        ("demo ssaa 2", 2, demo(2)),
+        ("room, planar shadows", 2, room(ShadowMode::Planar)),
+        ("room, shadow maps", 2, room(ShadowMode::Map)),
+        ("demo, hidden lines removed", 2, lines),
+        ("demo, painter", 2, painter),
+    ];
+    for (name, threads, scene) in &scenes {
+        let (scene, threads) = (scene, *threads);
         let counts: Vec<usize> = (0..12)
-            .map(|_| allocations_after_first_frame(&scene, threads, 3))
+            .map(|_| allocations_after_first_frame(scene, threads, 3))
             .scan(false, |done, n| (!std::mem::replace(done, n == 0)).then_some(n))
             .collect();
         assert_eq!(
             counts.last(),
             Some(&0),
-            "allocations in 3 frames ({threads} threads, ssaa {ssaa}): {counts:?}"
+            "allocations in 3 frames ({name}, {threads} threads): {counts:?}"
         );
     }
 }

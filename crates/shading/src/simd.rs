@@ -266,8 +266,10 @@ impl PreparedLights {
             normal,
             visible,
             #[inline(always)]
-            // A `match`, not `Option::map`: that wrapper may stay out of
-            // line, and the shadow-map lookup with it.
+            #[allow(
+                clippy::manual_map,
+                reason = "`Option::map` may stay out of line, and the shadow-map lookup with it"
+            )]
             |k| match &share {
                 Some(f) => Some(f(k, point, normal)),
                 None => None,

@@ -17,6 +17,7 @@ use std::path::Path;
 pub mod info;
 pub mod layers;
 pub mod view;
+#[cfg(feature = "view")]
 pub mod viewer;
 
 pub use zline_io as io;

@@ -25,6 +25,7 @@ mod job;
 mod progress;
 mod terrain;
 mod turntable;
+#[cfg(feature = "view")]
 mod view_command;
 
 use flags::{apply_camera, apply_fog, apply_overrides, apply_shadows};
@@ -116,6 +117,7 @@ enum Command {
     /// drawn on the CPU as `render` draws it, the same flags setting the
     /// first view (--size is the window's). Needs an X display (X11 or
     /// XWayland).
+    #[cfg(feature = "view")]
     #[command(
         mut_arg("output", view_command::output_arg),
         mut_arg("timings", view_command::timings_arg),
@@ -211,6 +213,7 @@ fn run(cli: Cli) -> Result<()> {
             let allow_outside = batch.allow_paths_outside;
             return batch::run(&batch, &job(&common, allow_outside)?);
         }
+        #[cfg(feature = "view")]
         Command::View { view, common } => {
             common.layers.refuse("view")?;
             let allow_outside = view.allow_paths_outside;

@@ -387,7 +387,8 @@ fn drawn_side(p: &[Projected; 3], ctx: &SetupContext<'_>) -> bool {
 
 /// Builds the edge table and planes of one projected triangle that
 /// survived culling, and appends it to the table of the kernel that will
-/// draw it.
+/// draw it: a perturbed, untextured or textured kernel (`emit_perturbed`,
+/// `emit_untextured`, `emit_textured`).
 #[inline]
 fn emit(
     tri: [&ClipVertex; 3],
@@ -407,69 +408,111 @@ fn emit(
         }
         Some(adaptive) => adaptive_shortcuts(adaptive, tri, &p, ctx),
     };
-    let interpolation = sc.interpolation;
-    let q = match interpolation {
+    let q = match sc.interpolation {
         Interpolation::PerspectiveCorrect => p.map(|v| v.inv_w),
         Interpolation::ScreenLinear => [1.0; 3],
     };
     let sort_depth = ((p[0].z + p[1].z + p[2].z) / 3.0) as f32;
     let far_depth = p[0].z.max(p[1].z).max(p[2].z) as f32;
     let planes = Planes { tri, q, basis: &basis };
-    let PrimitiveChunk { draws, bounds, tables: t, .. } = out;
-    macro_rules! push {
-        ($table:expr, $kernel:expr, $shader:expr) => {
-            PrimitiveChunk::push(
-                (draws, bounds),
-                &mut $table,
-                $kernel,
-                Primitive { edges, depth, shader: $shader },
-                (sort_depth, far_depth),
-            )
-        };
+    let PrimitiveChunk { draws, bounds, tables, .. } = out;
+    let mut push = Push { draws, bounds, edges, depth, depths: (sort_depth, far_depth) };
+    match (ctx.normal_map, sc.lighting, ctx.texture) {
+        (Some(map), Shortcut::None, _) => emit_perturbed(&planes, map, &sc, ctx, (tables, &mut push)),
+        (_, _, None) => emit_untextured(&planes, flat, &sc, ctx, (tables, &mut push)),
+        (_, _, Some(texture)) => emit_textured(&planes, (flat, texture), &sc, ctx, (tables, &mut push)),
     }
-    if let (Some(map), Shortcut::None) = (ctx.normal_map, sc.lighting) {
-        let planes = planes.textured(|v| {
-            let tangent = v.tangent.truncate();
-            [v.normal, v.eye, tangent, v.normal.cross(tangent) * v.tangent.w]
-        });
-        let kernel = Kernel::Perturbed {
-            encoding: map.encoding,
-            interpolation,
-            texture: ctx.texture.map(|t| (t.lod, t.alpha)),
-        };
-        let texture = ctx.texture.map_or(0, |t| t.index);
-        let shader = Perturbed { planes, material: sc.material, map: map.index, scale: map.scale, texture };
-        push!(t.perturbed, kernel, shader);
-        return;
+}
+
+/// What every primitive of one triangle shares, and the chunk's draw list
+/// and bounds it is appended to.
+struct Push<'a> {
+    draws: &'a mut Vec<Draw>,
+    bounds: &'a mut Vec<zline_raster::Rect>,
+    edges: EdgeTable,
+    depth: DepthPlane,
+    depths: (f32, f32),
+}
+
+impl Push<'_> {
+    /// Appends the triangle to `table` with `kernel` and `shader`.
+    #[inline]
+    fn push<S>(&mut self, table: &mut Vec<Primitive<S>>, kernel: Kernel, shader: S) {
+        let primitive = Primitive { edges: self.edges, depth: self.depth, shader };
+        PrimitiveChunk::push((self.draws, self.bounds), table, kernel, primitive, self.depths);
     }
-    let Some(texture) = ctx.texture else {
-        // Untextured: only the attributes the shading mode needs.
-        match (ctx.shading, sc.lighting) {
-            (_, Shortcut::Flat(color)) => push!(t.flat, Kernel::Flat, Flat { color }),
-            (_, Shortcut::LitOnce(parts)) => push!(t.flat, Kernel::Flat, Flat { color: parts.color() }),
-            (ShadingMode::Flat, Shortcut::None) => push!(t.flat, Kernel::Flat, Flat { color: flat.color() }),
-            (ShadingMode::Gouraud, Shortcut::None) => {
-                let planes = planes.build(|v| [v.color]);
-                let kernel = Kernel::Gouraud { interpolation, clamp: ctx.gouraud_clamp };
-                push!(t.gouraud, kernel, Gouraud { planes })
-            }
-            (ShadingMode::Phong, Shortcut::None) => match ctx.vertex_colors {
-                VertexColors::Absent => {
-                    let planes = planes.build(|v| [v.normal, v.eye]);
-                    let shader = Phong { planes, material: sc.material };
-                    push!(t.phong, Kernel::Phong(interpolation), shader)
-                }
-                VertexColors::Present => {
-                    let planes = planes.build(|v| [v.normal, v.eye, v.color]);
-                    let shader = Phong { planes, material: sc.material };
-                    push!(t.colored_phong, Kernel::ColoredPhong(interpolation), shader)
-                }
-            },
-        }
-        return;
+}
+
+/// A bump- or normal-mapped triangle: Phong with the tangent frame.
+#[inline]
+fn emit_perturbed(
+    planes: &Planes<'_>,
+    map: NormalMapUse,
+    sc: &Shortcuts,
+    ctx: &SetupContext<'_>,
+    (t, push): (&mut KernelTables, &mut Push<'_>),
+) {
+    let planes = planes.textured(|v| {
+        let tangent = v.tangent.truncate();
+        [v.normal, v.eye, tangent, v.normal.cross(tangent) * v.tangent.w]
+    });
+    let kernel = Kernel::Perturbed {
+        encoding: map.encoding,
+        interpolation: sc.interpolation,
+        texture: ctx.texture.map(|t| (t.lod, t.alpha)),
     };
-    // Textured: texture coordinates plus what the lighting interpolates.
-    // The adaptive mode's Phong lit once is drawn as textured flat.
+    let texture = ctx.texture.map_or(0, |t| t.index);
+    let shader = Perturbed { planes, material: sc.material, map: map.index, scale: map.scale, texture };
+    push.push(&mut t.perturbed, kernel, shader);
+}
+
+/// An untextured triangle: only the attributes the shading mode needs.
+#[inline]
+fn emit_untextured(
+    planes: &Planes<'_>,
+    flat: LitParts,
+    sc: &Shortcuts,
+    ctx: &SetupContext<'_>,
+    (t, push): (&mut KernelTables, &mut Push<'_>),
+) {
+    let interpolation = sc.interpolation;
+    match (ctx.shading, sc.lighting) {
+        (_, Shortcut::Flat(color)) => push.push(&mut t.flat, Kernel::Flat, Flat { color }),
+        (_, Shortcut::LitOnce(parts)) => push.push(&mut t.flat, Kernel::Flat, Flat { color: parts.color() }),
+        (ShadingMode::Flat, Shortcut::None) => {
+            push.push(&mut t.flat, Kernel::Flat, Flat { color: flat.color() })
+        }
+        (ShadingMode::Gouraud, Shortcut::None) => {
+            let planes = planes.build(|v| [v.color]);
+            let kernel = Kernel::Gouraud { interpolation, clamp: ctx.gouraud_clamp };
+            push.push(&mut t.gouraud, kernel, Gouraud { planes })
+        }
+        (ShadingMode::Phong, Shortcut::None) => match ctx.vertex_colors {
+            VertexColors::Absent => {
+                let planes = planes.build(|v| [v.normal, v.eye]);
+                let shader = Phong { planes, material: sc.material };
+                push.push(&mut t.phong, Kernel::Phong(interpolation), shader)
+            }
+            VertexColors::Present => {
+                let planes = planes.build(|v| [v.normal, v.eye, v.color]);
+                let shader = Phong { planes, material: sc.material };
+                push.push(&mut t.colored_phong, Kernel::ColoredPhong(interpolation), shader)
+            }
+        },
+    }
+}
+
+/// A textured triangle: texture coordinates plus what the lighting
+/// interpolates. The adaptive mode's Phong lit once is drawn as textured
+/// flat.
+#[inline]
+fn emit_textured(
+    planes: &Planes<'_>,
+    (flat, texture): (LitParts, TextureUse),
+    sc: &Shortcuts,
+    ctx: &SetupContext<'_>,
+    (t, push): (&mut KernelTables, &mut Push<'_>),
+) {
     let (shading, flat) = match sc.lighting {
         Shortcut::LitOnce(parts) => (ShadingMode::Flat, parts),
         Shortcut::None | Shortcut::Flat(_) => (ctx.shading, flat),
@@ -480,6 +523,7 @@ fn emit(
         (ShadingMode::Phong, VertexColors::Absent) => TexturedLighting::Phong,
         (ShadingMode::Phong, VertexColors::Present) => TexturedLighting::ColoredPhong,
     };
+    let interpolation = sc.interpolation;
     let kernel = Kernel::Textured { lighting, interpolation, lod: texture.lod, alpha: texture.alpha };
     let (index, material) = (texture.index, sc.material);
     match lighting {
@@ -487,20 +531,24 @@ fn emit(
             let planes = planes.textured(|_| []);
             let (ambient_diffuse, specular) = (flat.ambient_diffuse, flat.specular);
             let shader = TexturedFlat { planes, ambient_diffuse, specular, texture: index };
-            push!(t.textured_flat, kernel, shader)
+            push.push(&mut t.textured_flat, kernel, shader)
         }
         TexturedLighting::Gouraud => {
             // Lit before clipping: see `lit_in_setup`.
             let planes = planes.textured(|v| [v.color, v.normal]);
-            push!(t.textured_gouraud, kernel, TexturedGouraud { planes, texture: index })
+            push.push(&mut t.textured_gouraud, kernel, TexturedGouraud { planes, texture: index })
         }
         TexturedLighting::Phong => {
             let planes = planes.textured(|v| [v.normal, v.eye]);
-            push!(t.textured_phong, kernel, TexturedPhong { planes, texture: index, material })
+            push.push(&mut t.textured_phong, kernel, TexturedPhong { planes, texture: index, material })
         }
         TexturedLighting::ColoredPhong => {
             let planes = planes.textured(|v| [v.normal, v.eye, v.color]);
-            push!(t.textured_colored_phong, kernel, TexturedPhong { planes, texture: index, material })
+            push.push(
+                &mut t.textured_colored_phong,
+                kernel,
+                TexturedPhong { planes, texture: index, material },
+            )
         }
     }
 }

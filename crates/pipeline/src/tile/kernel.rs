@@ -48,13 +48,14 @@ pub(super) fn lit<S: Level>(
     normal: Vec3x8<S>,
     mask: i32x8<S>,
 ) -> (Vec3x8<S>, Vec3x8<S>) {
-    let share = match ctx.maps {
-        Some(maps) => Some(
+    // Only builds the closure: the lookup runs where the lights are summed.
+    let share = ctx.maps.map(
+        #[inline(always)]
+        |maps| {
             #[inline(always)]
-            move |k: u32, p: Vec3x8<S>, n: Vec3x8<S>| maps.visibility_x8(k, p, n),
-        ),
-        None => None,
-    };
+            move |k: u32, p: Vec3x8<S>, n: Vec3x8<S>| maps.visibility_x8(k, p, n)
+        },
+    );
     ctx.lighting.shade_parts_x8_with(m, eye, normal, mask, share)
 }
 

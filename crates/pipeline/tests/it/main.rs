@@ -12,6 +12,7 @@ mod fog;
 mod interpolation;
 mod lines;
 mod lit_square;
+#[cfg(feature = "simplify")]
 mod lod;
 mod normal_image;
 mod normal_map;

@@ -12,6 +12,7 @@ mod hostile;
 mod layers;
 mod terrain;
 mod turntable;
+#[cfg(feature = "view")]
 mod view;
 mod visibility;
 
