@@ -118,24 +118,33 @@ fn bin_into(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins, painter
             if b.is_empty() {
                 continue;
             }
-            let tiles = (b.y0 / ts..=(b.y1 - 1) / ts).flat_map(|row| {
-                let first = row as usize * grid.cols as usize;
-                (b.x0 / ts..=(b.x1 - 1) / ts).map(move |col| first + col as usize)
-            });
             match chunk.pass {
                 PassKind::Opaque if !painter => {
                     let r = OpaqueRef { chunk: c as u32, kernel: d.kernel, index: d.index };
-                    tiles.for_each(|t| bins.opaque[t].push(r));
+                    for_each_tile(b, ts, grid.cols, |t| bins.opaque[t].push(r));
                 }
                 PassKind::Opaque | PassKind::Transparent { .. } => {
                     let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
-                    tiles.for_each(|t| bins.transparent[t].push(r));
+                    for_each_tile(b, ts, grid.cols, |t| bins.transparent[t].push(r));
                 }
                 PassKind::Shadow { .. } => {
                     let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
-                    tiles.for_each(|t| bins.shadow[t].push(r));
+                    for_each_tile(b, ts, grid.cols, |t| bins.shadow[t].push(r));
                 }
             }
+        }
+    }
+}
+
+/// Calls `push` with the index of every tile (of `size` px, `cols` to a
+/// row) that `b` meets, row by row. Plain loops: the `flat_map` this was
+/// stayed out of line (a call per primitive, 3 % of the instructions of a
+/// 1M-triangle frame).
+#[inline(always)]
+fn for_each_tile(b: Rect, size: i32, cols: u32, mut push: impl FnMut(usize)) {
+    for row in b.y0 / size..=(b.y1 - 1) / size {
+        for col in b.x0 / size..=(b.x1 - 1) / size {
+            push(row as usize * cols as usize + col as usize);
         }
     }
 }

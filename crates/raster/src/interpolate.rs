@@ -192,22 +192,42 @@ impl<const N: usize> AttributePlanes<N> {
 pub const LANES: usize = 8;
 
 /// Column offsets 0, 1, …, 15 as floats (exact).
-const OFFSETS: [f32; 16] =
+const BLOCK_OFFSETS: [f32; 16] =
     [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0, 12.0, 13.0, 14.0, 15.0];
 
 /// Eight consecutive samples of one row, starting at a column that is a
 /// multiple of [`LANES`]; lanes outside the span are evaluated too but not
 /// in `mask`.
+///
+/// Attributes are handed over as their anchor: lane k of attribute i is
+/// `anchor[i] + dx[i] * offsets[k]` in f32 ([`Self::attr`]),
+/// which a SIMD caller evaluates as one vector operation per attribute
+/// with the same bits. (Building the 8 × N lanes here in scalar code cost
+/// the span kernels a round trip through memory, and left LLVM to choose
+/// how to vectorize it: out-of-line `array::from_fn` for wide layouts, or
+/// scatters at the AVX-512 level.)
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SampleBlock<const N: usize> {
+pub struct SampleBlock<'a, const N: usize> {
     /// Column of lane 0 (a multiple of [`LANES`]).
     pub x: i32,
     /// Bit k set when column `x + k` is in the span.
     pub mask: u8,
     /// NC depth per lane.
     pub z: [f32; LANES],
-    /// Attribute i per lane.
-    pub attrs: [[f32; LANES]; N],
+    /// The attributes at the anchor column of the block's 16-column group.
+    pub anchor: &'a [f32; N],
+    /// ∂v/∂x per attribute.
+    pub dx: &'a [f32; N],
+    /// Each lane's column offset from the anchor column: 0–7 or 8–15.
+    pub offsets: [f32; LANES],
+}
+
+impl<const N: usize> SampleBlock<'_, N> {
+    /// Attribute `i` at lane `k`.
+    #[inline(always)]
+    pub fn attr(&self, i: usize, k: usize) -> f32 {
+        self.anchor[i] + self.dx[i] * self.offsets[k]
+    }
 }
 
 /// The values at one anchor column of a row.
@@ -227,13 +247,13 @@ impl<const N: usize> Anchor<N> {
     /// Depth `k` columns after the anchor.
     #[inline(always)]
     fn z(&self, depth: &DepthPlane, k: usize) -> f32 {
-        (self.z + depth.dzdx * f64::from(OFFSETS[k])) as f32
+        (self.z + depth.dzdx * f64::from(BLOCK_OFFSETS[k])) as f32
     }
 
     /// Attribute `i`, `k` columns after the anchor.
     #[inline(always)]
     fn attr(&self, attrs: &AttributePlanes<N>, i: usize, k: usize) -> f32 {
-        self.attrs[i] + attrs.dx[i] * OFFSETS[k]
+        self.attrs[i] + attrs.dx[i] * BLOCK_OFFSETS[k]
     }
 }
 
@@ -259,6 +279,16 @@ pub fn for_each_sample<const N: usize>(
     }
 }
 
+/// Column offsets of the first and of the second block after an anchor.
+const LOW_OFFSETS: [f32; LANES] = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0];
+const HIGH_OFFSETS: [f32; LANES] = [8.0, 9.0, 10.0, 11.0, 12.0, 13.0, 14.0, 15.0];
+
+/// `[f(0), …, f(7)]`, written out.
+#[inline(always)]
+fn lanes8(f: impl Fn(usize) -> f32) -> [f32; LANES] {
+    [f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)]
+}
+
 /// Walks one span in [`SampleBlock`]s of eight lanes, left to right. Lane
 /// values are bit-identical to [`for_each_sample`]'s.
 #[inline(always)]
@@ -266,7 +296,7 @@ pub fn for_each_block<const N: usize>(
     depth: &DepthPlane,
     attrs: &AttributePlanes<N>,
     span: Span,
-    mut f: impl FnMut(&SampleBlock<N>),
+    mut f: impl FnMut(&SampleBlock<'_, N>),
 ) {
     let yc = f64::from(span.y) + 0.5;
     let lanes = LANES as i32;
@@ -276,15 +306,19 @@ pub fn for_each_block<const N: usize>(
         if x >= anchor.column + REANCHOR_BLOCK {
             anchor = Anchor::new(depth, attrs, x & !(REANCHOR_BLOCK - 1), yc);
         }
-        let first = (x - anchor.column) as usize;
+        // Lanes 0–7 or 8–15 of the anchor's 16 columns, as constants (an
+        // index into them is checked per lane and keeps the depths scalar).
+        let offsets = if x - anchor.column < lanes { LOW_OFFSETS } else { HIGH_OFFSETS };
         let lo = (span.x0 - x).clamp(0, lanes);
         let hi = (span.x1 - x).clamp(0, lanes);
         let mask = ((0xFFu32 << lo) & (0xFFu32 >> (lanes - hi))) as u8;
         let block = SampleBlock {
             x,
             mask,
-            z: std::array::from_fn(|k| anchor.z(depth, first + k)),
-            attrs: std::array::from_fn(|i| std::array::from_fn(|k| anchor.attr(attrs, i, first + k))),
+            z: lanes8(|k| (anchor.z + depth.dzdx * f64::from(offsets[k])) as f32),
+            anchor: &anchor.attrs,
+            dx: &attrs.dx,
+            offsets,
         };
         f(&block);
         x += lanes;

@@ -231,34 +231,34 @@ impl PreparedLights {
     }
 
     /// The one entry for a kernel that may be shadowed either way:
-    /// [`Self::shade_parts_x8_shared`] when `share` is given (shadow maps;
-    /// `mask` is not read), else [`Self::shade_parts_x8_shadowed`] with
-    /// `mask` (planar shadows; a material without `shadow_bits` is lit as
-    /// by [`Self::shade_parts_x8`]). Bit for bit the function it stands
-    /// for, with one copy of the light loop for all three: the choice is a
-    /// branch per light, the same way for a whole primitive.
+    /// [`Self::shade_parts_x8_shared`] when `share` is given (shadow maps),
+    /// else [`Self::shade_parts_x8_shadowed`] when `mask` is (planar
+    /// shadows), else [`Self::shade_parts_x8`]. Bit for bit the function it
+    /// stands for, with one copy of the light loop for all three: the
+    /// choice is a branch per light, the same way for a whole primitive,
+    /// and folds away where the caller's arguments are constants.
     #[inline(always)]
     pub fn shade_parts_x8_with<L: Level>(
         &self,
         m: &PreparedMaterial,
         point: Vec3x8<L>,
         normal: Vec3x8<L>,
-        mask: i32x8<L>,
+        mask: Option<i32x8<L>>,
         share: Option<impl Fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>>,
     ) -> (Vec3x8<L>, Vec3x8<L>) {
-        let first = match share {
-            Some(_) => u32::MAX,
-            None => m.shadow_bits.unwrap_or(u32::MAX),
-        };
-        let visible = |k: u32| match first.checked_add(k).filter(
-            #[inline(always)]
-            |&b| b < 32,
-        ) {
-            Some(b) => {
-                let bit = i32x8::splat(1 << b);
-                bytemuck::cast::<i32x8<L>, f32x8<L>>((mask & bit).cmp_eq(i32x8::ZERO))
-            }
-            None => all_lanes(),
+        let first = m.shadow_bits.unwrap_or(u32::MAX);
+        let visible = |k: u32| match (share.is_none(), mask) {
+            (true, Some(mask)) => match first.checked_add(k).filter(
+                #[inline(always)]
+                |&b| b < 32,
+            ) {
+                Some(b) => {
+                    let bit = i32x8::splat(1 << b);
+                    bytemuck::cast::<i32x8<L>, f32x8<L>>((mask & bit).cmp_eq(i32x8::ZERO))
+                }
+                None => all_lanes(),
+            },
+            _ => all_lanes(),
         };
         self.parts_x8(
             m,

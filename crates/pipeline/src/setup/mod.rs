@@ -436,7 +436,7 @@ struct Push<'a> {
 
 impl Push<'_> {
     /// Appends the triangle to `table` with `kernel` and `shader`.
-    #[inline]
+    #[inline(always)]
     fn push<S>(&mut self, table: &mut Vec<Primitive<S>>, kernel: Kernel, shader: S) {
         let primitive = Primitive { edges: self.edges, depth: self.depth, shader };
         PrimitiveChunk::push((self.draws, self.bounds), table, kernel, primitive, self.depths);
@@ -444,7 +444,7 @@ impl Push<'_> {
 }
 
 /// A bump- or normal-mapped triangle: Phong with the tangent frame.
-#[inline]
+#[inline(always)]
 fn emit_perturbed(
     planes: &Planes<'_>,
     map: NormalMapUse,
@@ -467,7 +467,7 @@ fn emit_perturbed(
 }
 
 /// An untextured triangle: only the attributes the shading mode needs.
-#[inline]
+#[inline(always)]
 fn emit_untextured(
     planes: &Planes<'_>,
     flat: LitParts,
@@ -505,7 +505,7 @@ fn emit_untextured(
 /// A textured triangle: texture coordinates plus what the lighting
 /// interpolates. The adaptive mode's Phong lit once is drawn as textured
 /// flat.
-#[inline]
+#[inline(always)]
 fn emit_textured(
     planes: &Planes<'_>,
     (flat, texture): (LitParts, TextureUse),

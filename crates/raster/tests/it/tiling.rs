@@ -52,7 +52,7 @@ fn block_values(t: Tri, p: &Planes, clips: &[Rect]) -> Vec<Bits> {
                             span.y,
                             x,
                             b.z[k].to_bits(),
-                            [b.attrs[0][k].to_bits(), b.attrs[1][k].to_bits()],
+                            [b.attr(0, k).to_bits(), b.attr(1, k).to_bits()],
                         ));
                     }
                 }
