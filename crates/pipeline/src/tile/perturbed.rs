@@ -8,9 +8,8 @@
 //! tested per block like the interpolation, the pass, the level of detail
 //! and the alpha use; the map is sampled eight lanes at a time
 //! (`Texture::sample_x8` at level 0: one read for a normal map, four for a
-//! height map's central differences, each inlined: the four reads as one
-//! loop compiled the sampler once but cost 13 % more instructions on a
-//! bump-mapped sphere).
+//! height map's central differences, in one loop: each copy of the
+//! sampler in a kernel costs build time).
 //!
 //! [`Kernel::Perturbed`]: crate::setup::Kernel::Perturbed
 
@@ -57,7 +56,7 @@ impl<'a> MapReader<'a> {
     /// The map's texel at (s, t), level 0.
     #[inline(always)]
     fn read<S: Level>(&self, s: f32x8<S>, t: f32x8<S>) -> [f32x8<S>; 4] {
-        self.texture.sample_x8(&self.sampler, s, t, f32x8::ZERO)
+        self.texture.sample_base_x8(&self.sampler, s, t)
     }
 }
 
@@ -78,11 +77,18 @@ fn tangent_normal<S: Level>(
         NormalEncoding::Height => {
             let (ds, dt) = (f32x8::<S>::splat(map.step.0), f32x8::<S>::splat(map.step.1));
             let (hw, hh) = (f32x8::<S>::splat(map.half.0), f32x8::<S>::splat(map.half.1));
-            let h = zline_simd::inlined(
-                #[inline(always)]
-                |s, t| map.read(s, t)[0],
-            );
-            let h = [h(s + ds, t), h(s - ds, t), h(s, t + dt), h(s, t - dt)];
+            // h(s + ds, t), h(s − ds, t), h(s, t + dt), h(s, t − dt): one
+            // read in a loop, so the sampler is compiled once here.
+            let mut h = [f32x8::<S>::ZERO; 4];
+            for (k, h) in h.iter_mut().enumerate() {
+                let (u, v) = match k {
+                    0 => (s + ds, t),
+                    1 => (s - ds, t),
+                    2 => (s, t + dt),
+                    _ => (s, t - dt),
+                };
+                *h = map.read(u, v)[0];
+            }
             let dh_ds = (h[0] - h[1]) * hw;
             let dh_dt = (h[2] - h[3]) * hh;
             Vec3x8 { x: -(scale * dh_ds), y: -(scale * dh_dt), z: f32x8::ONE }
@@ -131,25 +137,22 @@ impl TileTarget {
         pass: &AnyPass<'_>,
     ) -> u64 {
         let map = MapReader::new(&ctx.textures[p.shader.map as usize], p.shader.scale);
-        Lit::of(ctx, p.shader.material).split(
-            ctx.normals,
+        // One copy, lighting as values (`Lit::split` would double the
+        // map reads, the costliest code here to compile).
+        let (how, normals) = (Lit::of(ctx, p.shader.material), ctx.normals);
+        self.scan::<_, _, S>(
+            (&p.edges, &p.depth),
+            &p.shader.planes,
+            pass,
+            AlphaTest::Ignore,
             #[inline(always)]
-            |how, normals| {
-                self.scan::<_, _, S>(
-                    (&p.edges, &p.depth),
-                    &p.shader.planes,
-                    pass,
-                    AlphaTest::Ignore,
-                    #[inline(always)]
-                    |a, mask| {
-                        let (eye, normal) = perturbed_point(encoding, &map, a, interp.w(a[Q]));
-                        if normals {
-                            return (encode_normal(normal), f32x8::ONE);
-                        }
-                        let (ambient_diffuse, specular) = lit(&how, eye, normal, mask);
-                        ((ambient_diffuse + specular).clamp01(), f32x8::ONE)
-                    },
-                )
+            |a, mask| {
+                let (eye, normal) = perturbed_point(encoding, &map, a, interp.w(a[Q]));
+                if normals {
+                    return (encode_normal(normal), f32x8::ONE);
+                }
+                let (ambient_diffuse, specular) = lit(&how, eye, normal, mask);
+                ((ambient_diffuse + specular).clamp01(), f32x8::ONE)
             },
         )
     }
@@ -172,20 +175,15 @@ impl TileTarget {
             Lod::new(lod, &p.shader.planes, texture),
             AlphaTest::new(alpha, pass.blends(), texture),
         );
-        Lit::of(ctx, p.shader.material).split(
-            false,
+        let how = Lit::of(ctx, p.shader.material);
+        self.textured_once::<_, S>(
+            (&p.edges, &p.depth, &p.shader.planes),
+            uses,
+            pass,
             #[inline(always)]
-            |how, _| {
-                self.textured::<_, S>(
-                    (&p.edges, &p.depth, &p.shader.planes),
-                    uses,
-                    pass,
-                    #[inline(always)]
-                    |a, w, mask| {
-                        let (eye, normal) = perturbed_point(encoding, &map, a, w);
-                        lit(&how, eye, normal, mask)
-                    },
-                )
+            |a, w, mask| {
+                let (eye, normal) = perturbed_point(encoding, &map, a, w);
+                lit(&how, eye, normal, mask)
             },
         )
     }

@@ -119,6 +119,20 @@ impl Texture {
         }
     }
 
+    /// [`Self::sample_x8`] at level 0 for a nearest or bilinear sampler
+    /// (a trilinear one is read as bilinear, which at level 0 is the same
+    /// filter): the same lanes, without the trilinear code, for callers
+    /// that read a map at its base level only (bump and normal maps).
+    #[inline(always)]
+    pub fn sample_base_x8<L: LaneLevel>(&self, sampler: &Sampler, s: f32x8<L>, t: f32x8<L>) -> [f32x8<L>; 4] {
+        match sampler.filter {
+            Filter::Nearest => self.nearest_x8(Levels::splat(self.levels[0]), sampler, s, t),
+            Filter::Bilinear | Filter::Trilinear => {
+                self.bilinear_x8(Levels::splat(self.levels[0]), sampler, s, t)
+            }
+        }
+    }
+
     #[inline(always)]
     fn nearest_x8<L: LaneLevel>(
         &self,
