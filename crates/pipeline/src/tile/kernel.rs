@@ -331,23 +331,20 @@ impl TileTarget {
     /// SPEC §7, the part every textured kernel shares: texture coordinates
     /// interpolated, the texel sampled with the map's sampler at the level
     /// `lod` finds, and c = texel ⊙ (ambient+diffuse) + specular, clamped,
-    /// with the parts from `parts(attributes, w, mask)`. Two copies, each
-    /// with the interpolation a constant: the divide and the level of
-    /// detail's derivatives are the textured kernels' hottest choice (one
-    /// copy testing it per block measured 4.5 % more instructions on the
-    /// textured plane).
+    /// with the parts from `parts(attributes, w, mask)`. One copy, the
+    /// interpolation tested per block: a copy per interpolation saved 1 %
+    /// of the textured plane's instructions and cost a fifth of the
+    /// pipeline's build time (the sampler is the costliest code to
+    /// compile).
     #[inline(always)]
     pub(super) fn textured<const N: usize, S: Level>(
         &mut self,
         prim: (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
-        (map, interp, lod, alpha): (&FrameTexture, Interp, Lod, AlphaTest),
+        uses: (&FrameTexture, Interp, Lod, AlphaTest),
         pass: &AnyPass<'_>,
         parts: impl Fn(&[f32x8<S>; N], f32x8<S>, i32x8<S>) -> (Vec3x8<S>, Vec3x8<S>) + Copy,
     ) -> u64 {
-        match interp.perspective {
-            true => self.textured_once(prim, (map, Interp { perspective: true }, lod, alpha), pass, parts),
-            false => self.textured_once(prim, (map, Interp { perspective: false }, lod, alpha), pass, parts),
-        }
+        self.textured_once(prim, uses, pass, parts)
     }
 
     /// [`Self::textured`] in one copy, the interpolation tested per block.
