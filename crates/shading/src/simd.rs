@@ -209,25 +209,8 @@ impl PreparedLights {
         normal: Vec3x8<L>,
         mask: i32x8<L>,
     ) -> (Vec3x8<L>, Vec3x8<L>) {
-        let first = m.shadow_bits.unwrap_or(u32::MAX);
-        let visible = |k: u32| match first.checked_add(k).filter(
-            #[inline(always)]
-            |&b| b < 32,
-        ) {
-            Some(b) => {
-                let bit = i32x8::splat(1 << b);
-                bytemuck::cast::<i32x8<L>, f32x8<L>>((mask & bit).cmp_eq(i32x8::ZERO))
-            }
-            None => all_lanes(),
-        };
-        self.parts_x8(
-            m,
-            point,
-            normal,
-            visible,
-            #[inline(always)]
-            |_| None,
-        )
+        let unshared = None::<fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>>;
+        self.shade_parts_x8_with(m, point, normal, Some(mask), unshared)
     }
 
     /// The one entry for a kernel that may be shadowed either way:
