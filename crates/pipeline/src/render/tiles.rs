@@ -1,0 +1,206 @@
+//! The tile stage of a frame: every tile's passes, bands of tiles in
+//! parallel ([`Renderer::draw_tiles`], [`TilePasses`]).
+
+use std::sync::{Mutex, PoisonError};
+
+use glam::Vec3;
+use rayon::iter::Either;
+use rayon::prelude::*;
+use zline_scene::{Scene, Visibility};
+
+use super::{fill_rect, opaque_primitives, pixels_of, BandBuffers, Frame, Renderer};
+use crate::bin::{Bins, PrimitiveRef, TileGrid};
+use crate::fog::FogPass;
+use crate::image::{quantize_rgba, Image};
+use crate::lines::Lines;
+use crate::setup::{DepthEncoding, PrimitiveChunk};
+use crate::tile::{ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
+
+impl Renderer {
+    /// Every tile, bands of tiles in parallel: each tile clears its depth,
+    /// draws its opaque bin, fogs, draws its transparent bin and resolves
+    /// into the image rows it owns ([`TilePasses::draw`]). Returns the
+    /// samples shaded.
+    pub(super) fn draw_tiles(
+        &mut self,
+        scene: &Scene,
+        frame: &Frame,
+        grid: &TileGrid,
+        (image, depth): (&mut Image, Option<&mut Vec<f32>>),
+    ) -> u64 {
+        let (width, n) = (frame.width, frame.n);
+        let tile_size = grid.tile_size / n;
+        let coverage = scene.settings.transparent_background;
+        image.width = width;
+        image.height = frame.height;
+        image.transparent = coverage;
+        image.pixels.resize(width as usize * frame.height as usize, 0);
+        let band_len = width as usize * tile_size as usize;
+        let threads = self.prepare_band_buffers(grid, coverage);
+        let buffers = &self.buffers[..threads];
+        let t = &self.tables;
+        let shade = ShadeContext {
+            lighting: &t.lighting,
+            materials: &t.materials,
+            textures: &t.textures,
+            maps: self.maps_drawn.then_some(&self.maps),
+            normals: self.normals,
+        };
+        let (vw, vh) = (frame.viewport.width, frame.viewport.height);
+        let clear = match frame.depth {
+            DepthEncoding::Normalized => DEPTH_CLEAR,
+            DepthEncoding::Reversed { .. } => DEPTH_CLEAR_REVERSED,
+        };
+        // A transparent background is black (the colour planes then hold
+        // premultiplied colour: `crate::coverage`) with alpha 0.
+        let (background_color, background) = match coverage {
+            false => (scene.background, quantize_rgba(scene.background.extend(1.0))),
+            true => (Vec3::ZERO, 0),
+        };
+        let depth_bands = match depth {
+            Some(d) => {
+                d.clear();
+                d.resize(image.pixels.len(), clear);
+                Either::Left(d.par_chunks_mut(band_len).map(Some))
+            }
+            None => Either::Right((0..image.pixels.len().div_ceil(band_len)).into_par_iter().map(|_| None)),
+        };
+        let wireframe = scene.settings.wireframe;
+        let passes = TilePasses {
+            grid,
+            bins: &self.bins,
+            chunks: &self.chunks[..self.used],
+            shade,
+            fog: scene.fog.map(|f| FogPass::new(f, frame.clip_from_eye, vw, vh, frame.depth)),
+            lines: wireframe.drawn().then_some(&self.lines),
+            lines_only: wireframe.only,
+            painter: scene.settings.visibility == Visibility::Painter,
+            export_depth: matches!(depth_bands, Either::Left(_)),
+            clear,
+            background: (background_color, background),
+            coverage,
+            size: (width, n),
+        };
+        image
+            .pixels
+            .par_chunks_mut(band_len)
+            .zip(depth_bands)
+            .enumerate()
+            .map(|(row, (band, mut depth_band))| {
+                // Only this thread takes its own buffers: the lock is never
+                // contended (and a poisoned one holds plain buffers).
+                let thread = rayon::current_thread_index().unwrap_or(0) % threads;
+                let mut guard = buffers[thread].lock().unwrap_or_else(PoisonError::into_inner);
+                let BandBuffers { target, order } = &mut *guard;
+                (0..grid.cols)
+                    .map(|col| {
+                        passes.draw((target, order), (col, row as u32), band, depth_band.as_deref_mut())
+                    })
+                    .sum::<u64>()
+            })
+            .sum()
+    }
+
+    /// One set of tile buffers per thread, each reserved for this frame's
+    /// tiles (size, coverage plane, shadow mask, transparent sort); returns
+    /// the thread count.
+    fn prepare_band_buffers(&mut self, grid: &TileGrid, coverage: bool) -> usize {
+        let threads = rayon::current_num_threads().max(1);
+        if self.buffers.len() < threads {
+            self.buffers.resize_with(threads, Mutex::default);
+        }
+        let shadows = self.bins.shadow.iter().any(|b| !b.is_empty());
+        let transparent = self.bins.transparent.iter().map(Vec::len).max().unwrap_or(0);
+        for b in &self.buffers[..threads] {
+            let mut guard = b.lock().unwrap_or_else(PoisonError::into_inner);
+            guard.target.set_coverage(coverage);
+            guard.target.reserve(grid.tile_size, shadows);
+            let order = &mut guard.order;
+            order.reserve(transparent.saturating_sub(order.len()));
+        }
+        threads
+    }
+}
+
+/// What every tile of a frame draws with: the bins, the primitives, the
+/// shading context and the frame's choices of passes.
+struct TilePasses<'a> {
+    grid: &'a TileGrid,
+    bins: &'a Bins,
+    chunks: &'a [PrimitiveChunk],
+    shade: ShadeContext<'a>,
+    fog: Option<FogPass>,
+    lines: Option<&'a Lines>,
+    /// `--wireframe-only`: the surfaces only decide which lines are hidden.
+    lines_only: bool,
+    painter: bool,
+    export_depth: bool,
+    /// The depth buffer's far value.
+    clear: f32,
+    /// The background as a colour and as a quantized pixel.
+    background: (Vec3, u32),
+    coverage: bool,
+    /// The image width and the supersampling factor.
+    size: (u32, u32),
+}
+
+impl TilePasses<'_> {
+    /// Draws tile (`col`, `row`) with `target` and resolves it into `band`
+    /// (and its depth into `depth_band` when the depth image is asked
+    /// for). Returns the samples shaded.
+    fn draw(
+        &self,
+        (target, order): (&mut TileTarget, &mut Vec<(f32, PrimitiveRef)>),
+        (col, row): (u32, u32),
+        band: &mut [u32],
+        depth_band: Option<&mut [f32]>,
+    ) -> u64 {
+        let ((width, n), chunks, bins) = (self.size, self.chunks, self.bins);
+        let width = width as usize;
+        let tile = row as usize * self.grid.cols as usize + col as usize;
+        let (rect, opaque, transparent) =
+            (self.grid.rect(col, row), &bins.opaque[tile], &bins.transparent[tile]);
+        let line_bin = self.lines.map_or(&[][..], |l| l.bin_of(tile));
+        if opaque.is_empty() && transparent.is_empty() && line_bin.is_empty() {
+            // Nothing to draw: the background's bytes, without the buffers.
+            fill_rect(band, width, pixels_of(rect, n), self.background.1);
+            return 0;
+        }
+        target.clear(rect, self.background.0, self.clear);
+        let (shade, fog) = (&self.shade, self.fog.as_ref());
+        let mut shaded = 0;
+        if self.lines_only && self.lines.is_some() {
+            target.depth_only_pass(chunks, opaque_primitives(chunks, opaque, transparent));
+            target.fill_background();
+        } else if self.painter {
+            target.shadow_pass(chunks, &bins.shadow[tile]);
+            shaded += target.painter_pass(chunks, transparent, shade, fog, order);
+            let hidden_lines = self.lines.is_some_and(|l| l.mode.hides() && !line_bin.is_empty());
+            if self.export_depth || hidden_lines {
+                target.depth_only_pass(chunks, opaque_primitives(chunks, opaque, transparent));
+            }
+        } else {
+            target.shadow_pass(chunks, &bins.shadow[tile]);
+            shaded += target.opaque_pass(chunks, opaque, shade);
+            if let Some(fog) = fog {
+                target.fog_pass(fog);
+            }
+            if !transparent.is_empty() {
+                shaded += target.transparency_pass(chunks, transparent, shade, fog, order);
+            }
+        }
+        if let Some(lines) = self.lines {
+            target.line_pass(lines, line_bin, n);
+        }
+        if let Some(depth_band) = depth_band {
+            target.export_depth(depth_band, width, n);
+        }
+        match (self.coverage, n) {
+            (false, 1) => target.resolve(band, width),
+            (false, _) => target.resolve_supersampled(band, width, n),
+            (true, 1) => target.resolve_coverage(band, width),
+            (true, _) => target.resolve_coverage_supersampled(band, width, n),
+        }
+        shaded
+    }
+}
