@@ -339,18 +339,6 @@ impl TileTarget {
     #[inline(always)]
     pub(super) fn textured<const N: usize, S: Level>(
         &mut self,
-        prim: (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
-        uses: (&FrameTexture, Interp, Lod, AlphaTest),
-        pass: &AnyPass<'_>,
-        parts: impl Fn(&[f32x8<S>; N], f32x8<S>, i32x8<S>) -> (Vec3x8<S>, Vec3x8<S>) + Copy,
-    ) -> u64 {
-        self.textured_once(prim, uses, pass, parts)
-    }
-
-    /// [`Self::textured`] in one copy, the interpolation tested per block.
-    #[inline(always)]
-    pub(super) fn textured_once<const N: usize, S: Level>(
-        &mut self,
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
         (map, interp, lod, alpha): (&FrameTexture, Interp, Lod, AlphaTest),
         pass: &AnyPass<'_>,

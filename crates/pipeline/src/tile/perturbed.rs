@@ -176,7 +176,7 @@ impl TileTarget {
             AlphaTest::new(alpha, pass.blends(), texture),
         );
         let how = Lit::of(ctx, p.shader.material);
-        self.textured_once::<_, S>(
+        self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
             pass,
