@@ -29,6 +29,8 @@ use crate::setup::DepthEncoding;
 #[derive(Clone, Copy, Debug)]
 pub struct FogPass {
     fog: Fog,
+    /// The falloff of `fog.mode`, decided once per frame (not per block).
+    falloff: Falloffs,
     /// Rows of eye_from_clip (the inverse projection).
     rows: [Vec4; 4],
     /// NC x of column x is x·sx + ox, NC y of row y is y·sy + oy (sample
@@ -51,7 +53,12 @@ impl FogPass {
                 *r = Vec4::new(r.x, r.y, 2.0 * r.z, r.z + r.w);
             }
         }
-        FogPass { fog, rows, scale: (2.0 / w, 1.0 / w - 1.0, -2.0 / h, 1.0 - 1.0 / h) }
+        FogPass {
+            fog,
+            falloff: Falloffs::new(fog.mode),
+            rows,
+            scale: (2.0 / w, 1.0 / w - 1.0, -2.0 / h, 1.0 - 1.0 / h),
+        }
     }
 
     /// The fog colour.
@@ -60,20 +67,20 @@ impl FogPass {
     }
 
     /// Fog factors for eight samples of row `y` starting at column `x`, with
-    /// stored depths `z` (the coordinate and mode chosen per call; a pass
+    /// stored depths `z` (the coordinate and falloff tested per call; a pass
     /// over many blocks uses [`Self::specialized`] instead).
     #[inline(always)]
     pub fn factors<S: Level>(&self, x: i32, y: i32, z: f32x8<S>) -> f32x8<S> {
-        match (self.fog.coordinate, self.fog.mode) {
-            (FogCoordinate::EyePlane, mode) => self.factors_with::<EyePlane, _>(Falloffs::new(mode), x, y, z),
-            (FogCoordinate::Radial, mode) => self.factors_with::<Radial, _>(Falloffs::new(mode), x, y, z),
+        match self.fog.coordinate {
+            FogCoordinate::EyePlane => self.factors_with::<EyePlane, _>(self.falloff, x, y, z),
+            FogCoordinate::Radial => self.factors_with::<Radial, _>(self.falloff, x, y, z),
         }
     }
 
     /// Runs `visitor` with this fog's factors as a type: the coordinate and
     /// the mode are decided here, once, not per block.
     pub fn specialized<V: FogVisitor>(&self, visitor: V) -> V::Output {
-        let falloff = Falloffs::new(self.fog.mode);
+        let falloff = self.falloff;
         match self.fog.coordinate {
             FogCoordinate::EyePlane => self.specialized_with::<EyePlane, V>(falloff, visitor),
             FogCoordinate::Radial => self.specialized_with::<Radial, V>(falloff, visitor),
@@ -187,32 +194,32 @@ trait Falloff: Copy {
 }
 
 /// Linear fog with start = end: a step.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 struct Step {
     start: f32,
 }
 
 /// Linear fog.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 struct Linear {
     start: f32,
     end: f32,
 }
 
 /// Exponential fog.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 struct Exp {
     density: f32,
 }
 
 /// Squared exponential fog.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 struct Exp2 {
     density: f32,
 }
 
 /// Any of the four, chosen per call.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 enum Falloffs {
     Step(Step),
     Linear(Linear),

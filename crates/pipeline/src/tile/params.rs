@@ -44,24 +44,22 @@ impl Interp {
         Interp { perspective: interpolation == Interpolation::PerspectiveCorrect }
     }
 
-    /// The factor that turns a plane value into the attribute: 1/(1/w) or 1.
+    /// The factor that turns a plane value into the attribute: 1/(1/w),
+    /// or 1/1 in screen-linear mode, whose Q plane is 1 exactly (three
+    /// equal vertex values give a zero slope and an anchor of exactly 1),
+    /// so the division leaves every value as it is. Dividing in both modes
+    /// costs screen-linear primitives a division per block and saves the
+    /// perspective ones (the default) a branch per block.
     #[inline(always)]
     pub(crate) fn w<S: Level>(self, q: f32x8<S>) -> f32x8<S> {
-        if self.perspective {
-            f32x8::ONE / q
-        } else {
-            f32x8::ONE
-        }
+        f32x8::ONE / q
     }
 
-    /// `v` over `q` (perspective) or `v` itself.
+    /// `v` over `q` (in screen-linear mode q = 1: `v` itself, as for
+    /// [`Self::w`]).
     #[inline(always)]
     pub(crate) fn divide<S: Level>(self, v: f32x8<S>, q: f32x8<S>) -> f32x8<S> {
-        if self.perspective {
-            v / q
-        } else {
-            v
-        }
+        v / q
     }
 }
 
