@@ -9,14 +9,18 @@ mod fog;
 mod light;
 mod material;
 mod model;
+mod pbr;
 mod prepared;
 mod simd;
 mod texture;
 
 pub use fog::{Fog, FogCoordinate, FogMode};
 pub use light::{Attenuation, Light};
-pub use material::Material;
+pub use material::{Material, Model, ModelChoice};
 pub use model::{LightingModel, LitParts};
+pub use pbr::{
+    directional_albedo, split_sum, split_sum_table, Distribution, Microfacet, DIELECTRIC_F0, MIN_ALPHA2, SPLIT_SUM_SIZE,
+};
 pub use prepared::{PreparedLights, PreparedMaterial, Shininess, SPECULAR_CUTOFF};
 pub use simd::Vec3x8;
 pub use texture::{lod, Filter, Sampler, Texture, TextureError, Wrap, MAX_TEXTURE_SIZE};

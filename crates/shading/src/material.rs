@@ -2,6 +2,31 @@
 
 use glam::Vec3;
 
+use crate::pbr::Microfacet;
+
+/// The reflection model that lights a surface (SPEC §5).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Model {
+    /// The basic lighting model of SPEC §5.1: ke, ka, kd, ks, ns.
+    #[default]
+    Basic,
+    /// The Cook–Torrance microfacet model of SPEC §5.2, with the base
+    /// colour kd (ka, ks and ns unused): glTF's metallic–roughness
+    /// material, or the course's Torrance–Sparrow/Cook–Torrance with the
+    /// Beckmann distribution.
+    CookTorrance(Microfacet),
+}
+
+impl Model {
+    /// The lower-case name the CLI and scene files use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Model::Basic => "basic",
+            Model::CookTorrance(_) => "cook-torrance",
+        }
+    }
+}
+
 /// Coefficients of the lighting model for one surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {
@@ -20,6 +45,9 @@ pub struct Material {
     pub ns: f32,
     /// Opacity d in [0, 1]; transparency kt = 1 − d (SPEC §9).
     pub opacity: f32,
+    /// The reflection model: the basic one, or Cook–Torrance with kd as
+    /// its base colour.
+    pub model: Model,
 }
 
 impl Material {
@@ -31,18 +59,67 @@ impl Material {
         ks: Vec3::splat(0.2),
         ns: 32.0,
         opacity: 1.0,
+        model: Model::Basic,
     };
 
     /// A material with ka = kd = `color`, the given specular and shininess,
     /// no emission.
     pub fn plastic(color: Vec3, ks: f32, ns: f32) -> Material {
-        Material { ke: Vec3::ZERO, ka: color, kd: color, ks: Vec3::splat(ks), ns, opacity: 1.0 }
+        Material {
+            ke: Vec3::ZERO,
+            ka: color,
+            kd: color,
+            ks: Vec3::splat(ks),
+            ns,
+            opacity: 1.0,
+            model: Model::Basic,
+        }
     }
 
-    /// True when the specular term contributes nothing for any light.
+    /// True when the specular term contributes nothing for any light
+    /// (the basic model with ks = 0; a Cook–Torrance surface always has
+    /// one).
     #[inline]
     pub fn has_specular(&self) -> bool {
-        self.ks.max_element() > 0.0
+        match self.model {
+            Model::Basic => self.ks.max_element() > 0.0,
+            Model::CookTorrance(_) => true,
+        }
+    }
+
+    /// The same material lit by `model` instead (the CLI's side-by-side
+    /// switch): to Cook–Torrance, a basic material becomes a dielectric
+    /// (metallic 0) of base colour kd and the roughness whose GGX lobe is
+    /// closest to its Blinn–Phong exponent (α² = 2/(ns + 2)); to basic, a
+    /// Cook–Torrance material keeps kd and takes ka = kd, ks =
+    /// mix(0.04, kd, metallic)·(1 − roughness) and ns = 2/α² − 2, within
+    /// [1, 1024].
+    pub fn with_model(&self, model: ModelChoice) -> Material {
+        match (model, self.model) {
+            (ModelChoice::Basic, Model::CookTorrance(m)) => {
+                let (_, f0) = m.colors(self.kd);
+                let alpha2 = m.alpha2();
+                Material {
+                    ka: self.kd,
+                    ks: f0 * (1.0 - m.roughness),
+                    ns: (2.0 / alpha2 - 2.0).clamp(1.0, 1024.0),
+                    model: Model::Basic,
+                    ..*self
+                }
+            }
+            (ModelChoice::CookTorrance(distribution), Model::Basic) => {
+                let alpha2 = (2.0 / (self.ns.max(0.0) + 2.0)).min(1.0);
+                let roughness = alpha2.sqrt().sqrt();
+                Material {
+                    model: Model::CookTorrance(Microfacet { metallic: 0.0, roughness, distribution }),
+                    ..*self
+                }
+            }
+            (ModelChoice::CookTorrance(distribution), Model::CookTorrance(m)) => {
+                Material { model: Model::CookTorrance(Microfacet { distribution, ..m }), ..*self }
+            }
+            (ModelChoice::Basic, Model::Basic) => *self,
+        }
     }
 
     /// The same material with every coefficient clamped to its valid range
@@ -54,8 +131,21 @@ impl Material {
         };
         let ns = if self.ns.is_finite() { self.ns.max(0.0) } else { 1.0 };
         let opacity = if self.opacity.is_nan() { 1.0 } else { self.opacity.clamp(0.0, 1.0) };
-        Material { ke: c(self.ke), ka: c(self.ka), kd: c(self.kd), ks: c(self.ks), ns, opacity }
+        let model = match self.model {
+            Model::Basic => Model::Basic,
+            Model::CookTorrance(m) => Model::CookTorrance(m.sanitized()),
+        };
+        Material { ke: c(self.ke), ka: c(self.ka), kd: c(self.kd), ks: c(self.ks), ns, opacity, model }
     }
+}
+
+/// A model to force on every material ([`Material::with_model`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ModelChoice {
+    /// The basic model.
+    Basic,
+    /// Cook–Torrance with this distribution.
+    CookTorrance(crate::pbr::Distribution),
 }
 
 impl Default for Material {

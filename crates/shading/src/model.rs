@@ -14,7 +14,8 @@
 use glam::Vec3;
 
 use crate::light::Light;
-use crate::material::Material;
+use crate::material::{Material, Model};
+use crate::pbr::MicrofacetSums;
 
 /// Ambient light plus a list of lights, all in one coordinate frame.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -67,6 +68,28 @@ impl LightingModel {
     #[inline]
     pub fn shade_parts(&self, material: &Material, point: Vec3, normal: Vec3, eye: Vec3) -> LitParts {
         let view = (eye - point).normalize_or_zero();
+        if let Model::CookTorrance(m) = material.model {
+            // SPEC §5.2, the lights in the scene's order.
+            let nv = normal.dot(view).max(0.0).min(1.0);
+            let (alpha2, (_, f0)) = (m.alpha2(), m.colors(material.kd));
+            let mut sums = MicrofacetSums::default();
+            for light in &self.lights {
+                let (to_light, intensity) = match *light {
+                    Light::Point { position, color, attenuation } => {
+                        let d = position - point;
+                        let dist = d.length();
+                        if dist == 0.0 {
+                            continue;
+                        }
+                        (d / dist, color * attenuation.factor(dist))
+                    }
+                    Light::Directional { direction, color } => (-direction.normalize_or_zero(), color),
+                };
+                sums.add((&m, alpha2, f0), normal, view, nv, to_light, intensity);
+            }
+            let (ambient_diffuse, specular) = sums.parts(&m, material.kd, material.ke, self.ambient, nv);
+            return LitParts { ambient_diffuse, specular };
+        }
         let mut diffuse = Vec3::ZERO;
         let mut specular = Vec3::ZERO;
         let specular_on = material.has_specular();

@@ -12,8 +12,9 @@
 use glam::{Mat4, Vec3};
 
 use crate::light::{Attenuation, Light};
-use crate::material::Material;
+use crate::material::{Material, Model};
 use crate::model::{LightingModel, LitParts};
+use crate::pbr::{Microfacet, MicrofacetSums};
 
 /// A directional light with its unit vector towards the light.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -107,6 +108,8 @@ pub struct PreparedMaterial {
     /// hidden at a sample whose mask has bit `first + k` set
     /// ([`PreparedLights::shade_parts_x8_shadowed`]).
     pub shadow_bits: Option<u32>,
+    /// For a Cook–Torrance material: its parameters and α².
+    pub microfacet: Option<(Microfacet, f32)>,
 }
 
 /// The smallest (N·H)^ns the lighting model evaluates; below it the term is
@@ -125,6 +128,10 @@ impl PreparedMaterial {
             specular: material.has_specular(),
             specular_threshold,
             shadow_bits: None,
+            microfacet: match material.model {
+                Model::Basic => None,
+                Model::CookTorrance(m) => Some((m, m.alpha2())),
+            },
         }
     }
 }
@@ -190,6 +197,9 @@ impl PreparedLights {
     /// quantity as [`LightingModel::shade_parts`].
     #[inline]
     pub fn shade_parts(&self, m: &PreparedMaterial, point: Vec3, normal: Vec3, eye: Vec3) -> LitParts {
+        if let Some(microfacet) = m.microfacet {
+            return self.microfacet_parts(m, microfacet, point, normal, eye, m.material.kd);
+        }
         let view = (eye - point).normalize_or_zero();
         let mut sum = Sums::default();
         for d in &self.directional {
@@ -210,6 +220,63 @@ impl PreparedLights {
             ambient_diffuse: mat.ka * self.ambient + mat.kd * diffuse,
             specular: mat.ke + mat.ks * specular,
         }
+    }
+
+    /// The unclamped colour at `point` where `modulate` multiplies the
+    /// material's colour (a texel, a vertex colour): the basic model's
+    /// `modulate(ambient+diffuse) + specular` (SPEC §7), or Cook–Torrance
+    /// with the base colour `modulate(kd)`. The scalar twin of the
+    /// kernels' lighting seam, [`Self::shade_x8_with`].
+    #[inline]
+    pub fn shade_modulated(
+        &self,
+        m: &PreparedMaterial,
+        (point, normal, eye): (Vec3, Vec3, Vec3),
+        modulate: impl Fn(Vec3) -> Vec3,
+    ) -> Vec3 {
+        match m.microfacet {
+            None => {
+                let parts = self.shade_parts(m, point, normal, eye);
+                modulate(parts.ambient_diffuse) + parts.specular
+            }
+            Some(microfacet) => {
+                let parts = self.microfacet_parts(m, microfacet, point, normal, eye, modulate(m.material.kd));
+                parts.ambient_diffuse + parts.specular
+            }
+        }
+    }
+
+    /// SPEC §5.2 at `point` for a surface of base colour `base`:
+    /// ambient+diffuse (the diffuse lobe and the environment's diffuse
+    /// share) and emission+specular.
+    #[inline]
+    fn microfacet_parts(
+        &self,
+        m: &PreparedMaterial,
+        (microfacet, alpha2): (Microfacet, f32),
+        point: Vec3,
+        normal: Vec3,
+        eye: Vec3,
+        base: Vec3,
+    ) -> LitParts {
+        let view = (eye - point).normalize_or_zero();
+        let nv = normal.dot(view).max(0.0).min(1.0);
+        let (_, f0) = microfacet.colors(base);
+        let mut sums = MicrofacetSums::default();
+        for d in &self.directional {
+            sums.add((&microfacet, alpha2, f0), normal, view, nv, d.to_light, d.color);
+        }
+        for p in &self.point {
+            let v = p.position - point;
+            let dist = v.length();
+            if dist == 0.0 {
+                continue;
+            }
+            let f = p.attenuation.map_or(1.0, |a| a.factor(dist));
+            sums.add((&microfacet, alpha2, f0), normal, view, nv, v / dist, p.color * f);
+        }
+        let (ambient_diffuse, specular) = sums.parts(&microfacet, base, m.material.ke, self.ambient, nv);
+        LitParts { ambient_diffuse, specular }
     }
 
     /// Ambient light Ia.
@@ -277,7 +344,7 @@ mod tests {
                     Light::Directional { direction: dir * 3.0, color: Vec3::new(0.3, 0.6, 0.9) },
                 ],
             };
-            let m = Material { ke: Vec3::new(0.05, 0.0, 0.1), ka: Vec3::splat(0.2), kd: Vec3::new(0.9, 0.5, 0.1), ks: Vec3::splat(0.7), ns, opacity: 1.0 };
+            let m = Material { ke: Vec3::new(0.05, 0.0, 0.1), ka: Vec3::splat(0.2), kd: Vec3::new(0.9, 0.5, 0.1), ks: Vec3::splat(0.7), ns, opacity: 1.0, model: crate::material::Model::Basic };
             let plain = model.shade_parts(&m, p, n, eye);
             let prepared = PreparedLights::new(&model, &Mat4::IDENTITY).shade_parts(&PreparedMaterial::new(m), p, n, eye);
             let err = (plain.ambient_diffuse - prepared.ambient_diffuse).abs().max_element()

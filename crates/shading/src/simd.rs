@@ -13,6 +13,7 @@ use std::ops::{Add, Mul};
 
 use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 
+use crate::pbr::{split_sum, Distribution, Microfacet, DIELECTRIC_F0};
 use crate::prepared::{pow_by_squaring, PreparedLights, PreparedMaterial, Shininess};
 
 /// Three coordinates of eight vectors.
@@ -160,75 +161,30 @@ impl PreparedLights {
         )
     }
 
-    /// [`Self::shade_parts_x8`] where light k (its index in the scene's
-    /// list) reaches each lane with the share `share(k, point, normal)` in
-    /// [0, 1] of its intensity (shadow maps: the fraction of the filter's
-    /// texels that see it).
+    /// The kernels' one lighting entry: the unclamped colour of eight
+    /// samples, where `modulate` multiplies the material's colour (a
+    /// texel, a vertex colour; the identity for none): for the basic
+    /// model `modulate(ambient+diffuse) + specular` (SPEC §7), for
+    /// Cook–Torrance the model with the base colour `modulate(kd)` per
+    /// lane (SPEC §5.2). Light k (its index in the scene's list) reaches
+    /// each lane with the share `share(k, point, normal)` of its intensity
+    /// when `share` is given (shadow maps); else, when `mask` is given
+    /// (planar shadows), it contributes nothing to a lane whose mask has
+    /// bit `m.shadow_bits + k` set (bits past 31, and every bit for a
+    /// material without `shadow_bits`, leave it lit). Bit for bit
+    /// [`PreparedLights::shade_modulated`] with the same hidden lights,
+    /// with one copy of the light loop per model: the choices are
+    /// branches, the same way for a whole primitive, and fold away where
+    /// the caller's arguments are constants.
     #[inline(always)]
-    pub fn shade_parts_x8_shared<L: Level>(
+    pub fn shade_x8_with<L: Level>(
         &self,
         m: &PreparedMaterial,
-        point: Vec3x8<L>,
-        normal: Vec3x8<L>,
-        share: impl Fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>,
-    ) -> (Vec3x8<L>, Vec3x8<L>) {
-        self.parts_x8(
-            m,
-            point,
-            normal,
-            #[inline(always)]
-            |_| all_lanes(),
-            #[inline(always)]
-            |k| Some(share(k, point, normal)),
-        )
-    }
-
-    /// [`Self::shade_x8`] where some lights may be hidden: light k (its
-    /// index in the scene's list) contributes nothing to a lane whose
-    /// `mask` has bit `m.shadow_bits + k` set. Bits past 31, and every bit
-    /// for a material without `shadow_bits`, leave the light lit.
-    #[inline(always)]
-    pub fn shade_x8_shadowed<L: Level>(
-        &self,
-        m: &PreparedMaterial,
-        point: Vec3x8<L>,
-        normal: Vec3x8<L>,
-        mask: i32x8<L>,
-    ) -> Vec3x8<L> {
-        let (ambient_diffuse, specular) = self.shade_parts_x8_shadowed(m, point, normal, mask);
-        ambient_diffuse.add(specular).clamp01()
-    }
-
-    /// [`Self::shade_parts_x8`] with hidden lights (see
-    /// [`Self::shade_x8_shadowed`]).
-    #[inline(always)]
-    pub fn shade_parts_x8_shadowed<L: Level>(
-        &self,
-        m: &PreparedMaterial,
-        point: Vec3x8<L>,
-        normal: Vec3x8<L>,
-        mask: i32x8<L>,
-    ) -> (Vec3x8<L>, Vec3x8<L>) {
-        let unshared = None::<fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>>;
-        self.shade_parts_x8_with(m, point, normal, Some(mask), unshared)
-    }
-
-    /// The one entry for a kernel that may be shadowed either way:
-    /// [`Self::shade_parts_x8_shared`] when `share` is given (shadow maps),
-    /// else [`Self::shade_parts_x8_shadowed`] when `mask` is (planar
-    /// shadows), else [`Self::shade_parts_x8`]. Bit for bit the function it
-    /// stands for, with one copy of the light loop for all three: the
-    /// choice is a branch per light, the same way for a whole primitive,
-    /// and folds away where the caller's arguments are constants.
-    #[inline(always)]
-    pub fn shade_parts_x8_with<L: Level>(
-        &self,
-        m: &PreparedMaterial,
-        point: Vec3x8<L>,
-        normal: Vec3x8<L>,
+        (point, normal): (Vec3x8<L>, Vec3x8<L>),
         mask: Option<i32x8<L>>,
         share: Option<impl Fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>>,
-    ) -> (Vec3x8<L>, Vec3x8<L>) {
+        modulate: impl Fn(Vec3x8<L>) -> Vec3x8<L>,
+    ) -> Vec3x8<L> {
         let first = m.shadow_bits.unwrap_or(u32::MAX);
         let visible = |k: u32| match (share.is_none(), mask) {
             (true, Some(mask)) => match first.checked_add(k).filter(
@@ -243,11 +199,7 @@ impl PreparedLights {
             },
             _ => all_lanes(),
         };
-        self.parts_x8(
-            m,
-            point,
-            normal,
-            visible,
+        let shared = zline_simd::inlined(
             #[inline(always)]
             #[allow(
                 clippy::manual_map,
@@ -257,29 +209,40 @@ impl PreparedLights {
                 Some(f) => Some(f(k, point, normal)),
                 None => None,
             },
-        )
+        );
+        match m.microfacet {
+            None => {
+                let (ambient_diffuse, specular) = self.parts_x8(m, point, normal, visible, shared);
+                modulate(ambient_diffuse) + specular
+            }
+            Some(microfacet) => {
+                let base = modulate(Vec3x8::splat(m.material.kd));
+                let (ambient_diffuse, specular) =
+                    self.microfacet_parts_x8(m, microfacet, (point, normal, base), visible, shared);
+                ambient_diffuse + specular
+            }
+        }
     }
 
-    /// The sums over the lights, light k counting in the lanes
-    /// `visible(k)` sets, with its intensity scaled by `share(k)` when
-    /// that is given.
+    /// Calls `add(to_light, intensity, active)` for each light at eight
+    /// samples at `point`, in the order of the scalar path (directional
+    /// lights, then point lights), light k counting in the lanes
+    /// `visible(k)` sets, with its intensity scaled by `share(k)` when that
+    /// is given.
     #[inline(always)]
-    fn parts_x8<L: Level>(
+    fn for_each_light_x8<L: Level>(
         &self,
-        m: &PreparedMaterial,
         point: Vec3x8<L>,
-        normal: Vec3x8<L>,
         visible: impl Fn(u32) -> f32x8<L>,
         share: impl Fn(u32) -> Option<f32x8<L>>,
-    ) -> (Vec3x8<L>, Vec3x8<L>) {
-        let view = Vec3x8::default().sub(point).normalize_or_zero();
-        let mut sum = SumsX8::default();
+        mut add: impl FnMut(Vec3x8<L>, Vec3x8<L>, f32x8<L>),
+    ) {
         for (to_light, color, k) in self.directional_lights() {
             let mut intensity = Vec3x8::splat(color);
             if let Some(f) = share(k) {
                 intensity = intensity.scale(f);
             }
-            sum.add(m, normal, view, Vec3x8::splat(to_light), intensity, visible(k));
+            add(Vec3x8::splat(to_light), intensity, visible(k));
         }
         for (position, color, attenuation, k) in self.point_lights() {
             let v = Vec3x8::splat(position).sub(point);
@@ -294,12 +257,82 @@ impl PreparedLights {
             if let Some(f) = share(k) {
                 intensity = intensity.scale(f);
             }
-            sum.add(m, normal, view, v.div(dist), intensity, present);
+            add(v.div(dist), intensity, present);
         }
+    }
+
+    /// The basic model's sums over the lights (see
+    /// [`Self::for_each_light_x8`]); a Cook–Torrance material goes to
+    /// [`Self::microfacet_parts_x8`] with its kd as the base colour.
+    #[inline(always)]
+    fn parts_x8<L: Level>(
+        &self,
+        m: &PreparedMaterial,
+        point: Vec3x8<L>,
+        normal: Vec3x8<L>,
+        visible: impl Fn(u32) -> f32x8<L>,
+        share: impl Fn(u32) -> Option<f32x8<L>>,
+    ) -> (Vec3x8<L>, Vec3x8<L>) {
+        if let Some(microfacet) = m.microfacet {
+            let base = Vec3x8::splat(m.material.kd);
+            return self.microfacet_parts_x8(m, microfacet, (point, normal, base), visible, share);
+        }
+        let view = Vec3x8::default().sub(point).normalize_or_zero();
+        let mut sum = SumsX8::default();
+        self.for_each_light_x8(
+            point,
+            visible,
+            share,
+            #[inline(always)]
+            |to_light, intensity, active| sum.add(m, normal, view, to_light, intensity, active),
+        );
         let mat = &m.material;
         let ambient_diffuse =
             Vec3x8::splat(mat.ka * self.ambient()).add(Vec3x8::splat(mat.kd).mul(sum.diffuse));
         let specular = Vec3x8::splat(mat.ke).add(Vec3x8::splat(mat.ks).mul(sum.specular));
+        (ambient_diffuse, specular)
+    }
+
+    /// SPEC §5.2 for eight samples of base colour `base`: the lanes of
+    /// `PreparedLights::microfacet_parts`, bit for bit.
+    #[inline(always)]
+    fn microfacet_parts_x8<L: Level>(
+        &self,
+        m: &PreparedMaterial,
+        (microfacet, alpha2): (Microfacet, f32),
+        (point, normal, base): (Vec3x8<L>, Vec3x8<L>, Vec3x8<L>),
+        visible: impl Fn(u32) -> f32x8<L>,
+        share: impl Fn(u32) -> Option<f32x8<L>>,
+    ) -> (Vec3x8<L>, Vec3x8<L>) {
+        let view = Vec3x8::default().sub(point).normalize_or_zero();
+        let nv = normal.dot(view).max(f32x8::ZERO).min(f32x8::ONE);
+        let metallic = f32x8::splat(microfacet.metallic);
+        let dielectric = Vec3x8::splat(glam::Vec3::splat(DIELECTRIC_F0));
+        let f0 = dielectric.add(base.sub(dielectric).scale(metallic));
+        let c_diff = base.scale(f32x8::splat(1.0 - microfacet.metallic));
+        let mut sum = MicrofacetSumsX8::default();
+        self.for_each_light_x8(
+            point,
+            visible,
+            share,
+            #[inline(always)]
+            |to_light, intensity, active| {
+                sum.add((microfacet.distribution, alpha2, f0), (normal, view, nv), to_light, intensity, active)
+            },
+        );
+        // The environment's split sum, looked up per lane.
+        let (mut a, mut b) = ([0.0f32; 8], [0.0f32; 8]);
+        for (k, &v) in nv.as_array_ref().iter().enumerate() {
+            [a[k], b[k]] = split_sum(microfacet.distribution, v, microfacet.roughness);
+        }
+        let (a, b) = (f32x8::from(a), f32x8::from(b));
+        let e_s = f0.scale(a).add(Vec3x8 { x: b, y: b, z: b });
+        let ambient = Vec3x8::splat(self.ambient());
+        let one = Vec3x8::splat(glam::Vec3::ONE);
+        let ambient_diffuse = ambient
+            .mul(c_diff.mul(one.sub(e_s)))
+            .add(c_diff.mul(sum.diffuse.scale(f32x8::splat(1.0 / std::f32::consts::PI))));
+        let specular = Vec3x8::splat(m.material.ke).add(ambient.mul(e_s)).add(sum.specular);
         (ambient_diffuse, specular)
     }
 }
@@ -342,6 +375,84 @@ impl<L: Level> SumsX8<L> {
                 let power = m.shininess.pow_x8(shiny.blend(n_dot_h, f32x8::ONE));
                 self.specular = self.specular.add(intensity.scale(power).keep(shiny));
             }
+        }
+    }
+}
+
+/// Running sums of the Cook–Torrance terms over the lights, per lane
+/// (see `pbr::MicrofacetSums`).
+#[derive(Default)]
+struct MicrofacetSumsX8<L: Level = Baseline> {
+    diffuse: Vec3x8<L>,
+    specular: Vec3x8<L>,
+}
+
+impl<L: Level> MicrofacetSumsX8<L> {
+    #[inline(always)]
+    fn add(
+        &mut self,
+        (distribution, alpha2, f0): (Distribution, f32, Vec3x8<L>),
+        (normal, view, nv): (Vec3x8<L>, Vec3x8<L>, f32x8<L>),
+        to_light: Vec3x8<L>,
+        intensity: Vec3x8<L>,
+        active: f32x8<L>,
+    ) {
+        let nl = normal.dot(to_light);
+        // The scalar path skips a light when N·L ≤ 0 (so NaN stays lit).
+        let lit = active & (nl.cmp_le(f32x8::ZERO) ^ all_lanes());
+        if lit.none() {
+            return;
+        }
+        let (zero, one) = (f32x8::ZERO, f32x8::ONE);
+        let nl = nl.min(one);
+        let half = to_light.add(view).normalize_or_zero();
+        let nh = normal.dot(half).max(zero).min(one);
+        let vh = view.dot(half).max(zero).min(one);
+        let y = one - vh;
+        let y2 = y * y;
+        let s = y2 * y2 * y;
+        let ones = Vec3x8 { x: one, y: one, z: one };
+        let fresnel = f0.add(ones.sub(f0).scale(s));
+        let e = intensity.scale(nl);
+        self.diffuse = self.diffuse.add(ones.sub(fresnel).mul(e).keep(lit));
+        let dv = d_vis_x8(distribution, alpha2, (nl, nv, nh, vh));
+        self.specular = self.specular.add(fresnel.mul(e.scale(dv)).keep(lit));
+    }
+}
+
+/// `pbr::d_vis` per lane, bit for bit.
+#[inline(always)]
+fn d_vis_x8<L: Level>(
+    distribution: Distribution,
+    alpha2: f32,
+    (nl, nv, nh, vh): (f32x8<L>, f32x8<L>, f32x8<L>, f32x8<L>),
+) -> f32x8<L> {
+    let pi = std::f32::consts::PI;
+    let zero = f32x8::ZERO;
+    match distribution {
+        Distribution::Ggx => {
+            let (a2, one_minus) = (f32x8::splat(alpha2), f32x8::splat(1.0 - alpha2));
+            let f = nh * nh * f32x8::splat(alpha2 - 1.0) + f32x8::ONE;
+            let d = a2 / (f32x8::splat(pi) * f * f);
+            let gv = nl * (nv * nv * one_minus + a2).sqrt();
+            let gl = nv * (nl * nl * one_minus + a2).sqrt();
+            let g = gv + gl;
+            let vis = g.cmp_gt(zero).blend(f32x8::splat(0.5) / g, zero);
+            d * vis
+        }
+        Distribution::Beckmann => {
+            let c2 = nh * nh;
+            let ok = c2.cmp_gt(zero) & nv.cmp_gt(zero) & vh.cmp_gt(zero);
+            let tan2 = (f32x8::ONE - c2) / c2;
+            let exponent = -tan2 / f32x8::splat(alpha2);
+            let e = f32x8::from(exponent.to_array().map(
+                #[inline(always)]
+                |v| v.exp(),
+            ));
+            let d = e / (f32x8::splat(pi * alpha2) * c2 * c2);
+            let two = f32x8::splat(2.0);
+            let g = (two * nh * nv / vh).min(two * nh * nl / vh).min(f32x8::ONE);
+            ok.blend(d * (g / (f32x8::splat(4.0) * nl * nv)), zero)
         }
     }
 }

@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 use gltf::texture::{MagFilter, MinFilter, WrappingMode};
-use zline_shading::{Filter, Material, Sampler, Wrap};
+use zline_shading::{Distribution, Filter, Material, Microfacet, Model, Sampler, Wrap};
 
 use zline_scene::{Camera, Mesh, Object, Projection};
 
@@ -71,7 +71,8 @@ pub(super) fn material_from_gltf(material: &gltf::Material) -> Material {
     let ns = (2.0 / roughness.powi(4) - 2.0).clamp(1.0, MAX_GLTF_SHININESS);
     let opacity = if material.alpha_mode() == gltf::material::AlphaMode::Blend { a } else { 1.0 };
     let ke = Vec3::from(material.emissive_factor()) * material.emissive_strength().unwrap_or(1.0);
-    Material { ke, ka: base, kd: base, ks, ns, opacity }.sanitized()
+    let model = Model::CookTorrance(Microfacet { metallic, roughness, distribution: Distribution::Ggx });
+    Material { ke, ka: base, kd: base, ks, ns, opacity, model }.sanitized()
 }
 
 /// The same mesh with every triangle's winding reversed.

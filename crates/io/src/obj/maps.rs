@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 use zline_scene::{Mesh, NormalEncoding, NormalMap, TextureMap};
-use zline_shading::{Material, Sampler, Wrap};
+use zline_shading::{Distribution, Material, Microfacet, Model, Sampler, Wrap};
 
 use crate::error::SceneError;
 use crate::files::{resolve, LoadOptions};
@@ -255,8 +255,26 @@ pub(super) fn material_from_mtl(m: &tobj::Material) -> Material {
         ks: m.specular.map_or(d.ks, Vec3::from),
         ns: m.shininess.unwrap_or(d.ns),
         opacity,
+        model: pbr_model(m),
     }
     .sanitized()
+}
+
+/// Cook–Torrance (GGX) when the material carries the PBR extension's
+/// scalar keys `Pr` (roughness, default 1) or `Pm` (metallic, default 0);
+/// else the basic model. Values that do not parse count as absent (the
+/// MTL check reports them).
+fn pbr_model(m: &tobj::Material) -> Model {
+    let value = |key: &str| m.unknown_param.get(key).and_then(|v| v.split_whitespace().next()?.parse::<f32>().ok());
+    let (roughness, metallic) = (value("Pr"), value("Pm"));
+    if roughness.is_none() && metallic.is_none() {
+        return Model::Basic;
+    }
+    Model::CookTorrance(Microfacet {
+        metallic: metallic.unwrap_or(0.0),
+        roughness: roughness.unwrap_or(1.0),
+        distribution: Distribution::Ggx,
+    })
 }
 
 #[cfg(test)]

@@ -73,7 +73,7 @@ pub(super) fn check_mtl_text(text: &str) -> Result<String, (usize, String)> {
                 }
                 _ => {}
             },
-            "Ns" | "Ni" | "d" if args.first().and_then(|a| a.parse::<f32>().ok()).is_none() => {
+            "Ns" | "Ni" | "d" | "Pr" | "Pm" if args.first().and_then(|a| a.parse::<f32>().ok()).is_none() => {
                 return bad("cannot parse number")
             }
             "illum" if args.first().and_then(|a| a.parse::<u8>().ok()).is_none() => {
@@ -108,7 +108,7 @@ pub(super) fn check_mtl_values(text: &str) -> Result<(String, Vec<LineNote>), Li
         let (count, lo, hi) = match key {
             "Ka" | "Kd" | "Ks" | "Ke" => (3, 0.0, 1.0),
             "Ns" => (1, 0.0, f64::from(f32::MAX)),
-            "d" | "Tr" => (1, 0.0, 1.0),
+            "d" | "Tr" | "Pr" | "Pm" => (1, 0.0, 1.0),
             _ => {
                 out.push_str(line);
                 out.push('\n');

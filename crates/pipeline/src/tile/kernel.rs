@@ -71,19 +71,22 @@ impl<'a> Lit<'a> {
     }
 }
 
-/// The lighting seam: the unclamped ambient+diffuse and specular parts at
-/// eight samples (eye-space `eye`, unit `normal`) lit as `how` says, with
-/// each light's share from the frame's shadow maps when it has them, else
-/// with the lights the block's planar shadow `mask` hides left out. Every
-/// Phong-family kernel (Phong, tinted, textured, perturbed) lights through
-/// here, so a lighting model is one addition at this function.
+/// The lighting seam: the unclamped colour of eight samples (eye-space
+/// `eye`, unit `normal`) lit as `how` says — the material's model (basic
+/// or Cook–Torrance) with `modulate` multiplying its colour (a texel, a
+/// vertex colour) — with each light's share from the frame's shadow maps
+/// when it has them, else with the lights the block's planar shadow `mask`
+/// hides left out. Every Phong-family kernel (Phong, tinted, textured,
+/// perturbed) lights through here, so a lighting model is one addition at
+/// this function (`PreparedLights::shade_x8_with`).
 #[inline(always)]
 pub(super) fn lit<S: Level>(
     how: &Lit<'_>,
     eye: Vec3x8<S>,
     normal: Vec3x8<S>,
     mask: i32x8<S>,
-) -> (Vec3x8<S>, Vec3x8<S>) {
+    modulate: impl Fn(Vec3x8<S>) -> Vec3x8<S>,
+) -> Vec3x8<S> {
     // Only builds the closure: the lookup runs where the lights are summed.
     let share = how.maps.map(
         #[inline(always)]
@@ -93,7 +96,13 @@ pub(super) fn lit<S: Level>(
         },
     );
     let mask = if how.planar { Some(mask) } else { None };
-    how.lights.shade_parts_x8_with(how.material, eye, normal, mask, share)
+    how.lights.shade_x8_with(how.material, (eye, normal), mask, share, modulate)
+}
+
+/// The modulation of an untinted surface: none.
+#[inline(always)]
+pub(super) fn unmodulated<S: Level>(c: Vec3x8<S>) -> Vec3x8<S> {
+    c
 }
 
 /// A unit normal as a colour: (n + 1)/2 per axis (the normals frame).
@@ -290,8 +299,7 @@ impl TileTarget {
                         if normals {
                             return (encode_normal(normal), f32x8::ONE);
                         }
-                        let (ad, sp) = lit(&how, eye, normal, mask);
-                        ((ad + sp).clamp01(), f32x8::ONE)
+                        (lit(&how, eye, normal, mask, unmodulated).clamp01(), f32x8::ONE)
                     },
                 )
             },
@@ -320,8 +328,12 @@ impl TileTarget {
                     #[inline(always)]
                     |a, mask| {
                         let (w, eye, normal) = phong_point(interp, a);
-                        let (ambient_diffuse, specular) = lit(&how, eye, normal, mask);
-                        ((triple(a, phong::COLOR, w) * ambient_diffuse + specular).clamp01(), f32x8::ONE)
+                        let color = triple(a, phong::COLOR, w);
+                        let tint = zline_simd::inlined(
+                            #[inline(always)]
+                            move |c: Vec3x8<S>| color * c,
+                        );
+                        (lit(&how, eye, normal, mask, tint).clamp01(), f32x8::ONE)
                     },
                 )
             },
@@ -330,8 +342,9 @@ impl TileTarget {
 
     /// SPEC §7, the part every textured kernel shares: texture coordinates
     /// interpolated, the texel sampled with the map's sampler at the level
-    /// `lod` finds, and c = texel ⊙ (ambient+diffuse) + specular, clamped,
-    /// with the parts from `parts(attributes, w, mask)`. One copy, the
+    /// `lod` finds, and the colour `color(attributes, w, mask, texel)`
+    /// (texel ⊙ (ambient+diffuse) + specular for the basic model),
+    /// clamped. One copy, the
     /// interpolation tested per block: a copy per interpolation saved 1 %
     /// of the textured plane's instructions and cost a fifth of the
     /// pipeline's build time (the sampler is the costliest code to
@@ -342,7 +355,7 @@ impl TileTarget {
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
         (map, interp, lod, alpha): (&FrameTexture, Interp, Lod, AlphaTest),
         pass: &AnyPass<'_>,
-        parts: impl Fn(&[f32x8<S>; N], f32x8<S>, i32x8<S>) -> (Vec3x8<S>, Vec3x8<S>) + Copy,
+        color: impl Fn(&[f32x8<S>; N], f32x8<S>, i32x8<S>, Vec3x8<S>) -> Vec3x8<S> + Copy,
     ) -> u64 {
         let (texture, sampler) = (&*map.texture, &map.sampler);
         self.scan::<_, _, S>(
@@ -357,8 +370,7 @@ impl TileTarget {
                 let lods = lod.lods(interp, s, t, inv);
                 let [r, g, b, texel_alpha] = texture.sample_x8(sampler, s, t, lods);
                 let texel = Vec3x8 { x: r, y: g, z: b };
-                let (ambient_diffuse, specular) = parts(a, inv, mask);
-                ((texel * ambient_diffuse + specular).clamp01(), texel_alpha)
+                (color(a, inv, mask, texel).clamp01(), texel_alpha)
             },
         )
     }
@@ -381,7 +393,7 @@ impl TileTarget {
             uses,
             pass,
             #[inline(always)]
-            |_, _, _| (ad, spec),
+            |_, _, _, texel| texel * ad + spec,
         )
     }
 
@@ -402,7 +414,7 @@ impl TileTarget {
             uses,
             pass,
             #[inline(always)]
-            |a, w, _| (triple(a, textured::AMBIENT_DIFFUSE, w), triple(a, textured::SPECULAR, w)),
+            |a, w, _, texel| texel * triple(a, textured::AMBIENT_DIFFUSE, w) + triple(a, textured::SPECULAR, w),
         )
     }
 
@@ -424,9 +436,13 @@ impl TileTarget {
             uses,
             pass,
             #[inline(always)]
-            |a, w, mask| {
+            |a, w, mask, texel| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-                lit(&how, triple(a, textured::EYE, w), normal, mask)
+                let tint = zline_simd::inlined(
+                    #[inline(always)]
+                    move |c: Vec3x8<S>| texel * c,
+                );
+                lit(&how, triple(a, textured::EYE, w), normal, mask, tint)
             },
         )
     }
@@ -450,10 +466,14 @@ impl TileTarget {
             uses,
             pass,
             #[inline(always)]
-            |a, w, mask| {
+            |a, w, mask, texel| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-                let (ambient_diffuse, specular) = lit(&how, triple(a, textured::EYE, w), normal, mask);
-                (triple(a, textured::COLOR, w) * ambient_diffuse, specular)
+                let color = triple(a, textured::COLOR, w);
+                let tint = zline_simd::inlined(
+                    #[inline(always)]
+                    move |c: Vec3x8<S>| texel * (color * c),
+                );
+                lit(&how, triple(a, textured::EYE, w), normal, mask, tint)
             },
         )
     }

@@ -17,7 +17,7 @@ use zline_scene::NormalEncoding;
 use zline_shading::{Filter, Sampler, Texture, Vec3x8};
 use zline_simd::lanes::{f32x8, Level};
 
-use super::kernel::{encode_normal, lit, triple, Lit};
+use super::kernel::{encode_normal, lit, triple, unmodulated, Lit};
 use super::params::{AlphaTest, AnyPass, Interp, Lod, Pass};
 use super::target::{FrameTexture, ShadeContext, TileTarget};
 use crate::setup::layout::perturbed::{BITANGENT, EYE, NORMAL, Q, S, T, TANGENT};
@@ -151,8 +151,7 @@ impl TileTarget {
                 if normals {
                     return (encode_normal(normal), f32x8::ONE);
                 }
-                let (ambient_diffuse, specular) = lit(&how, eye, normal, mask);
-                ((ambient_diffuse + specular).clamp01(), f32x8::ONE)
+                (lit(&how, eye, normal, mask, unmodulated).clamp01(), f32x8::ONE)
             },
         )
     }
@@ -181,9 +180,13 @@ impl TileTarget {
             uses,
             pass,
             #[inline(always)]
-            |a, w, mask| {
+            |a, w, mask, texel| {
                 let (eye, normal) = perturbed_point(encoding, &map, a, w);
-                lit(&how, eye, normal, mask)
+                let tint = zline_simd::inlined(
+                    #[inline(always)]
+                    move |c: Vec3x8<S>| texel * c,
+                );
+                lit(&how, eye, normal, mask, tint)
             },
         )
     }

@@ -26,6 +26,7 @@ fn receiver_material() -> Material {
         ks: Vec3::ZERO,
         ns: 1.0,
         opacity: 1.0,
+        model: Default::default(),
     }
 }
 

@@ -18,6 +18,7 @@ const MATERIAL: Material = Material {
     ks: Vec3::new(0.5, 0.5, 0.5),
     ns: 12.0,
     opacity: 1.0,
+    model: zline_shading::Model::Basic,
 };
 
 /// SPEC §5 for the one point light, eye at the origin, clamped.
@@ -341,6 +342,7 @@ fn white_texture_leaves_gouraud_unchanged_even_when_clipped() {
         ns: 8.0,
         opacity: 1.0,
         ke: Vec3::ZERO,
+        model: zline_shading::Model::Basic,
     };
     let plain = mesh(positions, normals, vec![[0, 1, 2]], material);
     let mut textured = (*plain).clone();

@@ -32,6 +32,7 @@ const FLOOR: Material = Material {
     ks: Vec3::ZERO,
     ns: 1.0,
     opacity: 1.0,
+    model: zline_shading::Model::Basic,
 };
 
 const AMBIENT: Vec3 = Vec3::new(0.25, 0.25, 0.25);

@@ -96,7 +96,7 @@ fn vertex() -> impl Strategy<Value = Vec3> {
 /// A material with a small random emission (up to 0.3 per channel).
 pub(crate) fn material() -> impl Strategy<Value = Material> {
     (color(), color(), color(), prop::sample::select(vec![1.0f32, 5.0, 16.0, 40.5]), color())
-        .prop_map(|(ka, kd, ks, ns, ke)| Material { ka, kd, ks, ns, opacity: 1.0, ke: ke * 0.3 })
+        .prop_map(|(ka, kd, ks, ns, ke)| Material { ka, kd, ks, ns, opacity: 1.0, ke: ke * 0.3, model: zline_shading::Model::Basic })
 }
 
 /// Random vertex colours for `n` vertices in half the cases, else none.

@@ -1,0 +1,288 @@
+//! The microfacet models (SPEC §5.2): Cook–Torrance with the
+//! Trowbridge–Reitz (GGX) distribution and the height-correlated Smith
+//! visibility, as glTF 2.0 Appendix B and the Khronos glTF Sample Viewer
+//! evaluate the metallic–roughness material, and with the Beckmann
+//! distribution and Cook–Torrance's V-groove geometric attenuation, as
+//! the course presents the Torrance–Sparrow/Cook–Torrance model. For one
+//! light of intensity E at unit direction L, with unit normal N and unit
+//! view vector V (H = normalize(L + V), dots clamped to [0, 1]):
+//!
+//! ```text
+//! c_diff = base·(1 − metallic)          f0 = 0.04 + (base − 0.04)·metallic
+//! F = f0 + (1 − f0)·(1 − V·H)^5         α = roughness²
+//! diffuse  = (1 − F) · c_diff / π · E · N·L
+//! specular = F · Vis · D · E · N·L
+//! ```
+//!
+//! and a uniform environment of radiance Ia (the scene's ambient) in the
+//! split-sum form: E_s = f0·A + B with (A, B) the directional albedo of
+//! the specular lobe at (N·V, roughness) ([`split_sum`]), ambient =
+//! Ia·[c_diff·(1 − E_s) + E_s].
+//!
+//! Everything here is plain scalar arithmetic in a fixed order (+, −, ×,
+//! ÷, square roots, `max`/`min`, and `exp` for Beckmann): the eight-lane
+//! version in `simd.rs` performs the same operations per lane, so the two
+//! agree bit for bit.
+
+use std::f32::consts::PI;
+use std::sync::OnceLock;
+
+use glam::Vec3;
+
+/// The microfacet distribution of a Cook–Torrance material.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Distribution {
+    /// Trowbridge–Reitz (GGX) with the height-correlated Smith visibility:
+    /// glTF's metallic–roughness material.
+    #[default]
+    Ggx,
+    /// Beckmann with Cook–Torrance's geometric attenuation
+    /// G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H)): the course's
+    /// Torrance–Sparrow/Cook–Torrance model.
+    Beckmann,
+}
+
+impl Distribution {
+    /// The lower-case name the CLI and scene files use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Distribution::Ggx => "ggx",
+            Distribution::Beckmann => "beckmann",
+        }
+    }
+}
+
+/// The parameters of a Cook–Torrance material besides its base colour
+/// (which is the material's kd).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Microfacet {
+    /// Metallic factor in [0, 1]: 0 a dielectric (f0 = 0.04, a diffuse
+    /// lobe of the base colour), 1 a conductor (f0 = the base colour, no
+    /// diffuse lobe).
+    pub metallic: f32,
+    /// Perceptual roughness in [0, 1]; α = roughness².
+    pub roughness: f32,
+    /// The distribution of microfacet normals.
+    pub distribution: Distribution,
+}
+
+impl Default for Microfacet {
+    /// glTF's defaults: metallic 1, roughness 1, GGX.
+    fn default() -> Self {
+        Microfacet { metallic: 1.0, roughness: 1.0, distribution: Distribution::Ggx }
+    }
+}
+
+/// The smallest α² the distribution uses: α = 0 (a perfect mirror) would
+/// make D a 0/0 where N = H; 1e-7 keeps it finite (D ≤ 1/(π·1e-7)), and a
+/// highlight that narrow covers no sample in practice.
+pub const MIN_ALPHA2: f32 = 1e-7;
+
+/// F0 of a dielectric: ((ior − 1)/(ior + 1))² with glTF's ior of 1.5.
+pub const DIELECTRIC_F0: f32 = 0.04;
+
+impl Microfacet {
+    /// The parameters with NaN replaced by the default and each clamped
+    /// to [0, 1].
+    pub fn sanitized(self) -> Microfacet {
+        let c = |v: f32, default: f32| if v.is_nan() { default } else { v.clamp(0.0, 1.0) };
+        Microfacet { metallic: c(self.metallic, 1.0), roughness: c(self.roughness, 1.0), ..self }
+    }
+
+    /// α² (never below [`MIN_ALPHA2`]).
+    #[inline]
+    pub fn alpha2(self) -> f32 {
+        let alpha = self.roughness * self.roughness;
+        (alpha * alpha).max(MIN_ALPHA2)
+    }
+
+    /// (c_diff, f0) of a surface of this material with base colour `base`.
+    #[inline]
+    pub fn colors(self, base: Vec3) -> (Vec3, Vec3) {
+        let m = self.metallic;
+        let c_diff = base * (1.0 - m);
+        let f0 = Vec3::splat(DIELECTRIC_F0) + (base - Vec3::splat(DIELECTRIC_F0)) * m;
+        (c_diff, f0)
+    }
+}
+
+/// Schlick's weight (1 − x)^5 for x in [0, 1], as four multiplications.
+#[inline]
+pub(crate) fn schlick_weight(x: f32) -> f32 {
+    let y = 1.0 - x;
+    let y2 = y * y;
+    y2 * y2 * y
+}
+
+/// The specular lobe's D·Vis at one light (without F): clamped dots
+/// `nl` > 0, `nv`, `nh`, `vh`, and α².
+#[inline]
+pub(crate) fn d_vis(distribution: Distribution, alpha2: f32, nl: f32, nv: f32, nh: f32, vh: f32) -> f32 {
+    match distribution {
+        Distribution::Ggx => {
+            let f = nh * nh * (alpha2 - 1.0) + 1.0;
+            let d = alpha2 / (PI * f * f);
+            let gv = nl * (nv * nv * (1.0 - alpha2) + alpha2).sqrt();
+            let gl = nv * (nl * nl * (1.0 - alpha2) + alpha2).sqrt();
+            let g = gv + gl;
+            let vis = if g > 0.0 { 0.5 / g } else { 0.0 };
+            d * vis
+        }
+        Distribution::Beckmann => {
+            let c2 = nh * nh;
+            if !(c2 > 0.0 && nv > 0.0 && vh > 0.0) {
+                return 0.0;
+            }
+            let tan2 = (1.0 - c2) / c2;
+            let d = (-tan2 / alpha2).exp() / (PI * alpha2 * c2 * c2);
+            let g = (2.0 * nh * nv / vh).min(2.0 * nh * nl / vh).min(1.0);
+            d * (g / (4.0 * nl * nv))
+        }
+    }
+}
+
+/// Sums of one Cook–Torrance surface over the lights (the per-light
+/// terms without c_diff and F folded in: `diffuse` holds
+/// Σ (1 − F)·E·N·L, `specular` Σ F·D·Vis·E·N·L).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct MicrofacetSums {
+    pub(crate) diffuse: Vec3,
+    pub(crate) specular: Vec3,
+}
+
+impl MicrofacetSums {
+    /// Adds one light: unit `to_light`, `intensity` E, at a sample with
+    /// unit `normal` and `view`, clamped N·V `nv`.
+    #[inline]
+    #[allow(clippy::too_many_arguments, reason = "the per-light inputs, as the eight-lane twin takes them")]
+    pub(crate) fn add(
+        &mut self,
+        (m, alpha2, f0): (&Microfacet, f32, Vec3),
+        normal: Vec3,
+        view: Vec3,
+        nv: f32,
+        to_light: Vec3,
+        intensity: Vec3,
+    ) {
+        let nl = normal.dot(to_light);
+        if nl <= 0.0 {
+            return;
+        }
+        let nl = nl.min(1.0);
+        let half = (to_light + view).normalize_or_zero();
+        let nh = normal.dot(half).max(0.0).min(1.0);
+        let vh = view.dot(half).max(0.0).min(1.0);
+        let s = schlick_weight(vh);
+        let fresnel = f0 + (Vec3::ONE - f0) * s;
+        let e = intensity * nl;
+        self.diffuse += (Vec3::ONE - fresnel) * e;
+        self.specular += fresnel * (d_vis(m.distribution, alpha2, nl, nv, nh, vh) * e);
+    }
+
+    /// (ambient+diffuse, emission+specular) of the surface: `ke` its
+    /// emission, `base` its base colour, `ambient` Ia.
+    #[inline]
+    pub(crate) fn parts(self, m: &Microfacet, base: Vec3, ke: Vec3, ambient: Vec3, nv: f32) -> (Vec3, Vec3) {
+        let (c_diff, f0) = m.colors(base);
+        let [a, b] = split_sum(m.distribution, nv, m.roughness);
+        let e_s = f0 * a + Vec3::splat(b);
+        let ambient_diffuse = ambient * (c_diff * (Vec3::ONE - e_s)) + c_diff * (self.diffuse * (1.0 / PI));
+        let specular = ke + ambient * e_s + self.specular;
+        (ambient_diffuse, specular)
+    }
+}
+
+/// Side of the split-sum table: (N·V, roughness) at i/(SIZE − 1).
+pub const SPLIT_SUM_SIZE: usize = 32;
+
+/// Samples per table entry (a Hammersley set, importance-sampled).
+const SPLIT_SUM_SAMPLES: u32 = 2048;
+
+/// (A, B) with ∫ f_spec·N·L dω = f0·A + B (f90 = 1) for a viewer at
+/// N·V = `nv` on a surface of `roughness`: the directional albedo of the
+/// specular lobe, split by Schlick's Fresnel. Bilinear in a
+/// [`SPLIT_SUM_SIZE`]² table computed once per distribution.
+#[inline]
+pub fn split_sum(distribution: Distribution, nv: f32, roughness: f32) -> [f32; 2] {
+    let table = split_sum_table(distribution);
+    let n = (SPLIT_SUM_SIZE - 1) as f32;
+    let (x, y) = (nv.max(0.0).min(1.0) * n, roughness.max(0.0).min(1.0) * n);
+    let (x0, y0) = (x.floor().min(n - 1.0), y.floor().min(n - 1.0));
+    let (fx, fy) = (x - x0, y - y0);
+    let (i, j) = (x0 as usize, y0 as usize);
+    let at = |i: usize, j: usize| table[j * SPLIT_SUM_SIZE + i];
+    let lerp = |a: [f32; 2], b: [f32; 2], t: f32| [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t];
+    let top = lerp(at(i, j), at(i + 1, j), fx);
+    let bottom = lerp(at(i, j + 1), at(i + 1, j + 1), fx);
+    lerp(top, bottom, fy)
+}
+
+/// The table of [`split_sum`] for `distribution`, computed on first use.
+pub fn split_sum_table(distribution: Distribution) -> &'static [[f32; 2]] {
+    static GGX: OnceLock<Vec<[f32; 2]>> = OnceLock::new();
+    static BECKMANN: OnceLock<Vec<[f32; 2]>> = OnceLock::new();
+    let cell = match distribution {
+        Distribution::Ggx => &GGX,
+        Distribution::Beckmann => &BECKMANN,
+    };
+    cell.get_or_init(|| {
+        let n = SPLIT_SUM_SIZE;
+        let mut table = Vec::with_capacity(n * n);
+        for j in 0..n {
+            for i in 0..n {
+                let nv = i as f64 / (n - 1) as f64;
+                let roughness = j as f64 / (n - 1) as f64;
+                let [a, b] = directional_albedo(distribution, nv, roughness, SPLIT_SUM_SAMPLES);
+                table.push([a as f32, b as f32]);
+            }
+        }
+        table
+    })
+}
+
+/// (A, B) at one (N·V, roughness), in f64, by importance sampling the
+/// distribution of half vectors with `samples` points of a Hammersley set
+/// (deterministic). N·V = 0 is taken as 1e-4 (a grazing viewer).
+pub fn directional_albedo(distribution: Distribution, nv: f64, roughness: f64, samples: u32) -> [f64; 2] {
+    let nv = nv.max(1e-4);
+    let view = [(1.0 - nv * nv).max(0.0).sqrt(), 0.0, nv];
+    let alpha = roughness * roughness;
+    let alpha2 = (alpha * alpha).max(f64::from(MIN_ALPHA2));
+    let (mut a, mut b) = (0.0, 0.0);
+    for k in 0..samples {
+        let u1 = (f64::from(k) + 0.5) / f64::from(samples);
+        let u2 = f64::from(k.reverse_bits()) / 4_294_967_296.0;
+        // tan²θ_h from the distribution's inverse CDF.
+        let tan2 = match distribution {
+            Distribution::Ggx => alpha2 * u1 / (1.0 - u1),
+            Distribution::Beckmann => -alpha2 * (1.0 - u1).ln(),
+        };
+        let cos_h = 1.0 / (1.0 + tan2).sqrt();
+        let sin_h = (1.0 - cos_h * cos_h).max(0.0).sqrt();
+        let phi = 2.0 * std::f64::consts::PI * u2;
+        let h = [sin_h * phi.cos(), sin_h * phi.sin(), cos_h];
+        let vh = view[0] * h[0] + view[1] * h[1] + view[2] * h[2];
+        let l = [2.0 * vh * h[0] - view[0], 2.0 * vh * h[1] - view[1], 2.0 * vh * h[2] - view[2]];
+        let (nl, nh) = (l[2], h[2]);
+        if nl <= 0.0 || vh <= 0.0 {
+            continue;
+        }
+        // f·N·L / pdf(L) with pdf(L) = D·N·H / (4·V·H): D cancels.
+        let vis = match distribution {
+            Distribution::Ggx => {
+                let gv = nl * (nv * nv * (1.0 - alpha2) + alpha2).sqrt();
+                let gl = nv * (nl * nl * (1.0 - alpha2) + alpha2).sqrt();
+                0.5 / (gv + gl)
+            }
+            Distribution::Beckmann => {
+                let g = (2.0 * nh * nv / vh).min(2.0 * nh * nl / vh).min(1.0);
+                g / (4.0 * nl * nv)
+            }
+        };
+        let weight = vis * nl * 4.0 * vh / nh;
+        let s = (1.0 - vh).powi(5);
+        a += (1.0 - s) * weight;
+        b += s * weight;
+    }
+    [a / f64::from(samples), b / f64::from(samples)]
+}
