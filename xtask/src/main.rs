@@ -18,6 +18,7 @@ mod ray_batch;
 mod regress;
 mod report;
 mod report_lod;
+mod report_models;
 mod report_shadows;
 mod terrain;
 mod timing;

@@ -174,8 +174,14 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         println!("wrote {}", args.out.display());
         return Ok(());
     }
+    if scenes.is_empty() && args.filter.as_deref() == Some("models") {
+        let markdown = crate::report_models::section(&args.assets, args.frames)?;
+        write(&args.out, markdown.as_bytes())?;
+        println!("wrote {}", args.out.display());
+        return Ok(());
+    }
     if scenes.is_empty() {
-        bail!("no scene matches the filter (\"shadows\" or \"lod\" gives that section alone)");
+        bail!("no scene matches the filter (\"shadows\", \"models\" or \"lod\" gives that section alone)");
     }
     let mut rows = Vec::new();
     for (si, rs) in scenes.iter().enumerate() {
@@ -223,6 +229,11 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         markdown += &section;
         crate::chart::draw(&shadow_chart, &args.font, &shadow_points, &crate::report_shadows::CHART)?;
         eprintln!("shadows: {:.1} s", start.elapsed().as_secs_f64());
+    }
+    if args.filter.as_deref().is_none_or(|f| "models".contains(f)) {
+        let start = Instant::now();
+        markdown += &crate::report_models::section(&args.assets, args.frames)?;
+        eprintln!("lighting models: {:.1} s", start.elapsed().as_secs_f64());
     }
     if args.filter.is_none() {
         let start = Instant::now();

@@ -34,6 +34,8 @@
 //!    max(ks)·max(Il)·f bound ≤ τ/255: the triangle uses its material
 //!    without specular.
 //!
+//!    Shortcuts 3 and 4 rest on the basic model's terms: a Cook–Torrance
+//!    surface (SPEC §5.2) keeps its full per-sample evaluation.
 //! 4. **Phong → lit once** (untextured or textured, no vertex colours).
 //!    Once specular is dropped, the colour is ke + ka·Ia + Σ f·Il·kd·g with
 //!    g = max(0, N·L) ∈ [0, 1]; lighting the triangle once at the centroid c

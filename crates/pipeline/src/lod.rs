@@ -281,6 +281,7 @@ fn compact(mesh: &Mesh, indices: &[u32]) -> Mesh {
         diffuse_map: mesh.diffuse_map.clone(),
         tangents: pick(&mesh.tangents, &order),
         normal_map: mesh.normal_map.clone(),
+        surface_maps: Default::default(),
     }
 }
 
@@ -508,6 +509,7 @@ mod tests {
             diffuse_map: None,
             tangents: Vec::new(),
             normal_map: None,
+            surface_maps: Default::default(),
         };
         let c = compact(&mesh, &[5, 2, 4, 2, 5, 0]);
         assert_eq!(c.triangles, vec![[0, 1, 2], [1, 0, 3]]);

@@ -172,6 +172,7 @@ pub(crate) fn empty_mesh() -> Mesh {
         diffuse_map: None,
         tangents: Vec::new(),
         normal_map: None,
+        surface_maps: Default::default(),
     }
 }
 

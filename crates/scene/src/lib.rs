@@ -40,7 +40,8 @@ pub use limits::{
 pub use mesh::{face_normal, FALLBACK_NORMAL};
 pub use model::{
     Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, NormalEncoding, NormalMap, Object,
-    Projection, RenderSettings, Scene, ShadowMode, ShadowPlane, Shadows, TextureMap, DEFAULT_SHADOW_MAP_SIZE,
+    Projection, RenderSettings, Scene, ShadowMode, ShadowPlane, Shadows, SurfaceMaps, TextureMap,
+    DEFAULT_SHADOW_MAP_SIZE,
 };
 pub use occluders::{Occluders, TriangleId};
 pub use primitives::{cube, plane, torus, uv_sphere};

@@ -61,6 +61,7 @@ impl Mesh {
             diffuse_map: None,
             tangents: Vec::new(),
             normal_map: None,
+            surface_maps: Default::default(),
         })
     }
 

@@ -57,6 +57,24 @@ pub struct Mesh {
     /// A bump or normal map perturbing the normal per sample (Phong only);
     /// used only when `uvs` and `tangents` are not empty.
     pub normal_map: Option<NormalMap>,
+    /// The maps of a Cook–Torrance material's other parameters (used only
+    /// when `uvs` is not empty and `diffuse_map` is set).
+    pub surface_maps: SurfaceMaps,
+}
+
+/// Textures of a Cook–Torrance material besides its base colour, read per
+/// sample by Phong shading with the base colour texture's coordinates
+/// (SPEC §5.2); flat and Gouraud shading use the factors alone.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SurfaceMaps {
+    /// glTF's metallic–roughness texture: B multiplies the metallic
+    /// factor, G the roughness factor.
+    pub metallic_roughness: Option<TextureMap>,
+    /// glTF's occlusion texture and its strength: the environment's light
+    /// (the ambient term) times 1 + strength·(R − 1).
+    pub occlusion: Option<(TextureMap, f32)>,
+    /// glTF's emissive texture: its RGB multiplies ke.
+    pub emission: Option<TextureMap>,
 }
 
 /// What a [`NormalMap`]'s texels hold.

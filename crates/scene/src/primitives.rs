@@ -142,6 +142,7 @@ fn primitive(name: &str, positions: Vec<Vec3>, normals: Vec<Vec3>, triangles: Ve
         diffuse_map: None,
         tangents: Vec::new(),
         normal_map: None,
+        surface_maps: Default::default(),
     }
 }
 

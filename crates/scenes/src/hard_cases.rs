@@ -105,6 +105,7 @@ fn flat_object(
         tangents: Vec::new(),
         normal_map: None,
         colors: Vec::new(),
+        surface_maps: Default::default(),
     };
     Object {
         mesh: Arc::new(mesh),

@@ -12,6 +12,8 @@ mod model;
 mod pbr;
 mod prepared;
 mod simd;
+mod simd_pbr;
+mod split_sum_data;
 mod texture;
 
 pub use fog::{Fog, FogCoordinate, FogMode};
@@ -19,10 +21,12 @@ pub use light::{Attenuation, Light};
 pub use material::{Material, Model, ModelChoice};
 pub use model::{LightingModel, LitParts};
 pub use pbr::{
-    directional_albedo, split_sum, split_sum_table, Distribution, Microfacet, DIELECTRIC_F0, MIN_ALPHA2, SPLIT_SUM_SIZE,
+    directional_albedo, split_sum, split_sum_entries, split_sum_table, Distribution, Microfacet,
+    DIELECTRIC_F0, MIN_ALPHA2, SPLIT_SUM_SIZE,
 };
-pub use prepared::{PreparedLights, PreparedMaterial, Shininess, SPECULAR_CUTOFF};
+pub use prepared::{PreparedLights, PreparedMaterial, Shininess, Surface, SPECULAR_CUTOFF};
 pub use simd::Vec3x8;
+pub use simd_pbr::MapTexels;
 pub use texture::{lod, Filter, Sampler, Texture, TextureError, Wrap, MAX_TEXTURE_SIZE};
 
 /// How a triangle's colour is spread over its samples (SPEC §6).

@@ -70,7 +70,7 @@ impl LightingModel {
         let view = (eye - point).normalize_or_zero();
         if let Model::CookTorrance(m) = material.model {
             // SPEC §5.2, the lights in the scene's order.
-            let nv = normal.dot(view).max(0.0).min(1.0);
+            let nv = crate::pbr::clamp01(normal.dot(view));
             let (alpha2, (_, f0)) = (m.alpha2(), m.colors(material.kd));
             let mut sums = MicrofacetSums::default();
             for light in &self.lights {

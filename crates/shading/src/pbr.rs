@@ -25,7 +25,6 @@
 //! agree bit for bit.
 
 use std::f32::consts::PI;
-use std::sync::OnceLock;
 
 use glam::Vec3;
 
@@ -106,6 +105,14 @@ impl Microfacet {
     }
 }
 
+/// `x` clamped to [0, 1] with NaN taken to 0, as the eight-lane `max`
+/// then `min` do (`f32::clamp` would keep a NaN).
+#[inline]
+#[allow(clippy::manual_clamp, reason = "NaN becomes 0, as in the lanes")]
+pub(crate) fn clamp01(x: f32) -> f32 {
+    x.max(0.0).min(1.0)
+}
+
 /// Schlick's weight (1 − x)^5 for x in [0, 1], as four multiplications.
 #[inline]
 pub(crate) fn schlick_weight(x: f32) -> f32 {
@@ -114,31 +121,58 @@ pub(crate) fn schlick_weight(x: f32) -> f32 {
     y2 * y2 * y
 }
 
-/// The specular lobe's D·Vis at one light (without F): clamped dots
-/// `nl` > 0, `nv`, `nh`, `vh`, and α².
+/// The distribution D at clamped N·H `nh` and α².
 #[inline]
-pub(crate) fn d_vis(distribution: Distribution, alpha2: f32, nl: f32, nv: f32, nh: f32, vh: f32) -> f32 {
+pub(crate) fn distribution_d(distribution: Distribution, alpha2: f32, nh: f32) -> f32 {
     match distribution {
         Distribution::Ggx => {
             let f = nh * nh * (alpha2 - 1.0) + 1.0;
-            let d = alpha2 / (PI * f * f);
-            let gv = nl * (nv * nv * (1.0 - alpha2) + alpha2).sqrt();
-            let gl = nv * (nl * nl * (1.0 - alpha2) + alpha2).sqrt();
-            let g = gv + gl;
-            let vis = if g > 0.0 { 0.5 / g } else { 0.0 };
-            d * vis
+            alpha2 / (PI * f * f)
         }
         Distribution::Beckmann => {
             let c2 = nh * nh;
-            if !(c2 > 0.0 && nv > 0.0 && vh > 0.0) {
+            if c2.is_nan() || c2 <= 0.0 {
                 return 0.0;
             }
             let tan2 = (1.0 - c2) / c2;
-            let d = (-tan2 / alpha2).exp() / (PI * alpha2 * c2 * c2);
-            let g = (2.0 * nh * nv / vh).min(2.0 * nh * nl / vh).min(1.0);
-            d * (g / (4.0 * nl * nv))
+            (-tan2 / alpha2).exp() / (PI * alpha2 * c2 * c2)
         }
     }
+}
+
+/// The visibility Vis = G/(4·N·L·N·V) at clamped dots `nl` > 0, `nv`,
+/// `nh`, `vh` and α²: the height-correlated Smith form for GGX,
+/// Cook–Torrance's V-groove G for Beckmann; 0 where the denominator is 0.
+#[inline]
+pub(crate) fn visibility(distribution: Distribution, alpha2: f32, nl: f32, nv: f32, nh: f32, vh: f32) -> f32 {
+    match distribution {
+        Distribution::Ggx => {
+            let gv = nl * (nv * nv * (1.0 - alpha2) + alpha2).sqrt();
+            let gl = nv * (nl * nl * (1.0 - alpha2) + alpha2).sqrt();
+            let g = gv + gl;
+            if g > 0.0 {
+                0.5 / g
+            } else {
+                0.0
+            }
+        }
+        Distribution::Beckmann => {
+            if !(nv > 0.0 && vh > 0.0) {
+                return 0.0;
+            }
+            let g = (2.0 * nh * nv / vh).min(2.0 * nh * nl / vh).min(1.0);
+            g / (4.0 * nl * nv)
+        }
+    }
+}
+
+/// The specular lobe's D·Vis at one light (without F).
+#[inline]
+pub(crate) fn d_vis(distribution: Distribution, alpha2: f32, nl: f32, nv: f32, nh: f32, vh: f32) -> f32 {
+    if distribution == Distribution::Beckmann && !(nh * nh > 0.0 && nv > 0.0 && vh > 0.0) {
+        return 0.0;
+    }
+    distribution_d(distribution, alpha2, nh) * visibility(distribution, alpha2, nl, nv, nh, vh)
 }
 
 /// Sums of one Cook–Torrance surface over the lights (the per-light
@@ -170,8 +204,8 @@ impl MicrofacetSums {
         }
         let nl = nl.min(1.0);
         let half = (to_light + view).normalize_or_zero();
-        let nh = normal.dot(half).max(0.0).min(1.0);
-        let vh = view.dot(half).max(0.0).min(1.0);
+        let nh = clamp01(normal.dot(half));
+        let vh = clamp01(view.dot(half));
         let s = schlick_weight(vh);
         let fresnel = f0 + (Vec3::ONE - f0) * s;
         let e = intensity * nl;
@@ -201,12 +235,13 @@ const SPLIT_SUM_SAMPLES: u32 = 2048;
 /// (A, B) with ∫ f_spec·N·L dω = f0·A + B (f90 = 1) for a viewer at
 /// N·V = `nv` on a surface of `roughness`: the directional albedo of the
 /// specular lobe, split by Schlick's Fresnel. Bilinear in a
-/// [`SPLIT_SUM_SIZE`]² table computed once per distribution.
+/// [`SPLIT_SUM_SIZE`]² table computed once per distribution (entries whose
+/// estimate passes A + B = 1, by sampling noise at grazing N·V, scaled to 1).
 #[inline]
 pub fn split_sum(distribution: Distribution, nv: f32, roughness: f32) -> [f32; 2] {
     let table = split_sum_table(distribution);
     let n = (SPLIT_SUM_SIZE - 1) as f32;
-    let (x, y) = (nv.max(0.0).min(1.0) * n, roughness.max(0.0).min(1.0) * n);
+    let (x, y) = (clamp01(nv) * n, clamp01(roughness) * n);
     let (x0, y0) = (x.floor().min(n - 1.0), y.floor().min(n - 1.0));
     let (fx, fy) = (x - x0, y - y0);
     let (i, j) = (x0 as usize, y0 as usize);
@@ -217,27 +252,35 @@ pub fn split_sum(distribution: Distribution, nv: f32, roughness: f32) -> [f32; 2
     lerp(top, bottom, fy)
 }
 
-/// The table of [`split_sum`] for `distribution`, computed on first use.
+/// The table of [`split_sum`] for `distribution` ([`SPLIT_SUM_SIZE`]²
+/// entries, N·V along rows): [`split_sum_entries`], computed once and kept
+/// as source in `split_sum_data.rs` (a test recomputes it and compares bit
+/// for bit), so no render pays for the quadrature.
 pub fn split_sum_table(distribution: Distribution) -> &'static [[f32; 2]] {
-    static GGX: OnceLock<Vec<[f32; 2]>> = OnceLock::new();
-    static BECKMANN: OnceLock<Vec<[f32; 2]>> = OnceLock::new();
-    let cell = match distribution {
-        Distribution::Ggx => &GGX,
-        Distribution::Beckmann => &BECKMANN,
-    };
-    cell.get_or_init(|| {
-        let n = SPLIT_SUM_SIZE;
-        let mut table = Vec::with_capacity(n * n);
-        for j in 0..n {
-            for i in 0..n {
-                let nv = i as f64 / (n - 1) as f64;
-                let roughness = j as f64 / (n - 1) as f64;
-                let [a, b] = directional_albedo(distribution, nv, roughness, SPLIT_SUM_SAMPLES);
-                table.push([a as f32, b as f32]);
-            }
+    match distribution {
+        Distribution::Ggx => &crate::split_sum_data::GGX,
+        Distribution::Beckmann => &crate::split_sum_data::BECKMANN,
+    }
+}
+
+/// The entries of [`split_sum_table`], computed: (A, B) by
+/// [`directional_albedo`] with 2,048 directions at N·V, roughness =
+/// i/(SIZE − 1), j/(SIZE − 1). An estimate past A + B = 1 (sampling noise
+/// at grazing N·V, up to 1 %) is scaled to 1: single scattering keeps
+/// A + B ≤ 1.
+pub fn split_sum_entries(distribution: Distribution) -> Vec<[f32; 2]> {
+    let n = SPLIT_SUM_SIZE;
+    let mut table = Vec::with_capacity(n * n);
+    for j in 0..n {
+        for i in 0..n {
+            let nv = i as f64 / (n - 1) as f64;
+            let roughness = j as f64 / (n - 1) as f64;
+            let [a, b] = directional_albedo(distribution, nv, roughness, SPLIT_SUM_SAMPLES);
+            let scale = 1.0 / (a + b).max(1.0);
+            table.push([(a * scale) as f32, (b * scale) as f32]);
         }
-        table
-    })
+    }
+    table
 }
 
 /// (A, B) at one (N·V, roughness), in f64, by importance sampling the
@@ -285,4 +328,164 @@ pub fn directional_albedo(distribution: Distribution, nv: f64, roughness: f64, s
         b += s * weight;
     }
     [a / f64::from(samples), b / f64::from(samples)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ∫₀¹ f(μ) dμ by the midpoint rule on `n` pieces, in f64.
+    fn integrate(n: usize, f: impl Fn(f64) -> f64) -> f64 {
+        (0..n).map(|k| f((k as f64 + 0.5) / n as f64)).sum::<f64>() / n as f64
+    }
+
+    const DISTRIBUTIONS: [Distribution; 2] = [Distribution::Ggx, Distribution::Beckmann];
+
+    #[test]
+    fn the_distributions_integrate_to_one_projected() {
+        // ∫ D(h)·(N·H) dω_h = 2π ∫₀¹ D(μ)·μ dμ = 1 (μ = cos θ_h).
+        for distribution in DISTRIBUTIONS {
+            for alpha in [0.3f32, 0.5, 0.8, 1.0] {
+                let alpha2 = alpha * alpha;
+                let total = 2.0
+                    * std::f64::consts::PI
+                    * integrate(400_000, |mu| {
+                        f64::from(distribution_d(distribution, alpha2, mu as f32)) * mu
+                    });
+                assert!((total - 1.0).abs() < 2e-4, "{distribution:?} α {alpha}: ∫ D·cos = {total}");
+            }
+        }
+    }
+
+    #[test]
+    fn ggx_passes_the_weak_white_furnace_test() {
+        // ∫ G1(V)·D(H)·max(0, V·H) / (N·V) dω_h = 1 (Heitz 2014, the weak
+        // white furnace), with G1(V) = 4·N·V·Vis(N·L = 1, N·V): the
+        // height-correlated form reduces to Smith's G1 when L = N.
+        let (n_theta, n_phi) = (4000, 256);
+        for alpha in [0.2f32, 0.5, 1.0] {
+            let alpha2 = alpha * alpha;
+            for theta_v in [0.0f64, 0.6, 1.2] {
+                let view = [theta_v.sin(), 0.0, theta_v.cos()];
+                let nv = view[2];
+                let g1 =
+                    4.0 * nv * f64::from(visibility(Distribution::Ggx, alpha2, 1.0, nv as f32, 1.0, 1.0));
+                let mut total = 0.0;
+                for i in 0..n_theta {
+                    let mu = (i as f64 + 0.5) / n_theta as f64;
+                    let sin = (1.0 - mu * mu).sqrt();
+                    let d = f64::from(distribution_d(Distribution::Ggx, alpha2, mu as f32));
+                    for j in 0..n_phi {
+                        let phi = 2.0 * std::f64::consts::PI * (j as f64 + 0.5) / n_phi as f64;
+                        let vh = view[0] * sin * phi.cos() + view[2] * mu;
+                        total += d * vh.max(0.0);
+                    }
+                }
+                let total = g1 * total * 2.0 * std::f64::consts::PI / (n_theta * n_phi) as f64 / nv;
+                assert!((total - 1.0).abs() < 2e-3, "α {alpha}, θ_v {theta_v}: {total}");
+            }
+        }
+    }
+
+    #[test]
+    fn ggx_albedo_at_alpha_one_head_on_is_one_minus_ln_2() {
+        // α = 1, V = N, F = 1: ∫ D·Vis·(N·L) dω_l = 1 − ln 2 (D = 1/π and
+        // Vis = 0.5/(N·L + 1) there). By quadrature over θ_l with the
+        // implementation's D·Vis, and by the split-sum table's sampler.
+        let want = 1.0 - std::f64::consts::LN_2;
+        let quadrature = 2.0
+            * std::f64::consts::PI
+            * integrate(200_000, |nl| {
+                let half = ((1.0 + nl) / 2.0).sqrt(); // N·H = V·H = cos(θ_l / 2)
+                f64::from(d_vis(Distribution::Ggx, 1.0, nl as f32, 1.0, half as f32, half as f32)) * nl
+            });
+        assert!((quadrature - want).abs() < 1e-3, "quadrature {quadrature} vs {want}");
+        let [a, b] = directional_albedo(Distribution::Ggx, 1.0, 1.0, 4096);
+        assert!((a + b - want).abs() < 1e-3, "sampled {} vs {want}", a + b);
+        let [a, b] = split_sum(Distribution::Ggx, 1.0, 1.0);
+        assert!((f64::from(a + b) - want).abs() < 1e-3, "table {} vs {want}", a + b);
+    }
+
+    #[test]
+    fn a_mirror_reflects_everything_and_the_table_stays_within_zero_and_one() {
+        // Roughness 0: A + B = 1 at every angle (a sampled half vector at
+        // N weighs V·H/N·V = 1). α² is kept at 1e-7, not 0, so the half
+        // vectors spread by ~3e-4 rad: 2.3e-4 off at N·V = 0.1.
+        for distribution in DISTRIBUTIONS {
+            for nv in [0.1, 0.5, 1.0] {
+                let [a, b] = directional_albedo(distribution, nv, 0.0, 64);
+                assert!((a + b - 1.0).abs() < 1e-3, "{distribution:?} N·V {nv}: {}", a + b);
+            }
+            for (k, &[a, b]) in split_sum_table(distribution).iter().enumerate() {
+                assert!(a >= 0.0 && b >= 0.0 && a + b <= 1.0 + 1e-6, "{distribution:?} entry {k}: {a} {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_white_dielectric_in_a_white_furnace_stays_white() {
+        // Ia = 1, base 1, metallic 0, no lights: c_diff·(1 − E_s) + E_s = 1.
+        for distribution in DISTRIBUTIONS {
+            for roughness in [0.0, 0.3, 1.0] {
+                let m = Microfacet { metallic: 0.0, roughness, distribution };
+                for nv in [0.05, 0.5, 1.0] {
+                    let (ad, sp) = MicrofacetSums::default().parts(&m, Vec3::ONE, Vec3::ZERO, Vec3::ONE, nv);
+                    let total = ad + sp;
+                    assert!((total - Vec3::ONE).abs().max_element() < 1e-6, "{total}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn head_on_light_gives_the_formula_by_hand() {
+        // N = L = V = H: F = f0, GGX D = 1/(π α²), Vis = 1/(4 α)·… with
+        // N·L = N·V = 1: Vis = 0.5/(2·√1) = 1/4; so the specular sum is
+        // f0·E/(4π α²) and the diffuse sum (1 − f0)·E.
+        let m = Microfacet { metallic: 0.0, roughness: 0.5, distribution: Distribution::Ggx };
+        let (alpha2, f0) = (m.alpha2(), Vec3::splat(DIELECTRIC_F0));
+        let mut sums = MicrofacetSums::default();
+        sums.add((&m, alpha2, f0), Vec3::Z, Vec3::Z, 1.0, Vec3::Z, Vec3::ONE);
+        let alpha2 = 0.0625f32;
+        let want = 0.04 / (4.0 * PI * alpha2);
+        assert!((sums.specular.x - want).abs() < 1e-6 * want, "{} vs {want}", sums.specular.x);
+        assert!((sums.diffuse.x - 0.96).abs() < 1e-7);
+    }
+
+    #[test]
+    fn the_stored_split_sum_tables_are_their_definition() {
+        // `ZLINE_WRITE_SPLIT_SUM=1 cargo test -p zline-shading --release
+        // stored_split_sum` rewrites src/split_sum_data.rs.
+        let tables = DISTRIBUTIONS.map(split_sum_entries);
+        if std::env::var_os("ZLINE_WRITE_SPLIT_SUM").is_some() {
+            let mut out = String::from(
+                "//! The split-sum tables of `pbr::split_sum` (SPEC §5.2), written by\n\
+                 //! `pbr::split_sum_entries` (see the test that checks them).\n\n",
+            );
+            for (name, table) in ["GGX", "BECKMANN"].iter().zip(&tables) {
+                out += &format!("/// (A, B) for {name}, N·V along rows.\n#[rustfmt::skip]\npub(crate) const {name}: [[f32; 2]; {}] = [\n", table.len());
+                for row in table.chunks(4) {
+                    out += "   ";
+                    for [a, b] in row {
+                        out += &format!(" [{a:?}, {b:?}],");
+                    }
+                    out += "\n";
+                }
+                out += "];\n\n";
+            }
+            let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/split_sum_data.rs");
+            std::fs::write(path, out.trim_end().to_owned() + "\n").unwrap();
+        }
+        for (distribution, computed) in DISTRIBUTIONS.iter().zip(&tables) {
+            let stored = split_sum_table(*distribution);
+            assert_eq!(stored.len(), computed.len());
+            for (k, (s, c)) in stored.iter().zip(computed).enumerate() {
+                assert_eq!(
+                    s.map(f32::to_bits),
+                    c.map(f32::to_bits),
+                    "{distribution:?} entry {k}: {s:?} vs {c:?}"
+                );
+            }
+        }
+    }
 }

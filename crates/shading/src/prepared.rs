@@ -90,6 +90,25 @@ pub(crate) fn pow_by_squaring<T: Copy + std::ops::MulAssign>(x: T, one: T, mut n
     }
 }
 
+/// The texels of a Cook–Torrance material's maps at one sample (the
+/// scalar twin of `MapTexels`): each `None` where the material has no such
+/// map.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Surface {
+    /// glTF's metallic–roughness texture: (B, G), multiplying the metallic
+    /// and roughness factors.
+    pub metallic_roughness: Option<(f32, f32)>,
+    /// The occlusion 1 + strength·(R − 1), multiplying the ambient term.
+    pub occlusion: Option<f32>,
+    /// The emissive texture's RGB, multiplying ke.
+    pub emission: Option<Vec3>,
+}
+
+impl Surface {
+    /// No maps.
+    pub const NONE: Surface = Surface { metallic_roughness: None, occlusion: None, emission: None };
+}
+
 /// A material with its specular exponent prepared.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PreparedMaterial {
@@ -198,7 +217,12 @@ impl PreparedLights {
     #[inline]
     pub fn shade_parts(&self, m: &PreparedMaterial, point: Vec3, normal: Vec3, eye: Vec3) -> LitParts {
         if let Some(microfacet) = m.microfacet {
-            return self.microfacet_parts(m, microfacet, point, normal, eye, m.material.kd);
+            return self.microfacet_parts(
+                m,
+                (microfacet, Surface::NONE),
+                (point, normal, eye),
+                m.material.kd,
+            );
         }
         let view = (eye - point).normalize_or_zero();
         let mut sum = Sums::default();
@@ -225,14 +249,16 @@ impl PreparedLights {
     /// The unclamped colour at `point` where `modulate` multiplies the
     /// material's colour (a texel, a vertex colour): the basic model's
     /// `modulate(ambient+diffuse) + specular` (SPEC §7), or Cook–Torrance
-    /// with the base colour `modulate(kd)`. The scalar twin of the
-    /// kernels' lighting seam, [`Self::shade_x8_with`].
+    /// with the base colour `modulate(kd)` and the texels of its maps
+    /// (`maps`). The scalar twin of the kernels' lighting seam,
+    /// [`Self::shade_x8_with`].
     #[inline]
     pub fn shade_modulated(
         &self,
         m: &PreparedMaterial,
         (point, normal, eye): (Vec3, Vec3, Vec3),
         modulate: impl Fn(Vec3) -> Vec3,
+        maps: Surface,
     ) -> Vec3 {
         match m.microfacet {
             None => {
@@ -240,7 +266,20 @@ impl PreparedLights {
                 modulate(parts.ambient_diffuse) + parts.specular
             }
             Some(microfacet) => {
-                let parts = self.microfacet_parts(m, microfacet, point, normal, eye, modulate(m.material.kd));
+                let microfacet = match maps.metallic_roughness {
+                    None => microfacet,
+                    Some((b, g)) => {
+                        let (m, _) = microfacet;
+                        let mapped = Microfacet { metallic: m.metallic * b, roughness: m.roughness * g, ..m };
+                        (mapped, mapped.alpha2())
+                    }
+                };
+                let parts = self.microfacet_parts(
+                    m,
+                    (microfacet, maps),
+                    (point, normal, eye),
+                    modulate(m.material.kd),
+                );
                 parts.ambient_diffuse + parts.specular
             }
         }
@@ -253,14 +292,12 @@ impl PreparedLights {
     fn microfacet_parts(
         &self,
         m: &PreparedMaterial,
-        (microfacet, alpha2): (Microfacet, f32),
-        point: Vec3,
-        normal: Vec3,
-        eye: Vec3,
+        ((microfacet, alpha2), maps): ((Microfacet, f32), Surface),
+        (point, normal, eye): (Vec3, Vec3, Vec3),
         base: Vec3,
     ) -> LitParts {
         let view = (eye - point).normalize_or_zero();
-        let nv = normal.dot(view).max(0.0).min(1.0);
+        let nv = crate::pbr::clamp01(normal.dot(view));
         let (_, f0) = microfacet.colors(base);
         let mut sums = MicrofacetSums::default();
         for d in &self.directional {
@@ -275,7 +312,9 @@ impl PreparedLights {
             let f = p.attenuation.map_or(1.0, |a| a.factor(dist));
             sums.add((&microfacet, alpha2, f0), normal, view, nv, v / dist, p.color * f);
         }
-        let (ambient_diffuse, specular) = sums.parts(&microfacet, base, m.material.ke, self.ambient, nv);
+        let ambient = maps.occlusion.map_or(self.ambient, |o| self.ambient * o);
+        let ke = maps.emission.map_or(m.material.ke, |e| m.material.ke * e);
+        let (ambient_diffuse, specular) = sums.parts(&microfacet, base, ke, ambient, nv);
         LitParts { ambient_diffuse, specular }
     }
 

@@ -13,8 +13,8 @@ use std::ops::{Add, Mul};
 
 use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 
-use crate::pbr::{split_sum, Distribution, Microfacet, DIELECTRIC_F0};
 use crate::prepared::{pow_by_squaring, PreparedLights, PreparedMaterial, Shininess};
+use crate::simd_pbr::{MapTexels, MicrofacetX8};
 
 /// Three coordinates of eight vectors.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -41,12 +41,12 @@ impl<L: Level> Vec3x8<L> {
     }
 
     #[inline(always)]
-    fn dot(self, o: Vec3x8<L>) -> f32x8<L> {
+    pub(crate) fn dot(self, o: Vec3x8<L>) -> f32x8<L> {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 
     #[inline(always)]
-    fn scale(self, s: f32x8<L>) -> Vec3x8<L> {
+    pub(crate) fn scale(self, s: f32x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x * s, y: self.y * s, z: self.z * s }
     }
 
@@ -62,12 +62,12 @@ impl<L: Level> Vec3x8<L> {
     }
 
     #[inline(always)]
-    fn sub(self, o: Vec3x8<L>) -> Vec3x8<L> {
+    pub(crate) fn sub(self, o: Vec3x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x - o.x, y: self.y - o.y, z: self.z - o.z }
     }
 
     #[inline(always)]
-    fn div(self, s: f32x8<L>) -> Vec3x8<L> {
+    pub(crate) fn div(self, s: f32x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x / s, y: self.y / s, z: self.z / s }
     }
 
@@ -83,7 +83,7 @@ impl<L: Level> Vec3x8<L> {
 
     /// `where mask { self } else { 0 }` per lane.
     #[inline(always)]
-    fn keep(self, mask: f32x8<L>) -> Vec3x8<L> {
+    pub(crate) fn keep(self, mask: f32x8<L>) -> Vec3x8<L> {
         Vec3x8 {
             x: mask.blend(self.x, f32x8::ZERO),
             y: mask.blend(self.y, f32x8::ZERO),
@@ -171,8 +171,10 @@ impl PreparedLights {
     /// when `share` is given (shadow maps); else, when `mask` is given
     /// (planar shadows), it contributes nothing to a lane whose mask has
     /// bit `m.shadow_bits + k` set (bits past 31, and every bit for a
-    /// material without `shadow_bits`, leave it lit). Bit for bit
-    /// [`PreparedLights::shade_modulated`] with the same hidden lights,
+    /// material without `shadow_bits`, leave it lit). A Cook–Torrance
+    /// material reads its maps' texels from `maps` (see [`MapTexels`]).
+    /// Bit for bit [`PreparedLights::shade_modulated`] with
+    /// the same hidden lights,
     /// with one copy of the light loop per model: the choices are
     /// branches, the same way for a whole primitive, and fold away where
     /// the caller's arguments are constants.
@@ -184,44 +186,39 @@ impl PreparedLights {
         mask: Option<i32x8<L>>,
         share: Option<impl Fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>>,
         modulate: impl Fn(Vec3x8<L>) -> Vec3x8<L>,
+        maps: MapTexels<L>,
     ) -> Vec3x8<L> {
-        let first = m.shadow_bits.unwrap_or(u32::MAX);
-        let visible = |k: u32| match (share.is_none(), mask) {
-            (true, Some(mask)) => match first.checked_add(k).filter(
-                #[inline(always)]
-                |&b| b < 32,
-            ) {
-                Some(b) => {
-                    let bit = i32x8::splat(1 << b);
-                    bytemuck::cast::<i32x8<L>, f32x8<L>>((mask & bit).cmp_eq(i32x8::ZERO))
-                }
-                None => all_lanes(),
-            },
-            _ => all_lanes(),
-        };
-        let shared = zline_simd::inlined(
-            #[inline(always)]
-            #[allow(
-                clippy::manual_map,
-                reason = "`Option::map` may stay out of line, and the shadow-map lookup with it"
-            )]
-            |k| match &share {
-                Some(f) => Some(f(k, point, normal)),
-                None => None,
-            },
-        );
+        let (visible, shared) = hidden_lights(m, (point, normal), mask, &share);
         match m.microfacet {
             None => {
-                let (ambient_diffuse, specular) = self.parts_x8(m, point, normal, visible, shared);
+                let (ambient_diffuse, specular) = self.basic_parts_x8(m, point, normal, visible, shared);
                 modulate(ambient_diffuse) + specular
             }
             Some(microfacet) => {
                 let base = modulate(Vec3x8::splat(m.material.kd));
+                let lanes = MicrofacetX8::new(microfacet, maps.metallic_roughness);
                 let (ambient_diffuse, specular) =
-                    self.microfacet_parts_x8(m, microfacet, (point, normal, base), visible, shared);
+                    self.microfacet_parts_x8(m, (lanes, maps), (point, normal, base), visible, shared);
                 ambient_diffuse + specular
             }
         }
+    }
+
+    /// [`Self::shade_x8_with`] for the basic model only (a material known
+    /// not to be Cook–Torrance): the kernels' copy for the common case,
+    /// without the microfacet model's code.
+    #[inline(always)]
+    pub fn shade_x8_basic<L: Level>(
+        &self,
+        m: &PreparedMaterial,
+        (point, normal): (Vec3x8<L>, Vec3x8<L>),
+        mask: Option<i32x8<L>>,
+        share: Option<impl Fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>>,
+        modulate: impl Fn(Vec3x8<L>) -> Vec3x8<L>,
+    ) -> Vec3x8<L> {
+        let (visible, shared) = hidden_lights(m, (point, normal), mask, &share);
+        let (ambient_diffuse, specular) = self.basic_parts_x8(m, point, normal, visible, shared);
+        modulate(ambient_diffuse) + specular
     }
 
     /// Calls `add(to_light, intensity, active)` for each light at eight
@@ -230,7 +227,7 @@ impl PreparedLights {
     /// `visible(k)` sets, with its intensity scaled by `share(k)` when that
     /// is given.
     #[inline(always)]
-    fn for_each_light_x8<L: Level>(
+    pub(crate) fn for_each_light_x8<L: Level>(
         &self,
         point: Vec3x8<L>,
         visible: impl Fn(u32) -> f32x8<L>,
@@ -261,9 +258,8 @@ impl PreparedLights {
         }
     }
 
-    /// The basic model's sums over the lights (see
-    /// [`Self::for_each_light_x8`]); a Cook–Torrance material goes to
-    /// [`Self::microfacet_parts_x8`] with its kd as the base colour.
+    /// The parts for `m`: its model's sums over the lights, a
+    /// Cook–Torrance material with its kd as the base colour.
     #[inline(always)]
     fn parts_x8<L: Level>(
         &self,
@@ -273,73 +269,107 @@ impl PreparedLights {
         visible: impl Fn(u32) -> f32x8<L>,
         share: impl Fn(u32) -> Option<f32x8<L>>,
     ) -> (Vec3x8<L>, Vec3x8<L>) {
-        if let Some(microfacet) = m.microfacet {
-            let base = Vec3x8::splat(m.material.kd);
-            return self.microfacet_parts_x8(m, microfacet, (point, normal, base), visible, share);
+        match m.microfacet {
+            None => self.basic_parts_x8(m, point, normal, visible, share),
+            Some(microfacet) => {
+                let base = Vec3x8::splat(m.material.kd);
+                let lanes = MicrofacetX8::new(microfacet, None);
+                self.microfacet_parts_x8(m, (lanes, MapTexels::NONE), (point, normal, base), visible, share)
+            }
         }
+    }
+
+    /// The basic model's sums over the lights, light k counting in the
+    /// lanes `visible(k)` sets, with its intensity scaled by `share(k)`
+    /// when that is given.
+    #[inline(always)]
+    fn basic_parts_x8<L: Level>(
+        &self,
+        m: &PreparedMaterial,
+        point: Vec3x8<L>,
+        normal: Vec3x8<L>,
+        visible: impl Fn(u32) -> f32x8<L>,
+        share: impl Fn(u32) -> Option<f32x8<L>>,
+    ) -> (Vec3x8<L>, Vec3x8<L>) {
+        // The basic model's own loop over the lights (as before the
+        // microfacet model came: through `for_each_light_x8`'s closure the
+        // sums stayed in memory, 3 % more instructions on the Phong sphere).
         let view = Vec3x8::default().sub(point).normalize_or_zero();
         let mut sum = SumsX8::default();
-        self.for_each_light_x8(
-            point,
-            visible,
-            share,
-            #[inline(always)]
-            |to_light, intensity, active| sum.add(m, normal, view, to_light, intensity, active),
-        );
+        for (to_light, color, k) in self.directional_lights() {
+            let mut intensity = Vec3x8::splat(color);
+            if let Some(f) = share(k) {
+                intensity = intensity.scale(f);
+            }
+            sum.add(m, normal, view, Vec3x8::splat(to_light), intensity, visible(k));
+        }
+        for (position, color, attenuation, k) in self.point_lights() {
+            let v = Vec3x8::splat(position).sub(point);
+            let dist = v.dot(v).sqrt();
+            let present = dist.cmp_gt(f32x8::ZERO) & visible(k);
+            let mut intensity = Vec3x8::splat(color);
+            if let Some(a) = attenuation {
+                let denom = f32x8::splat(a.a0) + dist * (f32x8::splat(a.a1) + dist * f32x8::splat(a.a2));
+                let f = denom.cmp_gt(f32x8::ONE).blend(f32x8::ONE / denom, f32x8::ONE);
+                intensity = intensity.scale(f);
+            }
+            if let Some(f) = share(k) {
+                intensity = intensity.scale(f);
+            }
+            sum.add(m, normal, view, v.div(dist), intensity, present);
+        }
         let mat = &m.material;
         let ambient_diffuse =
             Vec3x8::splat(mat.ka * self.ambient()).add(Vec3x8::splat(mat.kd).mul(sum.diffuse));
         let specular = Vec3x8::splat(mat.ke).add(Vec3x8::splat(mat.ks).mul(sum.specular));
         (ambient_diffuse, specular)
     }
+}
 
-    /// SPEC §5.2 for eight samples of base colour `base`: the lanes of
-    /// `PreparedLights::microfacet_parts`, bit for bit.
-    #[inline(always)]
-    fn microfacet_parts_x8<L: Level>(
-        &self,
-        m: &PreparedMaterial,
-        (microfacet, alpha2): (Microfacet, f32),
-        (point, normal, base): (Vec3x8<L>, Vec3x8<L>, Vec3x8<L>),
-        visible: impl Fn(u32) -> f32x8<L>,
-        share: impl Fn(u32) -> Option<f32x8<L>>,
-    ) -> (Vec3x8<L>, Vec3x8<L>) {
-        let view = Vec3x8::default().sub(point).normalize_or_zero();
-        let nv = normal.dot(view).max(f32x8::ZERO).min(f32x8::ONE);
-        let metallic = f32x8::splat(microfacet.metallic);
-        let dielectric = Vec3x8::splat(glam::Vec3::splat(DIELECTRIC_F0));
-        let f0 = dielectric.add(base.sub(dielectric).scale(metallic));
-        let c_diff = base.scale(f32x8::splat(1.0 - microfacet.metallic));
-        let mut sum = MicrofacetSumsX8::default();
-        self.for_each_light_x8(
-            point,
-            visible,
-            share,
+/// The two ways a light is hidden from eight samples at (`point`,
+/// `normal`), as closures over the light's index k: the lanes where it
+/// counts (the planar `mask`'s bit `m.shadow_bits + k` clear, when there is
+/// a mask and no `share`), and its share from the shadow maps (`share`,
+/// when given).
+#[inline(always)]
+#[allow(clippy::type_complexity, reason = "two closures, named by what they return")]
+fn hidden_lights<'s, L: Level, F: Fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>>(
+    m: &PreparedMaterial,
+    (point, normal): (Vec3x8<L>, Vec3x8<L>),
+    mask: Option<i32x8<L>>,
+    share: &'s Option<F>,
+) -> (impl Fn(u32) -> f32x8<L> + 's, impl Fn(u32) -> Option<f32x8<L>> + 's) {
+    let first = m.shadow_bits.unwrap_or(u32::MAX);
+    let visible = move |k: u32| match (share.is_none(), mask) {
+        (true, Some(mask)) => match first.checked_add(k).filter(
             #[inline(always)]
-            |to_light, intensity, active| {
-                sum.add((microfacet.distribution, alpha2, f0), (normal, view, nv), to_light, intensity, active)
-            },
-        );
-        // The environment's split sum, looked up per lane.
-        let (mut a, mut b) = ([0.0f32; 8], [0.0f32; 8]);
-        for (k, &v) in nv.as_array_ref().iter().enumerate() {
-            [a[k], b[k]] = split_sum(microfacet.distribution, v, microfacet.roughness);
-        }
-        let (a, b) = (f32x8::from(a), f32x8::from(b));
-        let e_s = f0.scale(a).add(Vec3x8 { x: b, y: b, z: b });
-        let ambient = Vec3x8::splat(self.ambient());
-        let one = Vec3x8::splat(glam::Vec3::ONE);
-        let ambient_diffuse = ambient
-            .mul(c_diff.mul(one.sub(e_s)))
-            .add(c_diff.mul(sum.diffuse.scale(f32x8::splat(1.0 / std::f32::consts::PI))));
-        let specular = Vec3x8::splat(m.material.ke).add(ambient.mul(e_s)).add(sum.specular);
-        (ambient_diffuse, specular)
-    }
+            |&b| b < 32,
+        ) {
+            Some(b) => {
+                let bit = i32x8::splat(1 << b);
+                bytemuck::cast::<i32x8<L>, f32x8<L>>((mask & bit).cmp_eq(i32x8::ZERO))
+            }
+            None => all_lanes(),
+        },
+        _ => all_lanes(),
+    };
+    let shared = zline_simd::inlined(
+        #[inline(always)]
+        #[allow(
+            clippy::manual_map,
+            reason = "`Option::map` may stay out of line, and the shadow-map lookup with it"
+        )]
+        move |k| match share {
+            Some(f) => Some(f(k, point, normal)),
+            None => None,
+        },
+    );
+    (zline_simd::inlined(visible), shared)
 }
 
 /// A mask with every lane set.
 #[inline(always)]
-fn all_lanes<L: Level>() -> f32x8<L> {
+pub(crate) fn all_lanes<L: Level>() -> f32x8<L> {
     f32x8::from([f32::from_bits(u32::MAX); 8])
 }
 
@@ -375,84 +405,6 @@ impl<L: Level> SumsX8<L> {
                 let power = m.shininess.pow_x8(shiny.blend(n_dot_h, f32x8::ONE));
                 self.specular = self.specular.add(intensity.scale(power).keep(shiny));
             }
-        }
-    }
-}
-
-/// Running sums of the Cook–Torrance terms over the lights, per lane
-/// (see `pbr::MicrofacetSums`).
-#[derive(Default)]
-struct MicrofacetSumsX8<L: Level = Baseline> {
-    diffuse: Vec3x8<L>,
-    specular: Vec3x8<L>,
-}
-
-impl<L: Level> MicrofacetSumsX8<L> {
-    #[inline(always)]
-    fn add(
-        &mut self,
-        (distribution, alpha2, f0): (Distribution, f32, Vec3x8<L>),
-        (normal, view, nv): (Vec3x8<L>, Vec3x8<L>, f32x8<L>),
-        to_light: Vec3x8<L>,
-        intensity: Vec3x8<L>,
-        active: f32x8<L>,
-    ) {
-        let nl = normal.dot(to_light);
-        // The scalar path skips a light when N·L ≤ 0 (so NaN stays lit).
-        let lit = active & (nl.cmp_le(f32x8::ZERO) ^ all_lanes());
-        if lit.none() {
-            return;
-        }
-        let (zero, one) = (f32x8::ZERO, f32x8::ONE);
-        let nl = nl.min(one);
-        let half = to_light.add(view).normalize_or_zero();
-        let nh = normal.dot(half).max(zero).min(one);
-        let vh = view.dot(half).max(zero).min(one);
-        let y = one - vh;
-        let y2 = y * y;
-        let s = y2 * y2 * y;
-        let ones = Vec3x8 { x: one, y: one, z: one };
-        let fresnel = f0.add(ones.sub(f0).scale(s));
-        let e = intensity.scale(nl);
-        self.diffuse = self.diffuse.add(ones.sub(fresnel).mul(e).keep(lit));
-        let dv = d_vis_x8(distribution, alpha2, (nl, nv, nh, vh));
-        self.specular = self.specular.add(fresnel.mul(e.scale(dv)).keep(lit));
-    }
-}
-
-/// `pbr::d_vis` per lane, bit for bit.
-#[inline(always)]
-fn d_vis_x8<L: Level>(
-    distribution: Distribution,
-    alpha2: f32,
-    (nl, nv, nh, vh): (f32x8<L>, f32x8<L>, f32x8<L>, f32x8<L>),
-) -> f32x8<L> {
-    let pi = std::f32::consts::PI;
-    let zero = f32x8::ZERO;
-    match distribution {
-        Distribution::Ggx => {
-            let (a2, one_minus) = (f32x8::splat(alpha2), f32x8::splat(1.0 - alpha2));
-            let f = nh * nh * f32x8::splat(alpha2 - 1.0) + f32x8::ONE;
-            let d = a2 / (f32x8::splat(pi) * f * f);
-            let gv = nl * (nv * nv * one_minus + a2).sqrt();
-            let gl = nv * (nl * nl * one_minus + a2).sqrt();
-            let g = gv + gl;
-            let vis = g.cmp_gt(zero).blend(f32x8::splat(0.5) / g, zero);
-            d * vis
-        }
-        Distribution::Beckmann => {
-            let c2 = nh * nh;
-            let ok = c2.cmp_gt(zero) & nv.cmp_gt(zero) & vh.cmp_gt(zero);
-            let tan2 = (f32x8::ONE - c2) / c2;
-            let exponent = -tan2 / f32x8::splat(alpha2);
-            let e = f32x8::from(exponent.to_array().map(
-                #[inline(always)]
-                |v| v.exp(),
-            ));
-            let d = e / (f32x8::splat(pi * alpha2) * c2 * c2);
-            let two = f32x8::splat(2.0);
-            let g = (two * nh * nv / vh).min(two * nh * nl / vh).min(f32x8::ONE);
-            ok.blend(d * (g / (f32x8::splat(4.0) * nl * nv)), zero)
         }
     }
 }
@@ -511,6 +463,99 @@ mod tests {
                     want.to_array().map(f32::to_bits),
                     "ns {ns} lane {k}: {lane} vs {want}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn cook_torrance_lanes_match_the_scalar_path_bit_for_bit() {
+        use crate::material::Model;
+        use crate::pbr::{Distribution, Microfacet};
+        use crate::prepared::Surface;
+        let model = LightingModel {
+            ambient: Vec3::new(0.2, 0.25, 0.3),
+            lights: vec![
+                Light::Point {
+                    position: Vec3::new(1.0, 2.0, 0.5),
+                    color: Vec3::new(1.0, 0.8, 0.6),
+                    attenuation: Attenuation { a0: 1.0, a1: 0.3, a2: 0.1 },
+                },
+                Light::Directional { direction: Vec3::new(0.2, -1.0, -0.5), color: Vec3::new(0.9, 0.9, 1.5) },
+            ],
+        };
+        let lights = PreparedLights::new(&model, &Mat4::IDENTITY);
+        for distribution in [Distribution::Ggx, Distribution::Beckmann] {
+            for (metallic, roughness) in [(0.0, 0.0), (0.0, 0.3), (1.0, 0.6), (0.5, 1.0), (0.98, 0.05)] {
+                let microfacet = Microfacet { metallic, roughness, distribution };
+                let material = Material {
+                    ke: Vec3::new(0.05, 0.0, 0.1),
+                    kd: Vec3::new(0.9, 0.6, 0.2),
+                    model: Model::CookTorrance(microfacet),
+                    ..Material::default()
+                };
+                let m = PreparedMaterial::new(material);
+                let mut points = [Vec3::ZERO; 8];
+                let mut normals = [Vec3::ZERO; 8];
+                let mut tints = [Vec3::ZERO; 8];
+                for k in 0..8 {
+                    let t = k as f32 * 0.41 + roughness * 3.0 + metallic;
+                    points[k] = Vec3::new(t.sin(), (1.3 * t).cos(), -2.0 - 0.3 * t.cos());
+                    normals[k] = Vec3::new((2.1 * t).cos(), 0.5 * t.sin(), 1.0).normalize();
+                    tints[k] = Vec3::new(0.5 + 0.5 * t.sin(), 0.8, (0.3 * t).cos().abs());
+                }
+                normals[7] = Vec3::ZERO; // a degenerate normal
+                normals[5] = -normals[5]; // facing away from the viewer
+                let gather = |v: &[Vec3; 8]| Vec3x8::<Baseline> {
+                    x: f32x8::from(v.map(|p| p.x)),
+                    y: f32x8::from(v.map(|p| p.y)),
+                    z: f32x8::from(v.map(|p| p.z)),
+                };
+                let tint = gather(&tints);
+                let unshared = None::<fn(u32, Vec3x8, Vec3x8) -> f32x8>;
+                let (b, g) = (
+                    f32x8::from([1.0, 0.5, 0.0, 0.25, 1.0, 0.9, 0.3, 0.7]),
+                    f32x8::from([1.0, 0.1, 0.6, 0.0, 0.8, 1.0, 0.3, 0.5]),
+                );
+                let occlusion = f32x8::from([1.0, 0.0, 0.5, 0.25, 0.9, 0.3, 1.0, 0.6]);
+                let maps = MapTexels {
+                    metallic_roughness: Some((b, g)),
+                    occlusion: Some(occlusion),
+                    emission: Some(tint),
+                };
+                let got = lights.shade_x8_with(
+                    &m,
+                    (gather(&points), gather(&normals)),
+                    None,
+                    unshared,
+                    |c| tint * c,
+                    maps,
+                );
+                let plain = lights.shade_x8(&m, gather(&points), gather(&normals));
+                for k in 0..8 {
+                    let texels = Surface {
+                        metallic_roughness: Some((b.as_array_ref()[k], g.as_array_ref()[k])),
+                        occlusion: Some(occlusion.as_array_ref()[k]),
+                        emission: Some(tints[k]),
+                    };
+                    let want = lights.shade_modulated(
+                        &m,
+                        (points[k], normals[k], Vec3::ZERO),
+                        |c| tints[k] * c,
+                        texels,
+                    );
+                    let label = format!("{distribution:?} m {metallic} r {roughness} lane {k}");
+                    assert_eq!(
+                        got.lane(k).to_array().map(f32::to_bits),
+                        want.to_array().map(f32::to_bits),
+                        "{label}"
+                    );
+                    let want = lights.shade(&m, points[k], normals[k], Vec3::ZERO);
+                    assert_eq!(
+                        plain.lane(k).to_array().map(f32::to_bits),
+                        want.to_array().map(f32::to_bits),
+                        "{label}"
+                    );
+                }
             }
         }
     }

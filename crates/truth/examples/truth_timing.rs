@@ -57,7 +57,7 @@ fn main() {
 
 /// Prints the pixels of `fast` beyond the property tests' bound.
 fn beyond_bound(scene: &Scene, fast: &[u8]) {
-    let truth = render_truth_with(scene, &TruthOptions { diagnostics: true });
+    let truth = render_truth_with(scene, &TruthOptions { diagnostics: true, ..TruthOptions::default() });
     let Some(d) = &truth.diagnostics else { return };
     let mut count = 0;
     for (i, c) in truth.rgb.iter().enumerate() {

@@ -33,6 +33,7 @@ use crate::clip::clip_triangle;
 use crate::coverage::signed_area2;
 use crate::lighting::{EyeLights, MaterialF64};
 use crate::shadow::{Occluders, TriangleId};
+use crate::split_sum::SplitSum;
 
 /// Triangles per rayon task in setup.
 const TRIANGLE_CHUNK: usize = 4096;
@@ -115,8 +116,9 @@ pub(crate) struct Frame<'a> {
 }
 
 impl<'a> Frame<'a> {
-    /// Transforms and sets up every object of `scene`.
-    pub(crate) fn new(scene: &'a Scene) -> Frame<'a> {
+    /// Transforms and sets up every object of `scene`, Cook–Torrance's
+    /// environment term taking its split sum from `split_sum`.
+    pub(crate) fn new(scene: &'a Scene, split_sum: SplitSum) -> Frame<'a> {
         let s = &scene.settings;
         let (width, height) = (s.width.max(1), s.height.max(1));
         let n = s.ssaa.max(1);
@@ -147,7 +149,7 @@ impl<'a> Frame<'a> {
             size: (width, height),
             limit: (i64::from(width * n), i64::from(height * n)),
             perspective: s.interpolation == Interpolation::PerspectiveCorrect,
-            lights: EyeLights::new(scene.ambient, &scene.lights, &eye_from_world),
+            lights: EyeLights::new(scene.ambient, &scene.lights, &eye_from_world, split_sum),
             objects,
             occluders,
             prims,

@@ -38,6 +38,14 @@
 //! With a texture, c = clamp(texel ⊙ (ambient+diffuse) + specular); the
 //! texture coordinates' derivatives for the level of detail are exact
 //! (quotient rule for perspective-correct s = S/Q) in sample space.
+//!
+//! Cook–Torrance materials (SPEC §5.2) follow the same rules with flat and
+//! Gouraud shading: the model is evaluated with the base colour kd, and
+//! the texel and the vertex colour multiply its ambient+diffuse part (the
+//! terms with c_diff), not its specular part (ke and the terms with f0).
+//! Per sample (Phong shading, shadow receivers) they multiply the base
+//! colour instead, before c_diff and f0 are formed: base = kd ⊙ texel ⊙
+//! vertex colour, c = clamp(ambient+diffuse + specular) of that surface.
 
 use glam::{DVec2, DVec3, DVec4};
 use zline_scene::GouraudClamp;
@@ -46,7 +54,7 @@ use zline_shading::ShadingMode;
 use crate::coverage::SampleTriangle;
 use crate::fog::apply_fog;
 use crate::frame::{face_cross, Frame, ObjectFrame, Prim};
-use crate::lighting::Parts;
+use crate::lighting::{ModelF64, Parts};
 use crate::shadow::TriangleId;
 use crate::texture::{self, UvDerivatives};
 
@@ -205,6 +213,20 @@ impl Frame<'_> {
                     }
                     _ => None,
                 };
+                if let ModelF64::CookTorrance(microfacet) = &m.model {
+                    // The texel and the vertex colour multiply the base
+                    // colour before c_diff and f0 are formed (SPEC §5.2).
+                    let mut base = m.kd;
+                    if let Some(t) = texel {
+                        base *= t.truncate();
+                    }
+                    if let Some(c) = color {
+                        base *= c;
+                    }
+                    let parts =
+                        lights.shade_microfacet(m, microfacet, (blend3(&s.attr, eye), n), shadow, base);
+                    return (parts.color(), parts.switch_margin);
+                }
                 tinted(lights.shade_shadowed(m, blend3(&s.attr, eye), n, shadow), color)
             }
         };

@@ -7,8 +7,9 @@
 //!   planes' receivers in Planar mode, every object in Map mode. A
 //!   receiver is lit per sample like Phong shading (interpolated eye-space
 //!   position and normal, the normal renormalized; a texel or a vertex
-//!   colour modulates ambient+diffuse as with Phong), whatever its shading
-//!   mode: shadows need the light's visibility per sample.
+//!   colour modulates as with Phong: ambient+diffuse, or with
+//!   Cook–Torrance the base colour), whatever its shading mode: shadows
+//!   need the light's visibility per sample.
 //! - Casters, opaque or transparent, culled or not, are all the triangles
 //!   of some objects after `world_from_object`: in Planar mode the
 //!   objects that do not receive; in Map mode every object, so that a
@@ -36,8 +37,9 @@
 //!   edge or corner counts (so a ray through a shared edge cannot slip
 //!   between two caster triangles); a segment lying in a triangle's plane
 //!   does not hit it.
-//! - A hidden light contributes neither diffuse nor specular to the sample;
-//!   ambient and emission stay. Everything after lighting (clamp, texture,
+//! - A hidden light contributes neither diffuse nor specular to the sample,
+//!   in either lighting model; ambient (Cook–Torrance: the environment
+//!   term) and emission stay. Everything after lighting (clamp, texture,
 //!   fog, blending) is unchanged.
 //!
 //! Non-receivers, and every object with `ShadowMode::None`, are shaded as

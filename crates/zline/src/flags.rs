@@ -1,12 +1,16 @@
-//! The rendering flags applied to a loaded scene: camera, fog, shadows and
-//! the render settings (the flags override what the scene file says).
+//! The rendering flags applied to a loaded scene: camera, fog, shadows,
+//! the lighting model and the render settings (the flags override what the
+//! scene file says).
+
+use std::collections::HashMap;
+use std::sync::Arc;
 
 use glam::Vec3;
 use zline::scene::{
-    DepthMode, Fog, FogCoordinate, GouraudClamp, Interpolation, LightingSides, RenderSettings, Scene,
+    DepthMode, Fog, FogCoordinate, GouraudClamp, Interpolation, LightingSides, Mesh, RenderSettings, Scene,
     ShadingMode, ShadowMode,
 };
-use zline::shading::Filter;
+use zline::shading::{Filter, ModelChoice};
 
 use crate::cli::choices::{Clamp, Depth, FogCoord, Interp, Shading, ShadowFilter, Sides, TexFilter};
 use crate::cli::common::Common;
@@ -69,6 +73,25 @@ pub(crate) fn apply_shadows(scene: &mut Scene, common: &Common) {
     scene.shadows.mode = mode.into();
     if scene.shadows.mode == ShadowMode::Planar && scene.shadows.planes.is_empty() {
         eprintln!("warning: --shadows planar: the scene has no shadow_plane objects");
+    }
+}
+
+/// `--model`: every object's material and every mesh's lit by the chosen
+/// model ([`Material::with_model`](zline::shading::Material::with_model)).
+/// A mesh shared by several objects is changed once and stays shared.
+pub(crate) fn apply_model(scene: &mut Scene, common: &Common) {
+    let Some(choice) = common.model else { return };
+    let choice = ModelChoice::from(choice);
+    let mut changed: HashMap<*const Mesh, Arc<Mesh>> = HashMap::new();
+    for object in &mut scene.objects {
+        object.material = object.material.map(|m| m.with_model(choice));
+        let material = object.mesh.material.with_model(choice);
+        if material != object.mesh.material {
+            let mesh = changed
+                .entry(Arc::as_ptr(&object.mesh))
+                .or_insert_with(|| Arc::new(Mesh { material, ..(*object.mesh).clone() }));
+            object.mesh = Arc::clone(mesh);
+        }
     }
 }
 

@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 use glam::Vec3;
 use serde::Serialize;
 use zline_scene::Scene;
-use zline_shading::{Light, Material};
+use zline_shading::{Light, Material, Model};
 
 /// A loaded file described.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -63,6 +63,23 @@ pub struct MaterialInfo {
     pub opacity: f32,
     /// Whether it emits (ke ≠ 0).
     pub emissive: bool,
+    /// The reflection model: `basic` or `cook-torrance` ([`Model::name`]).
+    pub model: &'static str,
+    /// The Cook–Torrance parameters (`None` with the basic model, whose
+    /// coefficients are kd, ks and ns; Cook–Torrance uses kd as its base
+    /// colour and neither ks nor ns).
+    pub microfacet: Option<MicrofacetInfo>,
+}
+
+/// A Cook–Torrance material's parameters besides its base colour.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MicrofacetInfo {
+    /// The distribution: `ggx` or `beckmann`.
+    pub distribution: &'static str,
+    /// Metallic, in [0, 1].
+    pub metallic: f32,
+    /// Perceptual roughness, in [0, 1].
+    pub roughness: f32,
 }
 
 /// A texture's size.
@@ -140,6 +157,15 @@ impl ModelInfo {
                         ns: material.ns,
                         opacity: material.opacity,
                         emissive: material.ke != Vec3::ZERO,
+                        model: material.model.name(),
+                        microfacet: match material.model {
+                            Model::Basic => None,
+                            Model::CookTorrance(m) => Some(MicrofacetInfo {
+                                distribution: m.distribution.name(),
+                                metallic: m.metallic,
+                                roughness: m.roughness,
+                            }),
+                        },
                     },
                 )),
             }
@@ -210,14 +236,24 @@ impl ModelInfo {
         }
         let _ = writeln!(s, "  materials  {}", self.materials.len());
         for m in &self.materials {
+            // The coefficients the model uses: kd, ks and ns for the basic
+            // one, the parameters and the base colour kd for Cook–Torrance.
+            let coefficients = match &m.microfacet {
+                None => format!("kd {}, ks {}, ns {}", v(m.kd), v(m.ks), short(m.ns)),
+                Some(f) => format!(
+                    "{} ({}, metallic {}, roughness {}), kd {}",
+                    m.model,
+                    f.distribution,
+                    short(f.metallic),
+                    short(f.roughness),
+                    v(m.kd)
+                ),
+            };
             let _ = writeln!(
                 s,
-                "    '{}' ({}): kd {}, ks {}, ns {}{}{}",
+                "    '{}' ({}): {coefficients}{}{}",
                 m.first_mesh,
                 count(m.objects, "object"),
-                v(m.kd),
-                v(m.ks),
-                short(m.ns),
                 if m.opacity < 1.0 { format!(", opacity {}", short(m.opacity)) } else { String::new() },
                 if m.emissive { ", emissive" } else { "" }
             );
@@ -325,6 +361,39 @@ mod tests {
             info.text()
         );
         assert!(info.text().contains("lights     none in the file"));
+    }
+
+    #[test]
+    fn each_material_says_its_model() {
+        use zline_shading::{Distribution, Microfacet};
+        let metal = Microfacet { metallic: 0.98, roughness: 0.3, distribution: Distribution::Ggx };
+        let object = |material: Material| Object {
+            mesh: Arc::new(cube(1.0)),
+            world_from_object: Mat4::IDENTITY,
+            material: Some(material),
+            shading: None,
+            cull_back_faces: true,
+        };
+        let basic = Material::plastic(Vec3::new(1.0, 0.5, 0.25), 0.5, 16.0);
+        let gold = Material { model: Model::CookTorrance(metal), ..basic };
+        let scene = zline_io::scene_for_model(Vec::new(), RenderSettings::default());
+        let scene = Scene { objects: vec![object(basic), object(gold)], ..scene };
+        let info = ModelInfo::of_scene("m.toml", "scene file", &scene, false, false, Vec::new());
+        let text = info.text();
+        assert!(
+            text.contains("    'cube' (1 object): kd (1, 0.5, 0.25), ks (0.5, 0.5, 0.5), ns 16\n"),
+            "{text}"
+        );
+        assert!(
+            text.contains("    'cube' (1 object): cook-torrance (ggx, metallic 0.98, roughness 0.3), kd (1, 0.5, 0.25)\n"),
+            "{text}"
+        );
+        let json = serde_json::to_value(&info).unwrap();
+        let (a, b) = (&json["materials"][0], &json["materials"][1]);
+        assert_eq!((a["model"].as_str(), a["microfacet"].is_null()), (Some("basic"), true));
+        assert_eq!(b["model"], "cook-torrance");
+        assert_eq!(b["microfacet"]["distribution"], "ggx");
+        assert_eq!(b["microfacet"]["roughness"].as_f64(), Some(0.3f32 as f64));
     }
 
     #[test]

@@ -28,7 +28,7 @@ mod turntable;
 #[cfg(feature = "view")]
 mod view_command;
 
-use flags::{apply_camera, apply_fog, apply_overrides, apply_shadows};
+use flags::{apply_camera, apply_fog, apply_model, apply_overrides, apply_shadows};
 
 /// zline — a CPU renderer for the classical rendering pipeline.
 #[derive(Parser)]
@@ -323,8 +323,8 @@ fn job(common: &Common, allow_outside: bool) -> Result<job::Job<'_>> {
 }
 
 /// The flags other than the camera's applied to a loaded scene, as
-/// `render` does: normal maps, `--bump`, the settings, fog and shadows;
-/// then the sample budget checked.
+/// `render` does: normal maps, `--bump`, `--model`, the settings, fog and
+/// shadows; then the sample budget checked.
 fn set_up(scene: &mut Scene, common: &Common) -> Result<()> {
     if common.no_normal_maps {
         for object in &mut scene.objects {
@@ -339,6 +339,7 @@ fn set_up(scene: &mut Scene, common: &Common) -> Result<()> {
             eprintln!("warning: --bump: no mesh has texture coordinates; nothing is bump-mapped");
         }
     }
+    apply_model(scene, common);
     apply_overrides(&mut scene.settings, common);
     apply_fog(scene, common);
     apply_shadows(scene, common);

@@ -31,9 +31,18 @@
 //! the base colour texture's TEXCOORD set, with t = 1 − v (glTF's v runs
 //! down the image, SPEC §7's t runs up).
 //!
-//! **Materials.** glTF describes metallic–roughness PBR; zline has the
-//! classical model of SPEC §5, so the mapping is an approximation:
-//! - kd = ka = baseColorFactor.rgb (modulated by baseColorTexture);
+//! **Materials.** glTF's metallic–roughness material is the Cook–Torrance
+//! model of SPEC §5.2 (GGX), which every material takes
+//! ([`zline_shading::Model::CookTorrance`]): base colour kd =
+//! baseColorFactor.rgb (times baseColorTexture and COLOR_0), metallic and
+//! roughness their factors (times the metallicRoughnessTexture's B and G),
+//! the ambient term times the occlusionTexture's 1 + strength·(R − 1),
+//! ke = emissiveFactor × KHR_materials_emissive_strength (default 1;
+//! clamped to [0, 1]) times the emissiveTexture. The textures are read per
+//! sample by Phong shading; flat and Gouraud shading use the factors. For
+//! the basic model (`--model basic`) the material also carries the
+//! classical mapping:
+//! - ka = kd;
 //! - ks = mix(0.04, baseColor, metallic) · (1 − roughness): 0.04 is the
 //!   reflectance of common dielectrics at normal incidence, metals reflect
 //!   their own colour; an unnormalized Blinn–Phong lobe peaks at ks
@@ -43,10 +52,9 @@
 //!   is 2/roughness⁴ − 2, clamped to [1, 1024]: the Blinn–Phong exponent
 //!   whose lobe matches a Beckmann/GGX lobe of width α (Walter et al.
 //!   2007); the clamp keeps a mirror-smooth surface from an infinite
-//!   exponent;
-//! - ke = emissiveFactor × KHR_materials_emissive_strength (default 1),
-//!   clamped to [0, 1] like every coefficient; an emissiveTexture is
-//!   warned about and ignored (the factor alone is used);
+//!   exponent.
+//!
+//! And for both:
 //! - opacity = baseColorFactor.a for alphaMode BLEND, 1 otherwise. MASK
 //!   with a base colour texture discards samples whose alpha
 //!   baseColorFactor.a × texel alpha is below alphaCutoff (default 0.5;
@@ -93,8 +101,11 @@
 //! or, without one, MikkTSpace tangents; they must use the base colour
 //! texture's TEXCOORD set when there is one.
 //!
-//! **Warned and ignored:** COLOR_0 alpha, emissive textures, occlusion and
-//! metallic–roughness textures, MIRRORED_REPEAT, primitive
+//! All textures of a primitive must use one TEXCOORD set (the base
+//! colour's, when it has one); a map on another set is warned about and
+//! left out.
+//!
+//! **Warned and ignored:** COLOR_0 alpha, MIRRORED_REPEAT, primitive
 //! modes other than TRIANGLES, skins (drawn in the bind pose), morph
 //! targets (drawn without), animations (drawn at rest), extensions other
 //! than the two above, light ranges and spot cones, a node reached twice
@@ -121,7 +132,7 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
 use gltf::mesh::Mode;
-use zline_scene::{Camera, Mesh, NormalEncoding, NormalMap, Object, Projection, TextureMap};
+use zline_scene::{Camera, Mesh, Object, Projection};
 use zline_shading::{Attenuation, Light, Sampler, Texture};
 
 use crate::culling::default_culling;
@@ -132,6 +143,7 @@ use crate::texture_file::{DecodeError, TextureCache};
 mod attributes;
 mod convert;
 mod document;
+mod maps;
 mod resources;
 
 use attributes::Attributes;
@@ -140,6 +152,7 @@ use convert::{
     fit_far_plane, material_from_gltf, material_name, primitive_name, projection_is_valid, reversed,
     sampler_from_gltf,
 };
+use maps::SurfaceMap;
 use resources::{decode_data_uri, read_buffers, uri_target, UriTarget};
 
 /// Extensions the loader reads (others are warned about).
@@ -200,7 +213,6 @@ pub(crate) fn parse_gltf(
         textures: TextureCache::default(),
         images: HashMap::new(),
         meshes: HashMap::new(),
-        warned_materials: HashSet::new(),
         warnings: Vec::new(),
         scene: GltfScene { objects: Vec::new(), camera: None, lights: Vec::new() },
         camera_far_to_fit: false,
@@ -228,7 +240,6 @@ struct Loader<'a> {
     images: HashMap<usize, Option<Arc<Texture>>>,
     /// Meshes by (mesh, primitive, mirrored); `None` for skipped primitives.
     meshes: HashMap<(usize, usize, bool), Option<LoadedPrimitive>>,
-    warned_materials: HashSet<Option<usize>>,
     warnings: Vec<String>,
     scene: GltfScene,
     /// The camera had no zfar: fit it once the geometry is known.
@@ -397,10 +408,15 @@ impl Loader<'_> {
         let material = primitive.material();
         let base_color = material.pbr_metallic_roughness().base_color_texture();
         let normal_texture = material.normal_texture();
+        let metallic_roughness = material.pbr_metallic_roughness().metallic_roughness_texture();
+        let (occlusion, emissive) = (material.occlusion_texture(), material.emissive_texture());
         let uv_set = base_color
             .as_ref()
             .map(|info| info.tex_coord())
             .or(normal_texture.as_ref().map(|n| n.tex_coord()))
+            .or(metallic_roughness.as_ref().map(|info| info.tex_coord()))
+            .or(occlusion.as_ref().map(|o| o.tex_coord()))
+            .or(emissive.as_ref().map(|info| info.tex_coord()))
             .unwrap_or(0);
         let uvs = attributes.read_uvs(primitive, &name, uv_set)?;
         let tangents = match normal_texture {
@@ -420,7 +436,6 @@ impl Loader<'_> {
             }
             built = built.with_colors(colors).map_err(mesh_error)?;
         }
-        self.warn_about_material(&material);
         let cutoff = material.alpha_cutoff().unwrap_or(0.5);
         if let Some(info) = base_color {
             // glTF masks on factor.a × texel.a ≥ cutoff; the pipeline tests
@@ -442,6 +457,15 @@ impl Loader<'_> {
         if let Some(normal) = normal_texture {
             built = self.attach_normal_map(built, &normal, (uv_set, tangents), &material_name(&material))?;
         }
+        let surface = [
+            metallic_roughness.map(|info| (SurfaceMap::MetallicRoughness, info.texture(), info.tex_coord())),
+            occlusion.map(|o| (SurfaceMap::Occlusion(o.strength()), o.texture(), o.tex_coord())),
+            emissive.map(|info| (SurfaceMap::Emission, info.texture(), info.tex_coord())),
+        ];
+        for (which, texture, set) in surface.into_iter().flatten() {
+            built =
+                self.attach_surface_map(built, which, (&texture, set), uv_set, &material_name(&material))?;
+        }
         if material.alpha_mode() == gltf::material::AlphaMode::Mask && built.diffuse_map.is_none() {
             // MASK on the constant alpha: every sample has the factor's alpha.
             let alpha = material.pbr_metallic_roughness().base_color_factor()[3];
@@ -451,93 +475,6 @@ impl Loader<'_> {
         }
         let cull = !material.double_sided() && default_culling(&built, built.material.opacity);
         Ok(Some((built, cull)))
-    }
-
-    /// Warns once per material about what the mapping leaves out.
-    fn warn_about_material(&mut self, material: &gltf::Material) {
-        if !self.warned_materials.insert(material.index()) {
-            return;
-        }
-        let name = material_name(material);
-        let pbr = material.pbr_metallic_roughness();
-        let mut ignored = Vec::new();
-        if material.emissive_texture().is_some() {
-            ignored.push("emissive texture (emissiveFactor alone is used)");
-        }
-        if material.occlusion_texture().is_some() {
-            ignored.push("occlusion texture");
-        }
-        if pbr.metallic_roughness_texture().is_some() {
-            ignored.push("metallic-roughness texture");
-        }
-        if !ignored.is_empty() {
-            self.warn(format!("material '{name}': {} not supported; ignored", ignored.join(", ")));
-        }
-    }
-
-    /// The mesh with its base colour texture, when the mesh has the
-    /// coordinates and the image can be used (warnings otherwise).
-    fn attach_base_color(
-        &mut self,
-        mesh: Mesh,
-        info: &gltf::texture::Info,
-        set: u32,
-        (alpha_blend, alpha_cutoff): (bool, Option<f32>),
-        material: &str,
-    ) -> Result<Mesh, SceneError> {
-        if mesh.uvs.is_empty() {
-            let name = &mesh.name;
-            self.warn(format!("mesh '{name}': base colour texture but no TEXCOORD_{set}; drawn untextured"));
-            return Ok(mesh);
-        }
-        let texture = info.texture();
-        let Some(image) = self.image(&texture.source(), material)? else { return Ok(mesh) };
-        let sampler = self.sampler(&texture.sampler());
-        Ok(mesh.with_diffuse_map(TextureMap { texture: image, sampler, alpha_blend, alpha_cutoff }))
-    }
-
-    /// The mesh with its normal texture (glTF `normalTexture` and its
-    /// `scale`, `zline_scene::NormalMap`) and tangents — the file's
-    /// TANGENT, or MikkTSpace's when it has none, as glTF prescribes —
-    /// when the mesh has the texture's coordinates (the set the base
-    /// colour uses, if any) and the image can be used; warnings otherwise.
-    fn attach_normal_map(
-        &mut self,
-        mesh: Mesh,
-        normal: &gltf::material::NormalTexture,
-        (set, tangents): (u32, Option<Vec<glam::Vec4>>),
-        material: &str,
-    ) -> Result<Mesh, SceneError> {
-        let name = mesh.name.clone();
-        if normal.tex_coord() != set {
-            let (theirs, ours) = (normal.tex_coord(), set);
-            self.warn(format!(
-                "mesh '{name}': normal texture on TEXCOORD_{theirs}, base colour on TEXCOORD_{ours};                  one set per mesh is supported: drawn without the normal texture"
-            ));
-            return Ok(mesh);
-        }
-        if mesh.uvs.is_empty() {
-            self.warn(format!("mesh '{name}': normal texture but no TEXCOORD_{set}; drawn without it"));
-            return Ok(mesh);
-        }
-        let texture = normal.texture();
-        let Some(image) = self.image(&texture.source(), material)? else { return Ok(mesh) };
-        let sampler = self.sampler(&texture.sampler());
-        let mesh_error =
-            |source| SceneError::Mesh { path: self.path.to_path_buf(), mesh: name.clone(), source };
-        let mesh = match tangents {
-            Some(tangents) => mesh.with_tangents(tangents).map_err(mesh_error)?,
-            None => mesh.with_generated_tangents(),
-        };
-        if mesh.tangents.is_empty() {
-            self.warn(format!(
-                "mesh '{name}': no tangents could be made for the normal texture; drawn without it"
-            ));
-            return Ok(mesh);
-        }
-        let map = TextureMap { texture: image, sampler, alpha_blend: false, alpha_cutoff: None };
-        let scale = normal.scale();
-        Ok(mesh.with_normal_map(NormalMap { map, encoding: NormalEncoding::Tangent, scale }))
     }
 
     /// The decoded image, on first use (see the module doc); errors name

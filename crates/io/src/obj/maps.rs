@@ -265,7 +265,8 @@ pub(super) fn material_from_mtl(m: &tobj::Material) -> Material {
 /// else the basic model. Values that do not parse count as absent (the
 /// MTL check reports them).
 fn pbr_model(m: &tobj::Material) -> Model {
-    let value = |key: &str| m.unknown_param.get(key).and_then(|v| v.split_whitespace().next()?.parse::<f32>().ok());
+    let value =
+        |key: &str| m.unknown_param.get(key).and_then(|v| v.split_whitespace().next()?.parse::<f32>().ok());
     let (roughness, metallic) = (value("Pr"), value("Pm"));
     if roughness.is_none() && metallic.is_none() {
         return Model::Basic;

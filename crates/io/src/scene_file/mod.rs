@@ -36,6 +36,7 @@ use crate::framing::{aspect, bounds_of, default_lights, model_camera, DEFAULT_AM
 mod bump;
 mod checks;
 mod lights;
+mod material;
 mod models;
 mod render;
 mod view;
@@ -43,6 +44,7 @@ mod visibility;
 
 use checks::{Checker, Result, S};
 use lights::{LightDef, LightEntry};
+use material::MaterialDef;
 use models::{ModelCache, ModelPart};
 use render::{settings, shadows, RenderDef, ShadingDef};
 use view::{CameraDef, FogDef};
@@ -143,6 +145,12 @@ use view::{CameraDef, FogDef};
 /// ke = [0, 0, 0]                    # emission, added unlit
 /// ns = 32                           # ≥ 0
 /// opacity = 1.0                     # in [0, 1]
+/// model = "cook-torrance"           # basic | cook-torrance (SPEC §5.2, kd the base colour); default
+///                                   #   the mesh's own (glTF, and MTL with Pr/Pm, load as cook-torrance)
+/// metallic = 0.0                    # in [0, 1]; a basic material switched takes 0
+/// roughness = 0.5                   # in [0, 1]; switched: 0.5
+/// distribution = "ggx"              # ggx | beckmann; switched: ggx. These three imply
+///                                   #   model = "cook-torrance" and are errors with model = "basic"
 /// ```
 ///
 /// `shadow_plane = true` makes each mesh of the object a receiver of
@@ -232,18 +240,6 @@ struct ObjectDef {
 enum ScaleDef {
     Uniform(f32),
     PerAxis([f32; 3]),
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct MaterialDef {
-    color: Option<S<[f32; 3]>>,
-    ka: Option<S<[f32; 3]>>,
-    kd: Option<S<[f32; 3]>>,
-    ks: Option<S<[f32; 3]>>,
-    ke: Option<S<[f32; 3]>>,
-    ns: Option<S<f32>>,
-    opacity: Option<S<f32>>,
 }
 
 /// Turns the parsed file into a scene, validating as it goes.
@@ -503,26 +499,9 @@ impl Builder<'_> {
         Ok(Mat4::from_scale_rotation_translation(scale, rotation, translate))
     }
 
+    /// An object's `[objects.material]` table (see [`material::material`]).
     fn material(&self, def: &MaterialDef, base: Material, key: &str) -> Result<Material> {
-        let key = format!("{key}.material");
-        let mut m = base;
-        if let Some(c) = &def.color {
-            m.kd = self.check.vec3_in(c, &format!("{key}.color"), 0.0, 1.0)?;
-            m.ka = m.kd;
-        }
-        for (value, name, field) in [
-            (&def.ka, "ka", &mut m.ka),
-            (&def.kd, "kd", &mut m.kd),
-            (&def.ks, "ks", &mut m.ks),
-            (&def.ke, "ke", &mut m.ke),
-        ] {
-            if let Some(v) = value {
-                *field = self.check.vec3_in(v, &format!("{key}.{name}"), 0.0, 1.0)?;
-            }
-        }
-        m.ns = self.check.optional(&def.ns, &format!("{key}.ns"), m.ns, 0.0, f32::MAX)?;
-        m.opacity = self.check.optional(&def.opacity, &format!("{key}.opacity"), m.opacity, 0.0, 1.0)?;
-        Ok(m)
+        material::material(&self.check, def, base, key)
     }
 }
 

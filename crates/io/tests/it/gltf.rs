@@ -293,13 +293,16 @@ fn unsupported_features_warn_and_still_load() {
     let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
     assert_eq!(scene.objects.len(), 1, "the lines are skipped");
     assert_eq!(scene.objects[0].material().ke, Vec3::new(1.0, 0.0, 0.0), "the factor without the texture");
+    assert!(warnings.iter().any(|w| w.contains("never-read.png: cannot read texture")), "{warnings:?}");
+    assert!(scene.objects[0].mesh.surface_maps.emission.is_none(), "no image, no map");
     let corners = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
     assert_eq!(scene.objects[0].mesh.colors, corners, "COLOR_0 read from the POSITION accessor");
     let expected = [
         "extension 'KHR_texture_transform' is not supported",
         "mesh 'lines': primitive mode Lines is not supported; skipped",
         "skins are not supported",
-        "material 'glow': emissive texture (emissiveFactor alone is used) not supported",
+        // The emissive texture is read (SPEC §5.2); its image is missing.
+        "material 'glow': ",
     ];
     assert_eq!(warnings.len(), expected.len(), "{warnings:?}");
     for part in expected {
@@ -519,4 +522,35 @@ fn indices_beyond_the_vertices_are_mesh_errors() {
     std::fs::write(path.with_file_name("quad.bin"), bin).unwrap();
     let e = load_gltf(&path).unwrap_err().to_string();
     check_message(&e, &["quad.gltf: mesh 'quad': triangle 0 refers to vertex 9"]);
+}
+
+#[test]
+fn the_other_material_maps_are_read_and_a_lone_map_gets_a_white_base_texture() {
+    // Metallic–roughness, occlusion (with its strength) and emissive
+    // textures, no base colour texture: each becomes a `SurfaceMaps` entry,
+    // and the mesh a white base texture the maps' coordinates are read with.
+    let path = quad_gltf(
+        "surface_maps",
+        r#""materials": [{"name": "maps", "emissiveFactor": [1, 1, 1],
+            "pbrMetallicRoughness": {"metallicFactor": 0.5, "roughnessFactor": 0.25,
+                "metallicRoughnessTexture": {"index": 0}},
+            "occlusionTexture": {"index": 0, "strength": 0.75}, "emissiveTexture": {"index": 0}}],
+        "textures": [{"source": 0}], "images": [{"uri": "logo.png"}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]"#,
+    );
+    std::fs::copy(repo("assets/gltf/BoxTextured/glTF/CesiumLogoFlat.png"), path.with_file_name("logo.png"))
+        .unwrap();
+    let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let mesh = &scene.objects[0].mesh;
+    let maps = &mesh.surface_maps;
+    assert!(maps.metallic_roughness.is_some() && maps.emission.is_some());
+    assert_eq!(maps.occlusion.as_ref().map(|(_, strength)| *strength), Some(0.75));
+    let base = mesh.diffuse_map.as_ref().expect("a white base texture");
+    assert_eq!((base.texture.width(), base.texture.height()), (1, 1));
+    assert_eq!(base.texture.texel(0, 0, 0), glam::Vec4::ONE);
+    match scene.objects[0].material().model {
+        zline_shading::Model::CookTorrance(m) => assert_eq!((m.metallic, m.roughness), (0.5, 0.25)),
+        other => panic!("glTF materials are Cook–Torrance, got {other:?}"),
+    }
 }

@@ -10,6 +10,7 @@ mod obj;
 mod obj_textures;
 mod safety;
 mod scene_file;
+mod scene_materials;
 mod scene_shadows;
 
 use std::path::{Path, PathBuf};

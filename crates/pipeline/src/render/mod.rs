@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use glam::{Mat4, Vec3};
 use zline_raster::Rect;
-use zline_scene::{DepthMode, Object, Projection, Scene, ShadowMode, Visibility};
+use zline_scene::{DepthMode, Object, Projection, Scene, ShadowMode, TextureMap, Visibility};
 use zline_shading::{Filter, LightingModel, Material, PreparedLights, PreparedMaterial, ShadingMode};
 
 use crate::adaptive::Adaptive;
@@ -26,7 +26,7 @@ use crate::setup::{
 };
 use crate::shadow;
 use crate::shadow_map::ShadowMaps;
-use crate::tile::{FrameTexture, TileTarget};
+use crate::tile::{FrameTexture, SurfaceUse, TileTarget};
 use crate::vertex::{
     transform_mesh, ClipVertex, ObjectTransforms, Screen, VertexLighting, VertexLights, Viewport,
 };
@@ -131,6 +131,8 @@ struct FrameTables {
     /// object's material without specular at objects + index.
     materials: Vec<PreparedMaterial>,
     textures: Vec<FrameTexture>,
+    /// Per object's material: its Cook–Torrance maps in `textures`.
+    surfaces: Vec<SurfaceUse>,
     /// Per object: its texture's use and whether its alpha blends (the
     /// object is then transparent even at opacity 1).
     object_textures: Vec<Option<(TextureUse, bool)>>,
@@ -335,6 +337,27 @@ impl Renderer {
             t.object_textures.push(Some((TextureUse { index, lod, alpha }, map.alpha_blend)));
             let cutoff = map.alpha_cutoff.unwrap_or(0.0);
             t.textures.push(FrameTexture { texture: map.texture.clone(), sampler, cutoff });
+        }
+        // A Cook–Torrance material's maps, read with the base colour
+        // texture's coordinates (so only beside one).
+        t.surfaces.clear();
+        for (index, object) in scene.objects.iter().enumerate() {
+            let maps = &object.mesh.surface_maps;
+            let used = t.object_textures[index].is_some() && t.materials[index].microfacet.is_some();
+            let mut push = |map: Option<&TextureMap>| {
+                let map = map.filter(|_| used)?;
+                let mut sampler = map.sampler;
+                if let Some(filter) = scene.settings.texture_filter {
+                    sampler.filter = filter;
+                }
+                t.textures.push(FrameTexture { texture: map.texture.clone(), sampler, cutoff: 0.0 });
+                Some(t.textures.len() as u32 - 1)
+            };
+            let metallic_roughness = push(maps.metallic_roughness.as_ref());
+            let occlusion =
+                maps.occlusion.as_ref().and_then(|(map, strength)| Some((push(Some(map))?, *strength)));
+            let emission = push(maps.emission.as_ref());
+            t.surfaces.push(SurfaceUse { metallic_roughness, occlusion, emission });
         }
         crate::normal_map::prepare(scene, &mut t.textures, &mut t.object_maps);
     }

@@ -43,6 +43,7 @@ impl Renderer {
             lighting: &t.lighting,
             materials: &t.materials,
             textures: &t.textures,
+            surfaces: &t.surfaces,
             maps: self.maps_drawn.then_some(&self.maps),
             normals: self.normals,
         };

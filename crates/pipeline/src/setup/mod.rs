@@ -355,7 +355,9 @@ fn adaptive_shortcuts(
                 GouraudChoice::Full => {}
             }
         }
-        (ShadingMode::Phong, _) => {
+        // The Phong shortcuts' bounds are the basic model's (SPEC §5.1):
+        // Cook–Torrance surfaces keep the full evaluation.
+        (ShadingMode::Phong, _) if ctx.material.0.microfacet.is_none() => {
             let m = &ctx.material.0.material;
             let (kd, ks, eye) = (m.kd.max_element(), m.ks.max_element(), tri.map(|v| v.eye));
             let normal = (ctx.vertex_colors == VertexColors::Absent).then(|| tri.map(|v| v.normal));

@@ -12,7 +12,7 @@
 //! [`KernelTables`]: crate::setup::KernelTables
 
 use zline_raster::{for_each_block, AttributePlanes, DepthPlane, EdgeTable, Span, LANES};
-use zline_shading::Vec3x8;
+use zline_shading::{MapTexels, Vec3x8};
 use zline_simd::lanes::{f32x8, i32x8, Level};
 
 use super::params::{AlphaTest, AnyPass, Interp, Lod, Pass};
@@ -21,7 +21,7 @@ use crate::setup::layout::{gouraud, phong, textured};
 use crate::setup::{
     AlphaUse, Flat, Gouraud, LevelOfDetail, Phong, Primitive, TexturedFlat, TexturedGouraud, TexturedPhong,
 };
-use zline_shading::{PreparedLights, PreparedMaterial};
+use zline_shading::{Filter, PreparedLights, PreparedMaterial};
 
 use crate::shadow_map::ShadowMaps;
 
@@ -46,6 +46,9 @@ pub(super) struct Lit<'a> {
     maps: Option<&'a ShadowMaps>,
     /// The block's planar shadow mask is read (the material receives).
     planar: bool,
+    /// The material may be Cook–Torrance (false: the basic model only,
+    /// known where the copy is compiled).
+    microfacet: bool,
 }
 
 impl<'a> Lit<'a> {
@@ -54,17 +57,24 @@ impl<'a> Lit<'a> {
     pub(super) fn of(ctx: &ShadeContext<'a>, material: u32) -> Lit<'a> {
         let material = &ctx.materials[material as usize];
         let planar = ctx.maps.is_none() && material.shadow_bits.is_some();
-        Lit { lights: ctx.lighting, material, maps: ctx.maps, planar }
+        Lit {
+            lights: ctx.lighting,
+            material,
+            maps: ctx.maps,
+            planar,
+            microfacet: material.microfacet.is_some(),
+        }
     }
 
     /// Runs `kernel` with this lighting and `normals` (the normals frame),
-    /// in one of two copies: the unshadowed lighting of a colour frame (the
-    /// common case, where both are constants and every shadow test folds
-    /// away), or any other. Both go through the one seam, [`lit`].
+    /// in one of two copies: the basic model's unshadowed lighting of a
+    /// colour frame (the common case, where all three are constants: every
+    /// shadow test and the microfacet model fold away), or any other. Both
+    /// go through the one seam, [`lit`].
     #[inline(always)]
     pub(super) fn split<R>(self, normals: bool, kernel: impl FnOnce(Lit<'a>, bool) -> R) -> R {
-        if self.maps.is_none() && !self.planar && !normals {
-            kernel(Lit { maps: None, planar: false, ..self }, false)
+        if self.maps.is_none() && !self.planar && !normals && !self.microfacet {
+            kernel(Lit { maps: None, planar: false, microfacet: false, ..self }, false)
         } else {
             kernel(self, normals)
         }
@@ -86,6 +96,7 @@ pub(super) fn lit<S: Level>(
     normal: Vec3x8<S>,
     mask: i32x8<S>,
     modulate: impl Fn(Vec3x8<S>) -> Vec3x8<S>,
+    maps: MapTexels<S>,
 ) -> Vec3x8<S> {
     // Only builds the closure: the lookup runs where the lights are summed.
     let share = how.maps.map(
@@ -96,7 +107,46 @@ pub(super) fn lit<S: Level>(
         },
     );
     let mask = if how.planar { Some(mask) } else { None };
-    how.lights.shade_x8_with(how.material, (eye, normal), mask, share, modulate)
+    if how.microfacet {
+        how.lights.shade_x8_with(how.material, (eye, normal), mask, share, modulate, maps)
+    } else {
+        how.lights.shade_x8_basic(how.material, (eye, normal), mask, share, modulate)
+    }
+}
+
+/// A Cook–Torrance material's maps (metallic–roughness, occlusion,
+/// emission), each with its level of detail on `planes` (the map's own
+/// filter decides whether it reads mip levels), and the occlusion's
+/// strength.
+pub(super) struct SurfaceMaps<'a> {
+    maps: [Option<(&'a FrameTexture, Lod)>; 3],
+    strength: f32,
+}
+
+/// The maps of `material`, when it has any.
+#[inline(always)]
+pub(super) fn surface_maps<'a, const N: usize>(
+    ctx: &ShadeContext<'a>,
+    material: u32,
+    planes: &AttributePlanes<N>,
+) -> Option<SurfaceMaps<'a>> {
+    let uses = ctx.surfaces.get(material as usize).filter(|u| u.any())?;
+    let with_lod = |index: Option<u32>| {
+        let map = &ctx.textures[index? as usize];
+        let lod = match map.sampler.filter {
+            Filter::Trilinear => LevelOfDetail::Derivatives,
+            Filter::Nearest | Filter::Bilinear => LevelOfDetail::Base,
+        };
+        Some((map, Lod::new(lod, planes, map)))
+    };
+    let (occlusion, strength) = match uses.occlusion {
+        Some((index, strength)) => (Some(index), strength),
+        None => (None, 0.0),
+    };
+    Some(SurfaceMaps {
+        maps: [with_lod(uses.metallic_roughness), with_lod(occlusion), with_lod(uses.emission)],
+        strength,
+    })
 }
 
 /// The modulation of an untinted surface: none.
@@ -299,7 +349,7 @@ impl TileTarget {
                         if normals {
                             return (encode_normal(normal), f32x8::ONE);
                         }
-                        (lit(&how, eye, normal, mask, unmodulated).clamp01(), f32x8::ONE)
+                        (lit(&how, eye, normal, mask, unmodulated, MapTexels::NONE).clamp01(), f32x8::ONE)
                     },
                 )
             },
@@ -333,7 +383,7 @@ impl TileTarget {
                             #[inline(always)]
                             move |c: Vec3x8<S>| color * c,
                         );
-                        (lit(&how, eye, normal, mask, tint).clamp01(), f32x8::ONE)
+                        (lit(&how, eye, normal, mask, tint, MapTexels::NONE).clamp01(), f32x8::ONE)
                     },
                 )
             },
@@ -342,9 +392,12 @@ impl TileTarget {
 
     /// SPEC §7, the part every textured kernel shares: texture coordinates
     /// interpolated, the texel sampled with the map's sampler at the level
-    /// `lod` finds, and the colour `color(attributes, w, mask, texel)`
-    /// (texel ⊙ (ambient+diffuse) + specular for the basic model),
-    /// clamped. One copy, the
+    /// `lod` finds, and the colour `color(attributes, w, mask, texel,
+    /// metallic–roughness texel)` (texel ⊙ (ambient+diffuse) + specular
+    /// for the basic model), clamped. A Cook–Torrance material's
+    /// metallic–roughness map (`surface`) is read in the same loop as the
+    /// texture, so the sampler is compiled once per kernel; its (B, G)
+    /// reach `color`. One copy, the
     /// interpolation tested per block: a copy per interpolation saved 1 %
     /// of the textured plane's instructions and cost a fifth of the
     /// pipeline's build time (the sampler is the costliest code to
@@ -354,10 +407,24 @@ impl TileTarget {
         &mut self,
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
         (map, interp, lod, alpha): (&FrameTexture, Interp, Lod, AlphaTest),
+        surface: Option<&SurfaceMaps<'_>>,
         pass: &AnyPass<'_>,
-        color: impl Fn(&[f32x8<S>; N], f32x8<S>, i32x8<S>, Vec3x8<S>) -> Vec3x8<S> + Copy,
+        color: impl Fn(&[f32x8<S>; N], f32x8<S>, i32x8<S>, Vec3x8<S>, MapTexels<S>) -> Vec3x8<S> + Copy,
     ) -> u64 {
-        let (texture, sampler) = (&*map.texture, &map.sampler);
+        // The textures to read, present ones first, each with its slot
+        // (0 the base texture, 1 + the map's index): a primitive without
+        // maps runs the loop below once.
+        let mut maps: [Option<(&FrameTexture, &Lod, u8)>; 4] = [Some((map, &lod, 0)), None, None, None];
+        let (mut count, mut strength) = (1, 0.0);
+        if let Some(surface) = surface {
+            strength = surface.strength;
+            for (slot, m) in surface.maps.iter().enumerate() {
+                if let Some((map, lod)) = m {
+                    maps[count] = Some((*map, lod, slot as u8 + 1));
+                    count += 1;
+                }
+            }
+        }
         self.scan::<_, _, S>(
             (edges, depth),
             planes,
@@ -367,10 +434,26 @@ impl TileTarget {
             |a, mask| {
                 let inv = interp.w(a[textured::Q]);
                 let (s, t) = (a[textured::S] * inv, a[textured::T] * inv);
-                let lods = lod.lods(interp, s, t, inv);
-                let [r, g, b, texel_alpha] = texture.sample_x8(sampler, s, t, lods);
+                // Each texel goes straight to its own local (no array indexed
+                // by the loop counter), so they stay in registers.
+                let [mut r, mut g, mut b, mut texel_alpha] = [f32x8::ZERO; 4];
+                let mut surface = MapTexels::NONE;
+                for m in &maps[..count] {
+                    let Some((map, lod, slot)) = m else { continue };
+                    let lods = lod.lods(interp, s, t, inv);
+                    let texel = map.texture.sample_x8(&map.sampler, s, t, lods);
+                    match slot {
+                        0 => [r, g, b, texel_alpha] = texel,
+                        1 => surface.metallic_roughness = Some((texel[2], texel[1])),
+                        2 => {
+                            let one = f32x8::ONE;
+                            surface.occlusion = Some(one + f32x8::splat(strength) * (texel[0] - one));
+                        }
+                        _ => surface.emission = Some(Vec3x8 { x: texel[0], y: texel[1], z: texel[2] }),
+                    }
+                }
                 let texel = Vec3x8 { x: r, y: g, z: b };
-                (color(a, inv, mask, texel).clamp01(), texel_alpha)
+                (color(a, inv, mask, texel, surface).clamp01(), texel_alpha)
             },
         )
     }
@@ -391,9 +474,10 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
+            None,
             pass,
             #[inline(always)]
-            |_, _, _, texel| texel * ad + spec,
+            |_, _, _, texel, _| texel * ad + spec,
         )
     }
 
@@ -412,9 +496,12 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
+            None,
             pass,
             #[inline(always)]
-            |a, w, _, texel| texel * triple(a, textured::AMBIENT_DIFFUSE, w) + triple(a, textured::SPECULAR, w),
+            |a, w, _, texel, _| {
+                texel * triple(a, textured::AMBIENT_DIFFUSE, w) + triple(a, textured::SPECULAR, w)
+            },
         )
     }
 
@@ -431,18 +518,20 @@ impl TileTarget {
         let uses =
             (map, interp, Lod::new(lod, &p.shader.planes, map), AlphaTest::new(alpha, pass.blends(), map));
         let how = Lit::of(ctx, p.shader.material);
+        let surface = surface_maps(ctx, p.shader.material, &p.shader.planes);
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
+            surface.as_ref(),
             pass,
             #[inline(always)]
-            |a, w, mask, texel| {
+            |a, w, mask, texel, surface| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
                 let tint = zline_simd::inlined(
                     #[inline(always)]
                     move |c: Vec3x8<S>| texel * c,
                 );
-                lit(&how, triple(a, textured::EYE, w), normal, mask, tint)
+                lit(&how, triple(a, textured::EYE, w), normal, mask, tint, surface)
             },
         )
     }
@@ -461,19 +550,21 @@ impl TileTarget {
         let uses =
             (map, interp, Lod::new(lod, &p.shader.planes, map), AlphaTest::new(alpha, pass.blends(), map));
         let how = Lit::of(ctx, p.shader.material);
+        let surface = surface_maps(ctx, p.shader.material, &p.shader.planes);
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
+            surface.as_ref(),
             pass,
             #[inline(always)]
-            |a, w, mask, texel| {
+            |a, w, mask, texel, surface| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
                 let color = triple(a, textured::COLOR, w);
                 let tint = zline_simd::inlined(
                     #[inline(always)]
                     move |c: Vec3x8<S>| texel * (color * c),
                 );
-                lit(&how, triple(a, textured::EYE, w), normal, mask, tint)
+                lit(&how, triple(a, textured::EYE, w), normal, mask, tint, surface)
             },
         )
     }

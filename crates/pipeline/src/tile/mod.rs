@@ -27,7 +27,7 @@ mod perturbed;
 mod target;
 
 pub(crate) use target::{load, load_for_blend, sample, store};
-pub use target::{FrameTexture, ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
+pub use target::{FrameTexture, ShadeContext, SurfaceUse, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 
 use zline_raster::LANES;
 use zline_scene::GouraudClamp;

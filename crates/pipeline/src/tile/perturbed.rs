@@ -17,7 +17,7 @@ use zline_scene::NormalEncoding;
 use zline_shading::{Filter, Sampler, Texture, Vec3x8};
 use zline_simd::lanes::{f32x8, Level};
 
-use super::kernel::{encode_normal, lit, triple, unmodulated, Lit};
+use super::kernel::{encode_normal, lit, surface_maps, triple, unmodulated, Lit};
 use super::params::{AlphaTest, AnyPass, Interp, Lod, Pass};
 use super::target::{FrameTexture, ShadeContext, TileTarget};
 use crate::setup::layout::perturbed::{BITANGENT, EYE, NORMAL, Q, S, T, TANGENT};
@@ -151,7 +151,10 @@ impl TileTarget {
                 if normals {
                     return (encode_normal(normal), f32x8::ONE);
                 }
-                (lit(&how, eye, normal, mask, unmodulated).clamp01(), f32x8::ONE)
+                (
+                    lit(&how, eye, normal, mask, unmodulated, zline_shading::MapTexels::NONE).clamp01(),
+                    f32x8::ONE,
+                )
             },
         )
     }
@@ -175,18 +178,20 @@ impl TileTarget {
             AlphaTest::new(alpha, pass.blends(), texture),
         );
         let how = Lit::of(ctx, p.shader.material);
+        let surface = surface_maps(ctx, p.shader.material, &p.shader.planes);
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
+            surface.as_ref(),
             pass,
             #[inline(always)]
-            |a, w, mask, texel| {
+            |a, w, mask, texel, surface| {
                 let (eye, normal) = perturbed_point(encoding, &map, a, w);
                 let tint = zline_simd::inlined(
                     #[inline(always)]
                     move |c: Vec3x8<S>| texel * c,
                 );
-                lit(&how, eye, normal, mask, tint)
+                lit(&how, eye, normal, mask, tint, surface)
             },
         )
     }

@@ -26,6 +26,24 @@ pub struct FrameTexture {
     pub cutoff: f32,
 }
 
+/// A Cook–Torrance material's maps: indices in the frame's textures.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SurfaceUse {
+    /// The metallic–roughness map (B metallic, G roughness).
+    pub metallic_roughness: Option<u32>,
+    /// The occlusion map (R) and its strength.
+    pub occlusion: Option<(u32, f32)>,
+    /// The emissive map (RGB).
+    pub emission: Option<u32>,
+}
+
+impl SurfaceUse {
+    /// True when the material has any of the maps.
+    pub fn any(&self) -> bool {
+        self.metallic_roughness.is_some() || self.occlusion.is_some() || self.emission.is_some()
+    }
+}
+
 /// What shading reads besides the primitive.
 #[derive(Clone, Copy, Debug)]
 pub struct ShadeContext<'a> {
@@ -35,6 +53,10 @@ pub struct ShadeContext<'a> {
     pub materials: &'a [PreparedMaterial],
     /// The frame's textures, indexed by the primitives' `texture`.
     pub textures: &'a [FrameTexture],
+    /// Per material (indexed like `materials`): the maps of its
+    /// Cook–Torrance parameters, read by the Phong-family textured kernels
+    /// (SPEC §5.2).
+    pub surfaces: &'a [SurfaceUse],
     /// The frame's shadow maps (`ShadowMode::Map`): every Phong kernel
     /// scales each light by the share of it its sample sees.
     pub maps: Option<&'a crate::shadow_map::ShadowMaps>,

@@ -181,6 +181,7 @@ fn raw(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Mesh {
         diffuse_map: None,
         tangents: Vec::new(),
         normal_map: None,
+        surface_maps: Default::default(),
     }
 }
 

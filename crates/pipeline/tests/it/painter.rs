@@ -10,7 +10,15 @@ use zline_shading::{Light, Material, ShadingMode};
 use crate::support::{draw, mesh, object, scene, square};
 
 fn material(ke: Vec3, opacity: f32) -> Material {
-    Material { ke, ka: Vec3::ZERO, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity, model: Default::default() }
+    Material {
+        ke,
+        ka: Vec3::ZERO,
+        kd: Vec3::ZERO,
+        ks: Vec3::ZERO,
+        ns: 1.0,
+        opacity,
+        model: Default::default(),
+    }
 }
 
 fn painted(mut s: Scene) -> (zline_pipeline::Image, zline_pipeline::Image) {

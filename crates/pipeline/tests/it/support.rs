@@ -25,6 +25,7 @@ pub(crate) fn mesh(
         diffuse_map: None,
         tangents: Vec::new(),
         normal_map: None,
+        surface_maps: Default::default(),
     })
 }
 

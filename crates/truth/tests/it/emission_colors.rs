@@ -81,7 +81,15 @@ fn centre_sample() -> (DVec3, [DVec3; 3], [f64; 3]) {
 #[test]
 fn emission_only_material_shows_ke_in_every_mode() {
     let ke = Vec3::new(0.2, 0.55, 0.9);
-    let material = Material { ke, ka: Vec3::ZERO, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity: 1.0, model: zline_shading::Model::Basic };
+    let material = Material {
+        ke,
+        ka: Vec3::ZERO,
+        kd: Vec3::ZERO,
+        ks: Vec3::ZERO,
+        ns: 1.0,
+        opacity: 1.0,
+        model: zline_shading::Model::Basic,
+    };
     let plain = (*square(0.0, 0.0, 1.0, -2.0, material)).clone();
     let mut textured = plain.clone();
     solid_texture(&mut textured, Vec4::new(0.5, 0.25, 0.0, 1.0));

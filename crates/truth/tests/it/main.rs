@@ -2,6 +2,7 @@
 //! answers, property tests against the fast renderer, and determinism.
 
 mod bump;
+mod cook_torrance;
 mod emission_colors;
 mod hand;
 mod shadows;

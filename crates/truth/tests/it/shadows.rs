@@ -22,7 +22,7 @@ use zline_truth::{render_truth, TruthImage};
 use crate::support::{check_close, d, emissive, mesh, object, F64_TOLERANCE};
 
 /// Image size in pixels.
-const SIZE: u32 = 96;
+pub(crate) const SIZE: u32 = 96;
 
 /// The floor's material: no specular term unless a test adds one.
 const FLOOR: Material = Material {
@@ -41,7 +41,7 @@ const AMBIENT: Vec3 = Vec3::new(0.25, 0.25, 0.25);
 const NO_ATTENUATION: Attenuation = Attenuation { a0: 1.0, a1: 0.0, a2: 0.0 };
 
 /// A white point light at height 4 over the origin.
-const TOP: Vec3 = Vec3::new(0.0, 4.0, 0.0);
+pub(crate) const TOP: Vec3 = Vec3::new(0.0, 4.0, 0.0);
 
 /// A horizontal square at height `y` over [x0, x1] × [z0, z1], normal +y
 /// (counter-clockwise seen from above).
@@ -56,18 +56,23 @@ fn slab(x: [f32; 2], z: [f32; 2], y: f32, material: Material) -> Arc<Mesh> {
 }
 
 /// The floor, drawn Flat: as a receiver it is lit per sample all the same.
-fn floor(material: Material) -> zline_scene::Object {
+pub(crate) fn floor(material: Material) -> zline_scene::Object {
     object(slab([-8.0, 8.0], [-8.0, 8.0], 0.0, material), Some(ShadingMode::Flat))
 }
 
 /// The occluder, green under the ambient light alone.
-fn occluder() -> zline_scene::Object {
+pub(crate) fn occluder() -> zline_scene::Object {
     object(slab([1.25, 2.25], [-0.5, 0.5], 2.0, emissive(Vec3::new(0.0, 1.0, 0.0), 1.0)), None)
 }
 
 /// A scene seen from height `eye_y` straight down; object 0 receives
 /// shadows (plane y = 0) in `mode`.
-fn scene(eye_y: f32, lights: Vec<Light>, objects: Vec<zline_scene::Object>, mode: ShadowMode) -> Scene {
+pub(crate) fn scene(
+    eye_y: f32,
+    lights: Vec<Light>,
+    objects: Vec<zline_scene::Object>,
+    mode: ShadowMode,
+) -> Scene {
     Scene {
         shadows: Shadows {
             mode,
@@ -89,7 +94,7 @@ fn scene(eye_y: f32, lights: Vec<Light>, objects: Vec<zline_scene::Object>, mode
     }
 }
 
-fn point_light(position: Vec3, color: Vec3) -> Light {
+pub(crate) fn point_light(position: Vec3, color: Vec3) -> Light {
     Light::Point { position, color, attenuation: NO_ATTENUATION }
 }
 
@@ -99,19 +104,19 @@ fn world(i: u32, j: u32, y: f64) -> DVec3 {
 }
 
 /// Pixels i ∈ [i0, i1], j ∈ [j0, j1] (inclusive).
-fn in_box(i: u32, j: u32, [i0, i1, j0, j1]: [u32; 4]) -> bool {
+pub(crate) fn in_box(i: u32, j: u32, [i0, i1, j0, j1]: [u32; 4]) -> bool {
     (i0..=i1).contains(&i) && (j0..=j1).contains(&j)
 }
 
 /// The occluder's pixels: x ∈ [1.25, 2.25] is x_win ∈ [58, 66], z ∈
 /// [−0.5, 0.5] is y_win ∈ [44, 52].
-const OCCLUDER_PIXELS: [u32; 4] = [58, 65, 44, 51];
+pub(crate) const OCCLUDER_PIXELS: [u32; 4] = [58, 65, 44, 51];
 
 /// The shadow of the occluder (height 2) from the light at height 4 over
 /// the origin: the segment from floor point (x, 0, z) meets y = 2 at its
 /// midpoint (x/2, 2, z/2), so the shadow is x ∈ [2.5, 4.5], z ∈ [−1, 1]:
 /// x_win ∈ [68, 84], y_win ∈ [40, 56].
-const SHADOW_PIXELS: [u32; 4] = [68, 83, 40, 55];
+pub(crate) const SHADOW_PIXELS: [u32; 4] = [68, 83, 40, 55];
 
 /// Diffuse (and specular) of one light on the floor at `p` (N = +y), the
 /// viewer at `eye`: f·Il·[kd·N·L + ks·(N·H)^ns], 0 where N·L ≤ 0.

@@ -24,6 +24,7 @@ pub(crate) fn mesh(
         tangents: Vec::new(),
         normal_map: None,
         colors: Vec::new(),
+        surface_maps: Default::default(),
     })
 }
 
@@ -43,7 +44,15 @@ pub(crate) fn object(mesh: Arc<Mesh>, shading: Option<ShadingMode>) -> Object {
 
 /// A material that shows `color` under white ambient light and nothing else.
 pub(crate) fn emissive(color: Vec3, opacity: f32) -> Material {
-    Material { ka: color, kd: Vec3::ZERO, ks: Vec3::ZERO, ns: 1.0, opacity, ke: Vec3::ZERO, model: zline_shading::Model::Basic }
+    Material {
+        ka: color,
+        kd: Vec3::ZERO,
+        ks: Vec3::ZERO,
+        ns: 1.0,
+        opacity,
+        ke: Vec3::ZERO,
+        model: zline_shading::Model::Basic,
+    }
 }
 
 /// A camera at the origin looking down −z with a 90° vertical field of view.

@@ -15,7 +15,7 @@ fn one_and_two_threads_give_identical_images() {
     let mut scene = demo_scene();
     scene.settings = RenderSettings { width: 96, height: 64, ssaa: 2, ..scene.settings };
     for diagnostics in [false, true] {
-        let options = TruthOptions { diagnostics };
+        let options = TruthOptions { diagnostics, ..TruthOptions::default() };
         let (one, two) = (on_threads(1, &scene, &options), on_threads(2, &scene, &options));
         assert!(one == two, "images differ between 1 and 2 threads (diagnostics {diagnostics})");
     }

@@ -57,7 +57,7 @@ use zline_scene::{
 use zline_shading::{
     Attenuation, Filter, Fog, FogCoordinate, FogMode, Light, Material, Sampler, ShadingMode, Texture, Wrap,
 };
-use zline_truth::{render_truth_with, TruthOptions};
+use zline_truth::{render_truth_with, SplitSum, TruthOptions};
 
 /// Pixels closer than this (in pixels) to an edge, a depth intersection or
 /// a lighting switch are not compared: 512× the snapping distance.
@@ -76,7 +76,7 @@ fn unit() -> impl Strategy<Value = f32> {
     0.0f32..=1.0
 }
 
-fn color() -> impl Strategy<Value = Vec3> {
+pub(crate) fn color() -> impl Strategy<Value = Vec3> {
     (unit(), unit(), unit()).prop_map(|(r, g, b)| Vec3::new(r, g, b))
 }
 
@@ -95,8 +95,17 @@ fn vertex() -> impl Strategy<Value = Vec3> {
 
 /// A material with a small random emission (up to 0.3 per channel).
 pub(crate) fn material() -> impl Strategy<Value = Material> {
-    (color(), color(), color(), prop::sample::select(vec![1.0f32, 5.0, 16.0, 40.5]), color())
-        .prop_map(|(ka, kd, ks, ns, ke)| Material { ka, kd, ks, ns, opacity: 1.0, ke: ke * 0.3, model: zline_shading::Model::Basic })
+    (color(), color(), color(), prop::sample::select(vec![1.0f32, 5.0, 16.0, 40.5]), color()).prop_map(
+        |(ka, kd, ks, ns, ke)| Material {
+            ka,
+            kd,
+            ks,
+            ns,
+            opacity: 1.0,
+            ke: ke * 0.3,
+            model: zline_shading::Model::Basic,
+        },
+    )
 }
 
 /// Random vertex colours for `n` vertices in half the cases, else none.
@@ -163,9 +172,14 @@ fn triangle() -> impl Strategy<Value = ([Vec3; 3], [Vec3; 3], [Vec2; 3])> {
 /// An opaque object of one to four random triangles, textured in half the
 /// cases and with vertex colours in half the cases.
 fn opaque_object() -> impl Strategy<Value = Object> {
+    opaque_object_of(material())
+}
+
+/// [`opaque_object`] with a material from `material`.
+pub(crate) fn opaque_object_of(material: impl Strategy<Value = Material>) -> impl Strategy<Value = Object> {
     (
         prop::collection::vec(triangle(), 1..=4),
-        material(),
+        material,
         shading(),
         any::<bool>(),
         transform(),
@@ -192,6 +206,7 @@ fn opaque_object() -> impl Strategy<Value = Object> {
                 colors,
                 tangents: Vec::new(),
                 normal_map: None,
+                surface_maps: Default::default(),
             };
             object(mesh, shading, cull, world_from_object)
         })
@@ -199,12 +214,19 @@ fn opaque_object() -> impl Strategy<Value = Object> {
 
 /// A transparent planar quad (two triangles), tilted about its centre.
 fn transparent_quad() -> impl Strategy<Value = Object> {
+    transparent_quad_of(material())
+}
+
+/// [`transparent_quad`] with a material from `material`.
+pub(crate) fn transparent_quad_of(
+    material: impl Strategy<Value = Material>,
+) -> impl Strategy<Value = Object> {
     (
         (-2.0f32..2.0, -2.0f32..2.0, -8.0f32..-3.0),
         0.5f32..2.5,
         direction(),
         -1.2f32..1.2,
-        material(),
+        material,
         0.1f32..0.9,
         shading(),
         vertex_colors(4),
@@ -227,6 +249,7 @@ fn transparent_quad() -> impl Strategy<Value = Object> {
                 tangents: Vec::new(),
                 normal_map: None,
                 colors,
+                surface_maps: Default::default(),
             };
             object(mesh, shading, false, Mat4::IDENTITY)
         })
@@ -267,7 +290,7 @@ pub(crate) fn camera() -> impl Strategy<Value = Camera> {
         })
 }
 
-fn fog() -> impl Strategy<Value = Option<Fog>> {
+pub(crate) fn fog() -> impl Strategy<Value = Option<Fog>> {
     let mode = prop_oneof![
         (2.0f32..5.0, 8.0f32..15.0).prop_map(|(start, end)| FogMode::Linear { start, end }),
         (0.05f32..0.3).prop_map(|density| FogMode::Exponential { density }),
@@ -321,12 +344,17 @@ prop_compose! {
 /// The comparison: returns (compared, exact) or a description of the first
 /// pixel beyond the bound.
 pub(crate) fn compare(scene: &Scene) -> Result<(usize, usize), String> {
-    compare_skipping(scene, &[])
+    compare_skipping(scene, &[], SplitSum::default())
 }
 
-/// [`compare`] without the pixels `skip` marks.
-fn compare_skipping(scene: &Scene, skip: &[bool]) -> Result<(usize, usize), String> {
-    let truth = render_truth_with(scene, &TruthOptions { diagnostics: true });
+/// [`compare`] without the pixels `skip` marks, the truth taking
+/// Cook–Torrance's split sum from `split_sum`.
+pub(crate) fn compare_skipping(
+    scene: &Scene,
+    skip: &[bool],
+    split_sum: SplitSum,
+) -> Result<(usize, usize), String> {
+    let truth = render_truth_with(scene, &TruthOptions { diagnostics: true, split_sum });
     let fast = render(scene, &RenderOptions::default()).0.to_rgb();
     let reference = truth.quantized_rgb8();
     let diagnostics = truth.diagnostics.as_ref().expect("diagnostics were asked for");
@@ -382,7 +410,12 @@ proptest! {
 /// A receiving floor for planar shadows: a square of half-size 8 facing +z
 /// around (0, 0, −8), tilted by up to 0.4 rad about x and y, lit per sample.
 fn floor() -> impl Strategy<Value = Object> {
-    (-0.4f32..0.4, -0.4f32..0.4, material()).prop_map(|(ax, ay, material)| {
+    floor_of(material())
+}
+
+/// [`floor`] with a material from `material`.
+pub(crate) fn floor_of(material: impl Strategy<Value = Material>) -> impl Strategy<Value = Object> {
+    (-0.4f32..0.4, -0.4f32..0.4, material).prop_map(|(ax, ay, material)| {
         let p = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
             .map(|(x, y)| Vec3::new(8.0 * x, 8.0 * y, 0.0));
         let mesh = Mesh {
@@ -396,6 +429,7 @@ fn floor() -> impl Strategy<Value = Object> {
             tangents: Vec::new(),
             normal_map: None,
             colors: Vec::new(),
+            surface_maps: Default::default(),
         };
         let to_world = Mat4::from_translation(Vec3::new(0.0, 0.0, -8.0))
             * Mat4::from_quat(Quat::from_rotation_x(ax) * Quat::from_rotation_y(ay));
@@ -434,20 +468,26 @@ prop_compose! {
 /// diagnostics do not report: those whose 3×3 neighbourhood holds both a
 /// pixel the shadow changes (the truth with and without shadows differ)
 /// and one it does not.
-fn near_shadow_edges(scene: &Scene) -> Vec<bool> {
+pub(crate) fn near_shadow_edges(scene: &Scene) -> Vec<bool> {
     let with = render_truth_with(scene, &TruthOptions::default());
     let without =
         Scene { shadows: Shadows { mode: ShadowMode::None, ..scene.shadows.clone() }, ..scene.clone() };
     let without = render_truth_with(&without, &TruthOptions::default());
-    let (w, h) = (with.width as i64, with.height as i64);
     let shadowed: Vec<bool> = with.rgb.iter().zip(&without.rgb).map(|(a, b)| a != b).collect();
+    near_edges(&shadowed, with.width, with.height)
+}
+
+/// The pixels of a `width` × `height` image whose 3×3 neighbourhood holds
+/// both a pixel `marked` and one not.
+pub(crate) fn near_edges(marked: &[bool], width: u32, height: u32) -> Vec<bool> {
+    let (w, h) = (i64::from(width), i64::from(height));
     (0..w * h)
         .map(|i| {
             let (x, y) = (i % w, i / w);
             let around = (-1..=1).flat_map(|dy| (-1..=1).map(move |dx| (x + dx, y + dy)));
             let mut seen = around.filter(|&(x, y)| (0..w).contains(&x) && (0..h).contains(&y));
-            let first = shadowed[i as usize];
-            seen.any(|(x, y)| shadowed[(y * w + x) as usize] != first)
+            let first = marked[i as usize];
+            seen.any(|(x, y)| marked[(y * w + x) as usize] != first)
         })
         .collect()
 }
@@ -464,7 +504,7 @@ proptest! {
     #[test]
     fn planar_shadows_are_within_the_bound_of_the_truth(scene in shadow_scene()) {
         let skip = near_shadow_edges(&scene);
-        let (compared, exact) = compare_skipping(&scene, &skip).map_err(TestCaseError::fail)?;
+        let (compared, exact) = compare_skipping(&scene, &skip, SplitSum::default()).map_err(TestCaseError::fail)?;
         let allowed = ((1.0 - EXACT_SHARE) * compared as f64).max(2.0);
         prop_assert!((compared - exact) as f64 <= allowed, "{} of {compared} compared pixels inexact", compared - exact);
     }

@@ -4,6 +4,7 @@
 
 use clap::ValueEnum;
 use zline::scene::{Scene, ShadowMode};
+use zline::shading::{Distribution, ModelChoice};
 
 /// The built-in scenes of `zline demo --scene`.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, ValueEnum)]
@@ -116,4 +117,29 @@ pub(crate) enum Interp {
     Perspective,
     /// Screen-linear: attributes interpolated in the window without perspective correction.
     Linear,
+}
+
+/// `--model`: the reflection model forced on every material
+/// ([`zline::shading::Material::with_model`]).
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum LightModel {
+    /// The basic model (SPEC §5.1); a Cook–Torrance material keeps kd and
+    /// takes the closest ks and ns.
+    Basic,
+    /// Cook–Torrance with the GGX distribution (SPEC §5.2); a basic
+    /// material becomes a dielectric with the roughness closest to its ns,
+    /// a Cook–Torrance one keeps its metallic and roughness.
+    CookTorrance,
+    /// Cook–Torrance with the Beckmann distribution, likewise.
+    Beckmann,
+}
+
+impl From<LightModel> for ModelChoice {
+    fn from(m: LightModel) -> ModelChoice {
+        match m {
+            LightModel::Basic => ModelChoice::Basic,
+            LightModel::CookTorrance => ModelChoice::CookTorrance(Distribution::Ggx),
+            LightModel::Beckmann => ModelChoice::CookTorrance(Distribution::Beckmann),
+        }
+    }
 }

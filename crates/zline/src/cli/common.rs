@@ -8,7 +8,9 @@ use glam::Vec3;
 use zline::pipeline::RenderOptions;
 use zline::scene::{FogMode, MAX_SHADOW_MAP_SIZE, MAX_TILE_SIZE, MIN_TILE_SIZE};
 
-use super::choices::{Clamp, Depth, FogCoord, Interp, Shading, ShadowFilter, Shadows, Sides, TexFilter};
+use super::choices::{
+    Clamp, Depth, FogCoord, Interp, LightModel, Shading, ShadowFilter, Shadows, Sides, TexFilter,
+};
 use super::parse::{
     parse_angle, parse_color, parse_direction, parse_fog, parse_fov, parse_positive, parse_size,
     parse_tolerance,
@@ -33,6 +35,11 @@ pub(crate) struct Common {
     /// Shading mode for objects that do not set their own.
     #[arg(long, value_enum)]
     pub(crate) shading: Option<Shading>,
+    /// Light every material with this model (replaces the files' own):
+    /// `cook-torrance` is Cook–Torrance with GGX, `beckmann` with the
+    /// Beckmann distribution (docs/SPEC.md §5.2).
+    #[arg(long, value_enum)]
+    pub(crate) model: Option<LightModel>,
     /// Attribute interpolation.
     #[arg(long, value_enum)]
     pub(crate) interpolation: Option<Interp>,

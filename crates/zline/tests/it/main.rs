@@ -10,6 +10,7 @@ mod formats;
 mod hard_cases;
 mod hostile;
 mod layers;
+mod lighting_model;
 mod terrain;
 mod turntable;
 #[cfg(feature = "view")]
