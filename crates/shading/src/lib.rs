@@ -21,8 +21,8 @@ pub use light::{Attenuation, Light};
 pub use material::{Material, Model, ModelChoice};
 pub use model::{LightingModel, LitParts};
 pub use pbr::{
-    directional_albedo, split_sum, split_sum_entries, split_sum_table, Distribution, Microfacet,
-    DIELECTRIC_F0, MIN_ALPHA2, SPLIT_SUM_SIZE,
+    directional_albedo, split_sum, split_sum_entries, split_sum_entry, split_sum_table, Distribution,
+    Microfacet, DIELECTRIC_F0, MIN_ALPHA2, SPLIT_SUM_SIZE,
 };
 pub use prepared::{PreparedLights, PreparedMaterial, Shininess, Surface, SPECULAR_CUTOFF};
 pub use simd::Vec3x8;

@@ -168,7 +168,7 @@ pub(crate) fn visibility(distribution: Distribution, alpha2: f32, nl: f32, nv: f
 
 /// The specular lobe's D·Vis at one light (without F).
 #[inline]
-pub(crate) fn d_vis(distribution: Distribution, alpha2: f32, nl: f32, nv: f32, nh: f32, vh: f32) -> f32 {
+pub(crate) fn d_vis(distribution: Distribution, alpha2: f32, (nl, nv, nh, vh): (f32, f32, f32, f32)) -> f32 {
     if distribution == Distribution::Beckmann && !(nh * nh > 0.0 && nv > 0.0 && vh > 0.0) {
         return 0.0;
     }
@@ -210,7 +210,7 @@ impl MicrofacetSums {
         let fresnel = f0 + (Vec3::ONE - f0) * s;
         let e = intensity * nl;
         self.diffuse += (Vec3::ONE - fresnel) * e;
-        self.specular += fresnel * (d_vis(m.distribution, alpha2, nl, nv, nh, vh) * e);
+        self.specular += fresnel * (d_vis(m.distribution, alpha2, (nl, nv, nh, vh)) * e);
     }
 
     /// (ambient+diffuse, emission+specular) of the surface: `ke` its
@@ -230,7 +230,7 @@ impl MicrofacetSums {
 pub const SPLIT_SUM_SIZE: usize = 32;
 
 /// Samples per table entry (a Hammersley set, importance-sampled).
-const SPLIT_SUM_SAMPLES: u32 = 2048;
+const SPLIT_SUM_SAMPLES: u32 = 1 << 16;
 
 /// (A, B) with ∫ f_spec·N·L dω = f0·A + B (f90 = 1) for a viewer at
 /// N·V = `nv` on a surface of `roughness`: the directional albedo of the
@@ -264,23 +264,23 @@ pub fn split_sum_table(distribution: Distribution) -> &'static [[f32; 2]] {
 }
 
 /// The entries of [`split_sum_table`], computed: (A, B) by
-/// [`directional_albedo`] with 2,048 directions at N·V, roughness =
+/// [`directional_albedo`] with 65,536 directions at N·V, roughness =
 /// i/(SIZE − 1), j/(SIZE − 1). An estimate past A + B = 1 (sampling noise
 /// at grazing N·V, up to 1 %) is scaled to 1: single scattering keeps
 /// A + B ≤ 1.
 pub fn split_sum_entries(distribution: Distribution) -> Vec<[f32; 2]> {
+    (0..SPLIT_SUM_SIZE * SPLIT_SUM_SIZE).map(|k| split_sum_entry(distribution, k)).collect()
+}
+
+/// Entry `k` of [`split_sum_entries`] (N·V index k mod SIZE, roughness
+/// index k / SIZE).
+pub fn split_sum_entry(distribution: Distribution, k: usize) -> [f32; 2] {
     let n = SPLIT_SUM_SIZE;
-    let mut table = Vec::with_capacity(n * n);
-    for j in 0..n {
-        for i in 0..n {
-            let nv = i as f64 / (n - 1) as f64;
-            let roughness = j as f64 / (n - 1) as f64;
-            let [a, b] = directional_albedo(distribution, nv, roughness, SPLIT_SUM_SAMPLES);
-            let scale = 1.0 / (a + b).max(1.0);
-            table.push([(a * scale) as f32, (b * scale) as f32]);
-        }
-    }
-    table
+    let nv = (k % n) as f64 / (n - 1) as f64;
+    let roughness = (k / n) as f64 / (n - 1) as f64;
+    let [a, b] = directional_albedo(distribution, nv, roughness, SPLIT_SUM_SAMPLES);
+    let scale = 1.0 / (a + b).max(1.0);
+    [(a * scale) as f32, (b * scale) as f32]
 }
 
 /// (A, B) at one (N·V, roughness), in f64, by importance sampling the
@@ -397,7 +397,8 @@ mod tests {
             * std::f64::consts::PI
             * integrate(200_000, |nl| {
                 let half = ((1.0 + nl) / 2.0).sqrt(); // N·H = V·H = cos(θ_l / 2)
-                f64::from(d_vis(Distribution::Ggx, 1.0, nl as f32, 1.0, half as f32, half as f32)) * nl
+                let h = half as f32;
+                f64::from(d_vis(Distribution::Ggx, 1.0, (nl as f32, 1.0, h, h))) * nl
             });
         assert!((quadrature - want).abs() < 1e-3, "quadrature {quadrature} vs {want}");
         let [a, b] = directional_albedo(Distribution::Ggx, 1.0, 1.0, 4096);
@@ -455,9 +456,11 @@ mod tests {
     #[test]
     fn the_stored_split_sum_tables_are_their_definition() {
         // `ZLINE_WRITE_SPLIT_SUM=1 cargo test -p zline-shading --release
-        // stored_split_sum` rewrites src/split_sum_data.rs.
-        let tables = DISTRIBUTIONS.map(split_sum_entries);
+        // stored_split_sum` rewrites src/split_sum_data.rs (65,536
+        // directions per entry: seconds in a release build); otherwise
+        // every 29th entry and the corners are recomputed and compared.
         if std::env::var_os("ZLINE_WRITE_SPLIT_SUM").is_some() {
+            let tables = DISTRIBUTIONS.map(split_sum_entries);
             let mut out = String::from(
                 "//! The split-sum tables of `pbr::split_sum` (SPEC §5.2), written by\n\
                  //! `pbr::split_sum_entries` (see the test that checks them).\n\n",
@@ -475,11 +478,14 @@ mod tests {
             }
             let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/split_sum_data.rs");
             std::fs::write(path, out.trim_end().to_owned() + "\n").unwrap();
+            return;
         }
-        for (distribution, computed) in DISTRIBUTIONS.iter().zip(&tables) {
-            let stored = split_sum_table(*distribution);
-            assert_eq!(stored.len(), computed.len());
-            for (k, (s, c)) in stored.iter().zip(computed).enumerate() {
+        let last = SPLIT_SUM_SIZE * SPLIT_SUM_SIZE - 1;
+        for distribution in DISTRIBUTIONS {
+            let stored = split_sum_table(distribution);
+            assert_eq!(stored.len(), last + 1);
+            for k in (0..=last).step_by(29).chain([SPLIT_SUM_SIZE - 1, last - SPLIT_SUM_SIZE + 1, last]) {
+                let (s, c) = (stored[k], split_sum_entry(distribution, k));
                 assert_eq!(
                     s.map(f32::to_bits),
                     c.map(f32::to_bits),

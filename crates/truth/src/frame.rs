@@ -25,13 +25,15 @@ use std::sync::Arc;
 
 use glam::DVec3;
 use rayon::prelude::*;
-use zline_scene::{Interpolation, LightingSides, Mesh, Projection, Scene, ShadowMode, TextureMap};
+use zline_scene::{
+    Interpolation, LightingSides, Mesh, Projection, Scene, ShadowMode, SurfaceMaps, TextureMap,
+};
 use zline_shading::ShadingMode;
 
 use crate::camera::{self, Corner, ObjectTransforms, SampleSpace, Vertex};
 use crate::clip::clip_triangle;
 use crate::coverage::signed_area2;
-use crate::lighting::{EyeLights, MaterialF64};
+use crate::lighting::{EyeLights, MaterialF64, ModelF64};
 use crate::shadow::{Occluders, TriangleId};
 use crate::split_sum::SplitSum;
 
@@ -57,6 +59,10 @@ pub(crate) struct ObjectFrame {
     pub(crate) texture: Option<TextureMap>,
     /// Drawn in the transparency pass: opacity < 1, or texture alpha blends.
     pub(crate) transparent: bool,
+    /// A Cook–Torrance material's metallic–roughness, occlusion and
+    /// emissive maps, each with the scene's filter override: only beside
+    /// the diffuse texture (read with its coordinates), else none.
+    pub(crate) surface_maps: SurfaceMaps,
     /// The bump or normal map, when it is drawn.
     pub(crate) normal_map: Option<crate::normal_map::FrameNormalMap>,
 }
@@ -113,6 +119,19 @@ pub(crate) struct Frame<'a> {
     pub(crate) occluders: Option<Occluders>,
     /// Triangles to draw, in draw order.
     pub(crate) prims: Vec<Prim>,
+    /// The caller's shading function, replacing the lighting model of
+    /// Phong-shaded samples ([`crate::render_truth_shaded`]).
+    pub(crate) shader: Option<Shader<'a>>,
+}
+
+/// A caller-supplied shading function ([`crate::render_truth_shaded`]).
+#[derive(Clone, Copy)]
+pub(crate) struct Shader<'a>(pub(crate) &'a (dyn Fn(&crate::SampleShading) -> DVec3 + Sync));
+
+impl std::fmt::Debug for Shader<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Shader(..)")
+    }
 }
 
 impl<'a> Frame<'a> {
@@ -153,6 +172,7 @@ impl<'a> Frame<'a> {
             objects,
             occluders,
             prims,
+            shader: None,
         }
     }
 
@@ -185,17 +205,27 @@ fn object_frame(scene: &Scene, index: usize, t: &ObjectTransforms, space: &Sampl
             t.vertex(p.as_dvec3(), normal, space)
         })
         .collect();
-    let texture = match (&mesh.diffuse_map, mesh.uvs.is_empty()) {
-        (Some(map), false) => {
-            let mut map = map.clone();
-            if let Some(filter) = scene.settings.texture_filter {
-                map.sampler.filter = filter;
-            }
-            Some(map)
+    let filtered = |map: &TextureMap| {
+        let mut map = map.clone();
+        if let Some(filter) = scene.settings.texture_filter {
+            map.sampler.filter = filter;
         }
+        map
+    };
+    let texture = match (&mesh.diffuse_map, mesh.uvs.is_empty()) {
+        (Some(map), false) => Some(filtered(map)),
         _ => None,
     };
     let material = MaterialF64::new(&object.material());
+    let maps = &mesh.surface_maps;
+    let surface_maps = match material.model {
+        ModelF64::CookTorrance(_) if texture.is_some() => SurfaceMaps {
+            metallic_roughness: maps.metallic_roughness.as_ref().map(filtered),
+            occlusion: maps.occlusion.as_ref().map(|(map, strength)| (filtered(map), *strength)),
+            emission: maps.emission.as_ref().map(filtered),
+        },
+        _ => SurfaceMaps::default(),
+    };
     let transparent = material.opacity < 1.0 || texture.as_ref().is_some_and(|m| m.alpha_blend);
     let receives_shadows = scene.shadows.receives(index);
     let mode =
@@ -209,6 +239,7 @@ fn object_frame(scene: &Scene, index: usize, t: &ObjectTransforms, space: &Sampl
         material,
         texture,
         transparent,
+        surface_maps,
     }
 }
 

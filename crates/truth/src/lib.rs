@@ -93,6 +93,7 @@ use zline_scene::Scene;
 
 pub use image::{quantize, Diagnostics, TruthImage};
 pub use metrics::ErrorStats;
+pub use shade::SampleShading;
 pub use split_sum::SplitSum;
 
 /// What to compute besides the image.
@@ -116,7 +117,30 @@ pub fn render_truth(scene: &Scene) -> TruthImage {
 
 /// Renders `scene` with options, with the current rayon thread pool.
 pub fn render_truth_with(scene: &Scene, options: &TruthOptions) -> TruthImage {
-    let frame = frame::Frame::new(scene, options.split_sum);
+    render_frame(frame::Frame::new(scene, options.split_sum), options)
+}
+
+/// Renders `scene` with options, every Phong-shaded sample (shadow
+/// receivers included) lit by `shader` instead of the truth's lighting
+/// model: it receives the sample's geometry and material parameters
+/// ([`SampleShading`]) and returns the unclamped colour, which the truth
+/// clamps to [0, 1] and fogs. Shadows are the shader's business (it sees
+/// none); flat and Gouraud shading keep the truth's model. Coverage,
+/// interpolation, textures, normal maps, blending and the box filter are
+/// the truth's: a test can compare another transcription of a lighting
+/// model with the fast renderer on the same geometry. Diagnostics report
+/// edges and depth intersections only (no lighting switches).
+pub fn render_truth_shaded(
+    scene: &Scene,
+    options: &TruthOptions,
+    shader: &(dyn Fn(&SampleShading) -> glam::DVec3 + Sync),
+) -> TruthImage {
+    let mut frame = frame::Frame::new(scene, options.split_sum);
+    frame.shader = Some(frame::Shader(shader));
+    render_frame(frame, options)
+}
+
+fn render_frame(frame: frame::Frame<'_>, options: &TruthOptions) -> TruthImage {
     let margin = if options.diagnostics { tile::DIAGNOSTIC_RANGE * f64::from(frame.n) } else { 0.0 };
     let bins = tile::bin(&frame, margin);
     let tiles: Vec<tile::TileOutput> = (0..bins.cols * bins.rows)

@@ -108,6 +108,23 @@ enum EyeLight {
     Directional { to_light: DVec3, color: DVec3 },
 }
 
+/// What a Cook–Torrance sample reads from its material's occlusion and
+/// emissive maps (SPEC §5.2; `zline_scene::SurfaceMaps`): the ambient
+/// light Ia is multiplied by `occlusion` before the environment's terms
+/// (lights are not), ke by `emission`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SampleMaps {
+    /// 1 + strength·(R − 1) of the occlusion texel R; 1 without a map.
+    pub(crate) occlusion: f64,
+    /// The emissive texel's RGB; 1 without a map.
+    pub(crate) emission: DVec3,
+}
+
+impl SampleMaps {
+    /// No maps: Ia and ke as they are.
+    pub(crate) const NONE: SampleMaps = SampleMaps { occlusion: 1.0, emission: DVec3::ONE };
+}
+
 /// Ambient light and the lights, in eye space, and where Cook–Torrance's
 /// environment term takes its split sum from.
 #[derive(Clone, Debug, PartialEq)]
@@ -212,7 +229,7 @@ impl EyeLights {
         match &m.model {
             ModelF64::Basic => self.shade_basic(m, point, normal, shadow),
             ModelF64::CookTorrance(microfacet) => {
-                self.shade_microfacet(m, microfacet, (point, normal), shadow, m.kd)
+                self.shade_microfacet(m, microfacet, (point, normal), shadow, (m.kd, SampleMaps::NONE))
             }
         }
     }
@@ -275,15 +292,16 @@ impl EyeLights {
     /// surface of `m`'s emission and `microfacet`'s parameters with base
     /// colour `base`: with Phong shading kd ⊙ texel ⊙ vertex colour, with
     /// flat and Gouraud shading kd (the texel and the vertex colour then
-    /// multiply the returned ambient+diffuse part). Shadows as in
-    /// [`Self::shade_shadowed`].
+    /// multiply the returned ambient+diffuse part) — and the sample's
+    /// occlusion and emission texels `maps` (with Phong shading; else
+    /// [`SampleMaps::NONE`]). Shadows as in [`Self::shade_shadowed`].
     pub(crate) fn shade_microfacet(
         &self,
         m: &MaterialF64,
         microfacet: &MicrofacetF64,
         (point, normal): (DVec3, DVec3),
         shadow: ShadowQuery<'_>,
-        base: DVec3,
+        (base, maps): (DVec3, SampleMaps),
     ) -> Parts {
         let view = (-point).normalize_or_zero();
         let n_dot_v = normal.dot(view);
@@ -310,10 +328,10 @@ impl EyeLights {
         }
         let [a, b] = self.split_sum.eval(microfacet.distribution, nv, microfacet.roughness);
         let e_s = f0 * a + b;
+        let ambient = self.ambient * maps.occlusion;
         Parts {
-            ambient_diffuse: self.ambient * c_diff * (DVec3::ONE - e_s)
-                + c_diff * diffuse / std::f64::consts::PI,
-            specular: m.ke + self.ambient * e_s + specular,
+            ambient_diffuse: ambient * c_diff * (DVec3::ONE - e_s) + c_diff * diffuse / std::f64::consts::PI,
+            specular: m.ke * maps.emission + ambient * e_s + specular,
             switch_margin,
         }
     }
@@ -414,7 +432,13 @@ mod tests {
         // The base colour is the caller's (kd ⊙ texel per sample): it
         // forms c_diff and f0, so it reaches both parts.
         let base = m.kd * DVec3::new(0.5, 1.0, 0.25);
-        let q = lights.shade_microfacet(&m, &microfacet, (DVec3::new(0.0, 0.0, -5.0), DVec3::Z), None, base);
+        let q = lights.shade_microfacet(
+            &m,
+            &microfacet,
+            (DVec3::new(0.0, 0.0, -5.0), DVec3::Z),
+            None,
+            (base, SampleMaps::NONE),
+        );
         let (c_diff, f0) = microfacet.colors(base);
         let e_s = f0 * a + b;
         let want_ad = ia * c_diff * (DVec3::ONE - e_s) + c_diff * (DVec3::ONE - f0) * e / pi;

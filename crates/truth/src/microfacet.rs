@@ -67,6 +67,15 @@ impl MicrofacetF64 {
         }
     }
 
+    /// The parameters with a metallic–roughness texel's factors (SPEC
+    /// §5.2, glTF): metallic times `b` (the texel's blue channel),
+    /// roughness times `g` (its green), α² recomputed from the product.
+    pub(crate) fn mapped(&self, b: f64, g: f64) -> MicrofacetF64 {
+        let (metallic, roughness) = (self.metallic * b, self.roughness * g);
+        let alpha = roughness * roughness;
+        MicrofacetF64 { metallic, roughness, alpha2: (alpha * alpha).max(MIN_ALPHA2), ..*self }
+    }
+
     /// (c_diff, f0) for the base colour `base`.
     pub(crate) fn colors(&self, base: DVec3) -> (DVec3, DVec3) {
         let m = self.metallic;

@@ -48,13 +48,15 @@
 //! vertex colour, c = clamp(ambient+diffuse + specular) of that surface.
 
 use glam::{DVec2, DVec3, DVec4};
-use zline_scene::GouraudClamp;
+use zline_scene::{GouraudClamp, TextureMap};
 use zline_shading::ShadingMode;
 
 use crate::coverage::SampleTriangle;
 use crate::fog::apply_fog;
+use crate::frame::Shader;
 use crate::frame::{face_cross, Frame, ObjectFrame, Prim};
-use crate::lighting::{ModelF64, Parts};
+use crate::lighting::{ModelF64, Parts, SampleMaps};
+use crate::microfacet::MicrofacetF64;
 use crate::shadow::TriangleId;
 use crate::texture::{self, UvDerivatives};
 
@@ -67,6 +69,33 @@ pub(crate) struct Shaded {
     pub(crate) alpha: f64,
     /// See [`Parts::switch_margin`].
     pub(crate) switch_margin: f64,
+}
+
+/// What a caller-supplied shading function ([`crate::render_truth_shaded`])
+/// sees at one Phong-shaded sample, in eye space: the geometry and the
+/// material's parameters as the truth's own lighting would take them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SampleShading {
+    /// The surface point: the eye-space position interpolated with the
+    /// scene's interpolation.
+    pub point: DVec3,
+    /// The unit normal (or zero): interpolated, renormalized, perturbed
+    /// by the mesh's bump or normal map, turned around on a back face lit
+    /// two-sided.
+    pub normal: DVec3,
+    /// The unit vector towards the viewer at the eye-space origin,
+    /// −point/|point| (the truth's convention for every camera).
+    pub view: DVec3,
+    /// The base colour kd ⊙ texel ⊙ vertex colour.
+    pub base: DVec3,
+    /// A Cook–Torrance material's metallic and perceptual roughness, its
+    /// metallic–roughness map applied; `None` for the basic model.
+    pub metallic_roughness: Option<(f64, f64)>,
+    /// The occlusion map's factor on the ambient light, 1 + strength·(R −
+    /// 1); 1 without one (or for the basic model).
+    pub occlusion: f64,
+    /// The emission ke ⊙ the emissive texel (ke without a map).
+    pub emission: DVec3,
 }
 
 /// A prim's attributes at one sample.
@@ -149,14 +178,57 @@ impl Frame<'_> {
 
     /// The filtered texel, when the object is textured.
     fn texel(&self, s: &Surface<'_>) -> Option<DVec4> {
-        let map = s.object.texture.as_ref()?;
-        let uv = |k: usize| s.object.mesh.uvs.get(s.vertices[k]).map_or(DVec2::ZERO, |t| t.as_dvec2());
-        let at = blend3(&s.attr, uv);
-        let d = UvDerivatives {
-            dx: (0..3).map(|k| uv(k) * s.d_attr[k].x).sum(),
-            dy: (0..3).map(|k| uv(k) * s.d_attr[k].y).sum(),
+        s.object.texture.as_ref().map(|map| read(s, map))
+    }
+
+    /// A Cook–Torrance material's parameters at a per-sample (Phong)
+    /// sample, its maps read (SPEC §5.2): metallic and roughness times the
+    /// metallic–roughness texel's B and G, the occlusion 1 + strength·(R −
+    /// 1) and the emissive texel.
+    fn mapped(&self, s: &Surface<'_>, microfacet: &MicrofacetF64) -> (MicrofacetF64, SampleMaps) {
+        let maps = &s.object.surface_maps;
+        let microfacet = match &maps.metallic_roughness {
+            Some(map) => {
+                let t = read(s, map);
+                microfacet.mapped(t.z, t.y)
+            }
+            None => *microfacet,
         };
-        Some(texture::sample(&map.texture, &map.sampler, at, &d))
+        let occlusion = maps
+            .occlusion
+            .as_ref()
+            .map_or(1.0, |(map, strength)| 1.0 + f64::from(*strength) * (read(s, map).x - 1.0));
+        let emission = maps.emission.as_ref().map_or(DVec3::ONE, |map| read(s, map).truncate());
+        (microfacet, SampleMaps { occlusion, emission })
+    }
+
+    /// The caller's shading function at a Phong-shaded sample at `point`
+    /// with unit `normal` and base colour `base`, clamped to [0, 1].
+    fn custom(
+        &self,
+        shader: Shader<'_>,
+        s: &Surface<'_>,
+        (point, normal): (DVec3, DVec3),
+        base: DVec3,
+    ) -> DVec3 {
+        let m = &s.object.material;
+        let (metallic_roughness, maps) = match &m.model {
+            ModelF64::CookTorrance(microfacet) => {
+                let (microfacet, maps) = self.mapped(s, microfacet);
+                (Some((microfacet.metallic, microfacet.roughness)), maps)
+            }
+            ModelF64::Basic => (None, SampleMaps::NONE),
+        };
+        let input = SampleShading {
+            point,
+            normal,
+            view: (-point).normalize_or_zero(),
+            base,
+            metallic_roughness,
+            occlusion: maps.occlusion,
+            emission: m.ke * maps.emission,
+        };
+        (shader.0)(&input).clamp(DVec3::ZERO, DVec3::ONE)
     }
 
     /// The clamped lit colour (SPEC §5–7) and the lighting's switch margin.
@@ -213,18 +285,22 @@ impl Frame<'_> {
                     }
                     _ => None,
                 };
+                // The texel and the vertex colour multiply the base colour
+                // before c_diff and f0 are formed (SPEC §5.2).
+                let mut base = m.kd;
+                if let Some(t) = texel {
+                    base *= t.truncate();
+                }
+                if let Some(c) = color {
+                    base *= c;
+                }
+                let point = blend3(&s.attr, eye);
+                if let Some(shader) = self.shader {
+                    return (self.custom(shader, s, (point, n), base), f64::INFINITY);
+                }
                 if let ModelF64::CookTorrance(microfacet) = &m.model {
-                    // The texel and the vertex colour multiply the base
-                    // colour before c_diff and f0 are formed (SPEC §5.2).
-                    let mut base = m.kd;
-                    if let Some(t) = texel {
-                        base *= t.truncate();
-                    }
-                    if let Some(c) = color {
-                        base *= c;
-                    }
-                    let parts =
-                        lights.shade_microfacet(m, microfacet, (blend3(&s.attr, eye), n), shadow, base);
+                    let (microfacet, maps) = self.mapped(s, microfacet);
+                    let parts = lights.shade_microfacet(m, &microfacet, (point, n), shadow, (base, maps));
                     return (parts.color(), parts.switch_margin);
                 }
                 tinted(lights.shade_shadowed(m, blend3(&s.attr, eye), n, shadow), color)
@@ -236,6 +312,19 @@ impl Frame<'_> {
         };
         (color, parts.switch_margin)
     }
+}
+
+/// The filtered value of `map` at the sample: the mesh's texture
+/// coordinates interpolated, their exact derivatives for the level of
+/// detail.
+fn read(s: &Surface<'_>, map: &TextureMap) -> DVec4 {
+    let uv = |k: usize| s.object.mesh.uvs.get(s.vertices[k]).map_or(DVec2::ZERO, |t| t.as_dvec2());
+    let at = blend3(&s.attr, uv);
+    let d = UvDerivatives {
+        dx: (0..3).map(|k| uv(k) * s.d_attr[k].x).sum(),
+        dy: (0..3).map(|k| uv(k) * s.d_attr[k].y).sum(),
+    };
+    texture::sample(&map.texture, &map.sampler, at, &d)
 }
 
 /// Σ_k w_k · f(k) over the three vertices.

@@ -267,7 +267,7 @@ fn microfacet() -> impl Strategy<Value = Microfacet> {
 
 /// `versus_fast`'s random material (its kd the base colour, a small
 /// emission; ka, ks and ns random and unused) lit by Cook–Torrance.
-fn cook_torrance_material() -> impl Strategy<Value = Material> {
+pub(crate) fn cook_torrance_material() -> impl Strategy<Value = Material> {
     (material(), microfacet())
         .prop_map(|(m, microfacet)| Material { model: Model::CookTorrance(microfacet), ..m })
 }

@@ -8,5 +8,6 @@ mod hand;
 mod shadows;
 mod supersampling;
 mod support;
+mod surface_maps;
 mod threads;
 mod versus_fast;

@@ -141,7 +141,7 @@ fn transform() -> impl Strategy<Value = Mat4> {
 /// A random texture of 1 to 8 texels per side with bilinear or trilinear
 /// filtering (nearest is discontinuous at texel boundaries, which the
 /// diagnostics do not report) and random wrapping.
-fn texture_map() -> impl Strategy<Value = TextureMap> {
+pub(crate) fn texture_map() -> impl Strategy<Value = TextureMap> {
     let wrap = || prop::sample::select(vec![Wrap::Repeat, Wrap::ClampToEdge]);
     (1..=8u32, 1..=8u32, prop::collection::vec(any::<u8>(), 256), any::<bool>(), wrap(), wrap()).prop_map(
         |(w, h, bytes, trilinear, wrap_s, wrap_t)| {
