@@ -5,6 +5,7 @@ mod bump;
 mod cook_torrance;
 mod emission_colors;
 mod hand;
+mod sample_viewer;
 mod shadows;
 mod supersampling;
 mod support;
