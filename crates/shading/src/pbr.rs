@@ -226,7 +226,9 @@ impl MicrofacetSums {
     }
 }
 
-/// Side of the split-sum table: (N·V, roughness) at i/(SIZE − 1).
+/// Side of the split-sum table: √(N·V) and roughness at i/(SIZE − 1) (the
+/// square root crowds the nodes near grazing N·V, where A and B change
+/// over ΔN·V ≈ α).
 pub const SPLIT_SUM_SIZE: usize = 32;
 
 /// Samples per table entry (a Hammersley set, importance-sampled).
@@ -241,7 +243,7 @@ const SPLIT_SUM_SAMPLES: u32 = 1 << 16;
 pub fn split_sum(distribution: Distribution, nv: f32, roughness: f32) -> [f32; 2] {
     let table = split_sum_table(distribution);
     let n = (SPLIT_SUM_SIZE - 1) as f32;
-    let (x, y) = (clamp01(nv) * n, clamp01(roughness) * n);
+    let (x, y) = (clamp01(nv).sqrt() * n, clamp01(roughness) * n);
     let (x0, y0) = (x.floor().min(n - 1.0), y.floor().min(n - 1.0));
     let (fx, fy) = (x - x0, y - y0);
     let (i, j) = (x0 as usize, y0 as usize);
@@ -265,7 +267,7 @@ pub fn split_sum_table(distribution: Distribution) -> &'static [[f32; 2]] {
 
 /// The entries of [`split_sum_table`], computed: (A, B) by
 /// [`directional_albedo`] with 65,536 directions at N·V, roughness =
-/// i/(SIZE − 1), j/(SIZE − 1). An estimate past A + B = 1 (sampling noise
+/// (i/(SIZE − 1))², j/(SIZE − 1). An estimate past A + B = 1 (sampling noise
 /// at grazing N·V, up to 1 %) is scaled to 1: single scattering keeps
 /// A + B ≤ 1.
 pub fn split_sum_entries(distribution: Distribution) -> Vec<[f32; 2]> {
@@ -276,8 +278,8 @@ pub fn split_sum_entries(distribution: Distribution) -> Vec<[f32; 2]> {
 /// index k / SIZE).
 pub fn split_sum_entry(distribution: Distribution, k: usize) -> [f32; 2] {
     let n = SPLIT_SUM_SIZE;
-    let nv = (k % n) as f64 / (n - 1) as f64;
-    let roughness = (k / n) as f64 / (n - 1) as f64;
+    let u = (k % n) as f64 / (n - 1) as f64;
+    let (nv, roughness) = (u * u, (k / n) as f64 / (n - 1) as f64);
     let [a, b] = directional_albedo(distribution, nv, roughness, SPLIT_SUM_SAMPLES);
     let scale = 1.0 / (a + b).max(1.0);
     [(a * scale) as f32, (b * scale) as f32]

@@ -321,8 +321,8 @@ pub fn lookup(distribution: Distribution, nv: f64, roughness: f64) -> [f64; 2] {
     bilinear(table(distribution), NODES, t * n, s * n)
 }
 
-/// (A, B) from zline's table as data, bilinear in f64 over its uniform
-/// grid ([`SplitSum::ZlineTable`]).
+/// (A, B) from zline's table as data, bilinear in f64 over its grid
+/// (√(N·V) and roughness uniform; [`SplitSum::ZlineTable`]).
 fn zline_table(distribution: Distribution, nv: f64, roughness: f64) -> [f64; 2] {
     static TABLES: OnceLock<[Vec<[f64; 2]>; 2]> = OnceLock::new();
     let size = zline_shading::SPLIT_SUM_SIZE;
@@ -338,7 +338,7 @@ fn zline_table(distribution: Distribution, nv: f64, roughness: f64) -> [f64; 2] 
         Distribution::Beckmann => &tables[1],
     };
     let n = (size - 1) as f64;
-    bilinear(table, size, nv.clamp(0.0, 1.0) * n, roughness.clamp(0.0, 1.0) * n)
+    bilinear(table, size, nv.clamp(0.0, 1.0).sqrt() * n, roughness.clamp(0.0, 1.0) * n)
 }
 
 #[cfg(test)]
@@ -475,7 +475,8 @@ mod tests {
             let table = zline_shading::split_sum_table(distribution);
             for (i, j) in [(0, 0), (3, 7), (size - 1, size - 1), (size / 2, 1)] {
                 let n = (size - 1) as f64;
-                let got = SplitSum::ZlineTable.eval(distribution, i as f64 / n, j as f64 / n);
+                let u = i as f64 / n;
+                let got = SplitSum::ZlineTable.eval(distribution, u * u, j as f64 / n);
                 let want = table[j * size + i].map(f64::from);
                 assert!(distance(got, want) < 1e-12, "{distribution:?} ({i}, {j}): {got:?} vs {want:?}");
             }
