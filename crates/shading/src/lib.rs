@@ -15,6 +15,7 @@ mod simd;
 mod simd_pbr;
 mod split_sum_data;
 mod texture;
+mod vec3x8;
 
 pub use fog::{Fog, FogCoordinate, FogMode};
 pub use light::{Attenuation, Light};

@@ -8,7 +8,7 @@ use zline_simd::lanes::{f32x8, Baseline, Level};
 
 use crate::pbr::{split_sum, Distribution, Microfacet, DIELECTRIC_F0, MIN_ALPHA2};
 use crate::prepared::{PreparedLights, PreparedMaterial};
-use crate::simd::{all_lanes, Vec3x8};
+use crate::vec3x8::{all_lanes, Vec3x8};
 
 /// The texels of a Cook–Torrance material's maps at eight samples (each
 /// `None` where the material has no such map): what SPEC §5.2 multiplies

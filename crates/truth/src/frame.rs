@@ -126,7 +126,7 @@ pub(crate) struct Frame<'a> {
 
 /// A caller-supplied shading function ([`crate::render_truth_shaded`]).
 #[derive(Clone, Copy)]
-pub(crate) struct Shader<'a>(pub(crate) &'a (dyn Fn(&crate::SampleShading) -> DVec3 + Sync));
+pub(crate) struct Shader<'a>(pub(crate) &'a (dyn Fn(&crate::sample::SampleShading) -> DVec3 + Sync));
 
 impl std::fmt::Debug for Shader<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

@@ -82,6 +82,7 @@ mod lighting;
 pub mod metrics;
 mod microfacet;
 mod normal_map;
+mod sample;
 mod shade;
 mod shadow;
 pub mod split_sum;
@@ -93,7 +94,7 @@ use zline_scene::Scene;
 
 pub use image::{quantize, Diagnostics, TruthImage};
 pub use metrics::ErrorStats;
-pub use shade::SampleShading;
+pub use sample::SampleShading;
 pub use split_sum::SplitSum;
 
 /// What to compute besides the image.

@@ -7,7 +7,6 @@ use std::sync::Arc;
 use zline_scene::{Mesh, NormalEncoding, NormalMap, TextureMap};
 use zline_shading::Texture;
 
-use super::Loader;
 use crate::error::SceneError;
 
 /// Which of a material's other maps a texture is.
@@ -29,10 +28,27 @@ impl SurfaceMap {
     }
 }
 
-impl Loader<'_> {
+/// What attaching a texture needs from the loader: its warnings, its
+/// images (decoded once) and samplers, and the file's path for errors.
+/// The attaching itself is this trait's provided methods, so this module
+/// needs nothing of its parent.
+pub(super) trait TextureSource {
+    /// Records a warning.
+    fn warn(&mut self, message: String);
+    /// The decoded image, on first use; errors name the `material`.
+    fn image(
+        &mut self,
+        image: &gltf::image::Image,
+        material: &str,
+    ) -> Result<Option<Arc<Texture>>, SceneError>;
+    /// zline's sampler for a glTF sampler (warning about what it lacks).
+    fn sampler(&mut self, sampler: &gltf::texture::Sampler) -> zline_shading::Sampler;
+    /// The file being loaded.
+    fn path(&self) -> &std::path::Path;
+
     /// The mesh with its base colour texture, when the mesh has the
     /// coordinates and the image can be used (warnings otherwise).
-    pub(super) fn attach_base_color(
+    fn attach_base_color(
         &mut self,
         mesh: Mesh,
         info: &gltf::texture::Info,
@@ -58,7 +74,7 @@ impl Loader<'_> {
     /// image can be used; warnings otherwise. The maps are read with the
     /// base colour texture's coordinates, so a mesh without a base colour
     /// texture gets a white one (texels of 1 change nothing).
-    pub(super) fn attach_surface_map(
+    fn attach_surface_map(
         &mut self,
         mut mesh: Mesh,
         which: SurfaceMap,
@@ -100,7 +116,7 @@ impl Loader<'_> {
     /// TANGENT, or MikkTSpace's when it has none, as glTF prescribes —
     /// when the mesh has the texture's coordinates (the set the base
     /// colour uses, if any) and the image can be used; warnings otherwise.
-    pub(super) fn attach_normal_map(
+    fn attach_normal_map(
         &mut self,
         mesh: Mesh,
         normal: &gltf::material::NormalTexture,
@@ -123,7 +139,7 @@ impl Loader<'_> {
         let Some(image) = self.image(&texture.source(), material)? else { return Ok(mesh) };
         let sampler = self.sampler(&texture.sampler());
         let mesh_error =
-            |source| SceneError::Mesh { path: self.path.to_path_buf(), mesh: name.clone(), source };
+            |source| SceneError::Mesh { path: self.path().to_path_buf(), mesh: name.clone(), source };
         let mesh = match tangents {
             Some(tangents) => mesh.with_tangents(tangents).map_err(mesh_error)?,
             None => mesh.with_generated_tangents(),

@@ -152,7 +152,7 @@ use convert::{
     fit_far_plane, material_from_gltf, material_name, primitive_name, projection_is_valid, reversed,
     sampler_from_gltf,
 };
-use maps::SurfaceMap;
+use maps::{SurfaceMap, TextureSource};
 use resources::{decode_data_uri, read_buffers, uri_target, UriTarget};
 
 /// Extensions the loader reads (others are warned about).
@@ -626,5 +626,27 @@ impl Loader<'_> {
             fit_far_plane(camera, &self.scene.objects);
         }
         Ok((self.scene, self.warnings))
+    }
+}
+
+impl TextureSource for Loader<'_> {
+    fn warn(&mut self, message: String) {
+        Loader::warn(self, message);
+    }
+
+    fn image(
+        &mut self,
+        image: &gltf::image::Image,
+        material: &str,
+    ) -> Result<Option<Arc<Texture>>, SceneError> {
+        Loader::image(self, image, material)
+    }
+
+    fn sampler(&mut self, sampler: &gltf::texture::Sampler) -> Sampler {
+        Loader::sampler(self, sampler)
+    }
+
+    fn path(&self) -> &Path {
+        self.path
     }
 }
