@@ -74,17 +74,7 @@ impl LightingModel {
             let (alpha2, (_, f0)) = (m.alpha2(), m.colors(material.kd));
             let mut sums = MicrofacetSums::default();
             for light in &self.lights {
-                let (to_light, intensity) = match *light {
-                    Light::Point { position, color, attenuation } => {
-                        let d = position - point;
-                        let dist = d.length();
-                        if dist == 0.0 {
-                            continue;
-                        }
-                        (d / dist, color * attenuation.factor(dist))
-                    }
-                    Light::Directional { direction, color } => (-direction.normalize_or_zero(), color),
-                };
+                let Some((to_light, intensity)) = incident(light, point) else { continue };
                 sums.add((&m, alpha2, f0), normal, view, nv, to_light, intensity);
             }
             let (ambient_diffuse, specular) = sums.parts(&m, material.kd, material.ke, self.ambient, nv);
@@ -94,17 +84,7 @@ impl LightingModel {
         let mut specular = Vec3::ZERO;
         let specular_on = material.has_specular();
         for light in &self.lights {
-            let (to_light, intensity) = match *light {
-                Light::Point { position, color, attenuation } => {
-                    let d = position - point;
-                    let dist = d.length();
-                    if dist == 0.0 {
-                        continue;
-                    }
-                    (d / dist, color * attenuation.factor(dist))
-                }
-                Light::Directional { direction, color } => (-direction.normalize_or_zero(), color),
-            };
+            let Some((to_light, intensity)) = incident(light, point) else { continue };
             let n_dot_l = normal.dot(to_light);
             if n_dot_l <= 0.0 {
                 continue;
@@ -122,6 +102,20 @@ impl LightingModel {
             ambient_diffuse: material.ka * self.ambient + material.kd * diffuse,
             specular: material.ke + material.ks * specular,
         }
+    }
+}
+
+/// The unit vector from `point` towards `light` and the intensity that
+/// reaches it, attenuated (SPEC §5); `None` for a point light at `point`.
+#[inline]
+fn incident(light: &Light, point: Vec3) -> Option<(Vec3, Vec3)> {
+    match *light {
+        Light::Point { position, color, attenuation } => {
+            let d = position - point;
+            let dist = d.length();
+            (dist != 0.0).then(|| (d / dist, color * attenuation.factor(dist)))
+        }
+        Light::Directional { direction, color } => Some((-direction.normalize_or_zero(), color)),
     }
 }
 

@@ -156,14 +156,14 @@ impl PreparedLights {
         let f0 = dielectric.add(base.sub(dielectric).scale(metallic));
         let c_diff = base.scale(f32x8::ONE - metallic);
         let (distribution, alpha2) = (microfacet.distribution, microfacet.alpha2);
-        let mut sum = MicrofacetSumsX8::default();
-        self.for_each_light_x8(
+        let sum = self.fold_lights_x8(
             point,
-            visible,
-            share,
+            (visible, share),
+            MicrofacetSumsX8::default(),
             #[inline(always)]
-            |to_light, intensity, active| {
-                sum.add((distribution, alpha2, f0), (normal, view, nv), to_light, intensity, active)
+            |mut sum: MicrofacetSumsX8<L>, to_light, intensity, active| {
+                sum.add((distribution, alpha2, f0), (normal, view, nv), to_light, intensity, active);
+                sum
             },
         );
         // The environment's split sum, looked up per lane.

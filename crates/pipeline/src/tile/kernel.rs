@@ -149,6 +149,15 @@ pub(super) fn surface_maps<'a, const N: usize>(
     })
 }
 
+/// The modulation by a texel or vertex colour `by`: c ↦ by ⊙ c.
+#[inline(always)]
+pub(super) fn times<S: Level>(by: Vec3x8<S>) -> impl Fn(Vec3x8<S>) -> Vec3x8<S> {
+    zline_simd::inlined(
+        #[inline(always)]
+        move |c: Vec3x8<S>| by * c,
+    )
+}
+
 /// The modulation of an untinted surface: none.
 #[inline(always)]
 pub(super) fn unmodulated<S: Level>(c: Vec3x8<S>) -> Vec3x8<S> {
@@ -378,11 +387,7 @@ impl TileTarget {
                     #[inline(always)]
                     |a, mask| {
                         let (w, eye, normal) = phong_point(interp, a);
-                        let color = triple(a, phong::COLOR, w);
-                        let tint = zline_simd::inlined(
-                            #[inline(always)]
-                            move |c: Vec3x8<S>| color * c,
-                        );
+                        let tint = times(triple(a, phong::COLOR, w));
                         (lit(&how, eye, normal, mask, tint, MapTexels::NONE).clamp01(), f32x8::ONE)
                     },
                 )
@@ -527,11 +532,7 @@ impl TileTarget {
             #[inline(always)]
             |a, w, mask, texel, surface| {
                 let normal = triple(a, textured::NORMAL, w).normalize_or_zero();
-                let tint = zline_simd::inlined(
-                    #[inline(always)]
-                    move |c: Vec3x8<S>| texel * c,
-                );
-                lit(&how, triple(a, textured::EYE, w), normal, mask, tint, surface)
+                lit(&how, triple(a, textured::EYE, w), normal, mask, times(texel), surface)
             },
         )
     }

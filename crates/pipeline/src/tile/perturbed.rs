@@ -17,7 +17,7 @@ use zline_scene::NormalEncoding;
 use zline_shading::{Filter, Sampler, Texture, Vec3x8};
 use zline_simd::lanes::{f32x8, Level};
 
-use super::kernel::{encode_normal, lit, surface_maps, triple, unmodulated, Lit};
+use super::kernel::{encode_normal, lit, surface_maps, times, triple, unmodulated, Lit};
 use super::params::{AlphaTest, AnyPass, Interp, Lod, Pass};
 use super::target::{FrameTexture, ShadeContext, TileTarget};
 use crate::setup::layout::perturbed::{BITANGENT, EYE, NORMAL, Q, S, T, TANGENT};
@@ -187,11 +187,7 @@ impl TileTarget {
             #[inline(always)]
             |a, w, mask, texel, surface| {
                 let (eye, normal) = perturbed_point(encoding, &map, a, w);
-                let tint = zline_simd::inlined(
-                    #[inline(always)]
-                    move |c: Vec3x8<S>| texel * c,
-                );
-                lit(&how, eye, normal, mask, tint, surface)
+                lit(&how, eye, normal, mask, times(texel), surface)
             },
         )
     }
