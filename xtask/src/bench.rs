@@ -92,6 +92,7 @@ pub(crate) fn sphere_scene(rings: u32, segments: u32, distance: f32, shading: Sh
     // known to be closed, and checking that on a million triangles would
     // dominate the benchmark's start-up.
     Scene {
+        environment: None,
         shadows: Default::default(),
         camera: Camera {
             eye: Vec3::new(0.0, 0.0, distance),

@@ -58,6 +58,7 @@ pub(crate) fn floor(texture: Arc<Texture>, filter: Filter, far: f32, half: f32) 
 
 pub(crate) fn scene(mesh: Mesh, interpolation: Interpolation) -> Scene {
     Scene {
+        environment: None,
         shadows: Default::default(),
         camera: Camera {
             eye: Vec3::new(0.0, 0.0, 0.0),

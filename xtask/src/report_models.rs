@@ -10,6 +10,9 @@
 //! - The same scene with every material forced to each model
 //!   (`Material::with_model`, what `--model` does): what the model costs
 //!   and what its error is, against its own truth.
+//! - The scene under the procedural sky as environment map (SPEC §5.3):
+//!   its cost, and its error against the truth's own SH projection and
+//!   direct lobe integrals.
 //! - Where the shared assets are present, Suzanne and FlightHelmet (glTF
 //!   metallic–roughness materials with textures) under two lights.
 
@@ -73,6 +76,16 @@ pub(crate) fn section(assets: &Path, frames: usize) -> Result<String> {
         ("cook-torrance (beckmann)", ModelChoice::CookTorrance(Distribution::Beckmann)),
     ] {
         rows.push((format!("every material {name}, phong"), with_model(&scene, model)));
+    }
+    // The procedural sky as environment map (SPEC §5.3), drawn behind.
+    let (sky, _) =
+        zline::io::load_environment(Path::new(zline::io::SKY_NAME)).map_err(anyhow::Error::from)?;
+    let mut environment = zline::shading::Environment::new(sky);
+    (environment.intensity, environment.background) = (0.6, true);
+    for (name, model) in [("as authored", None), ("every material basic", Some(ModelChoice::Basic))] {
+        let mut s = model.map_or_else(|| scene.clone(), |m| with_model(&scene, m));
+        s.environment = Some(environment.clone());
+        rows.push((format!("{name}, phong, environment sky"), s));
     }
     table(
         &mut md,

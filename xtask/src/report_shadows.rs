@@ -188,6 +188,7 @@ fn grazing_scene() -> Scene {
         * glam::Mat4::from_scale(glam::Vec3::new(2.0, 0.04, 1.0));
     let angle = 80f32.to_radians();
     Scene {
+        environment: None,
         camera: Camera {
             eye: glam::Vec3::new(0.0, 3.0, 4.0),
             target: glam::Vec3::ZERO,

@@ -63,6 +63,7 @@ pub fn scene_for_model(meshes: Vec<Mesh>, settings: RenderSettings) -> Scene {
         })
         .collect();
     Scene {
+        environment: None,
         shadows: Default::default(),
         camera: model_camera(&objects, aspect(&settings)),
         background: DEFAULT_BACKGROUND,
@@ -87,6 +88,7 @@ pub fn scene_for_gltf(gltf: GltfScene, settings: RenderSettings) -> Scene {
         .unwrap_or_else(|| model_camera(&gltf.objects, aspect));
     let lights = if gltf.lights.is_empty() { default_lights() } else { gltf.lights };
     Scene {
+        environment: None,
         shadows: Default::default(),
         camera,
         background: DEFAULT_BACKGROUND,

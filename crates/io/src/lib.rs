@@ -24,6 +24,7 @@
 
 mod bump;
 mod culling;
+mod environment_file;
 mod error;
 mod files;
 mod fit;
@@ -38,6 +39,7 @@ mod stream;
 mod texture_file;
 
 pub use bump::apply_bump_map;
+pub use environment_file::{load_environment, read_panorama, write_panorama, MAX_PANORAMA_TEXELS, SKY_NAME};
 pub use error::SceneError;
 pub use files::LoadOptions;
 pub use fit::{fit_camera, FIT_MARGIN};

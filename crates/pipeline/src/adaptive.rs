@@ -228,7 +228,7 @@ mod tests {
     use super::*;
 
     fn adaptive(tolerance: f32, lights: Vec<Light>) -> Adaptive {
-        Adaptive::new(tolerance, &LightingModel { ambient: Vec3::ZERO, lights }).unwrap()
+        Adaptive::new(tolerance, &LightingModel { ambient: Vec3::ZERO, lights, environment: None }).unwrap()
     }
 
     #[test]

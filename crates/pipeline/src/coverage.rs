@@ -43,7 +43,7 @@ impl TileTarget {
                     #[inline(always)]
                     |plane: &[f32x8]| empty.blend(f32x8::ZERO, load(plane, i)),
                 );
-                let px = pack_straight([p(red), p(green), p(blue)], alpha);
+                let px = pack_straight([p(red), p(green), p(blue)], alpha, &self.tone);
                 store_block(out, x, &self.rect, &px);
             }
         }
@@ -79,24 +79,28 @@ impl TileTarget {
                     }
                 }
                 let mean = sum.map(|v| f32x8::<Baseline>::splat(v * scale));
-                out[px as usize] = pack_straight([mean[0], mean[1], mean[2]], mean[3])[0];
+                out[px as usize] = pack_straight([mean[0], mean[1], mean[2]], mean[3], &self.tone)[0];
             }
         }
     }
 }
 
 /// Eight pixels of premultiplied colour `p` and alpha `alpha` as packed
-/// RGBA words: straight colour p/α (0 where α is not above 0) and α, each
-/// quantized by SPEC §10.
+/// RGBA words: straight colour p/α (0 where α is not above 0) through
+/// `tone`, and α, each quantized by SPEC §10.
 #[inline(always)]
-pub(crate) fn pack_straight<S: Level>(p: [f32x8<S>; 3], alpha: f32x8<S>) -> [u32; LANES] {
+pub(crate) fn pack_straight<S: Level>(
+    p: [f32x8<S>; 3],
+    alpha: f32x8<S>,
+    tone: &zline_shading::ToneMapping,
+) -> [u32; LANES] {
     let covered = alpha.cmp_gt(f32x8::ZERO);
     let safe = covered.blend(alpha, f32x8::ONE);
     let straight = zline_simd::inlined(
         #[inline(always)]
         |c: f32x8<S>| covered.blend(c / safe, f32x8::ZERO),
     );
-    let [r, g, b] = [straight(p[0]), straight(p[1]), straight(p[2])];
+    let [r, g, b] = crate::resolve::tone_x8(tone, [straight(p[0]), straight(p[1]), straight(p[2])]);
     let packed: i32x8<S> =
         quantize_x8(r) | (quantize_x8(g) << 8) | (quantize_x8(b) << 16) | (quantize_x8(alpha) << 24);
     bytemuck::cast(packed)
@@ -112,7 +116,7 @@ mod tests {
         let a: [f32; 8] = [1.0, 0.75, 0.5, 0.0, 0.25, 1.0, 0.1, f32::NAN];
         let c: [f32; 8] = [0.2, 0.6, 0.9, 0.0, 0.5, 0.0, 0.7, 0.3];
         let p = f32x8::<Baseline>::from(std::array::from_fn::<f32, 8, _>(|k| c[k] * a[k]));
-        let got = pack_straight([p, p, p], f32x8::from(a));
+        let got = pack_straight([p, p, p], f32x8::from(a), &Default::default());
         for k in 0..7 {
             let s = if a[k] > 0.0 { quantize(c[k] * a[k] / a[k]) } else { 0 };
             assert_eq!(got[k].to_le_bytes(), [s, s, s, quantize(a[k])], "lane {k}");

@@ -207,6 +207,7 @@ fn normals_scene(scene: &Scene) -> Scene {
     s.background = glam::Vec3::ZERO;
     let r = &mut s.settings;
     r.adaptive_tolerance = None;
+    r.tone_mapping = Default::default();
     r.visibility = Visibility::ZBuffer;
     r.wireframe = Wireframe::default();
     r.lighting_sides = LightingSides::TwoSided;

@@ -35,6 +35,7 @@ pub mod resolve;
 pub mod setup;
 mod shadow;
 mod shadow_map;
+mod sky;
 pub mod tile;
 pub mod vertex;
 pub mod volume;

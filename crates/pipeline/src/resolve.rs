@@ -25,12 +25,12 @@ impl TileTarget {
             return;
         }
         let [red, green, blue] = &self.rgb;
-        let bg = Vec3x8::<S>::splat(self.background);
         for row in 0..self.rect.height() as usize {
             let line = row * self.stride;
             let out = &mut band[row * width..(row + 1) * width];
             for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
                 let i = line + (x - self.origin) as usize;
+                let bg: Vec3x8<S> = self.background_block(i);
                 let empty = if self.colors_valid {
                     f32x8::ZERO
                 } else {
@@ -40,7 +40,8 @@ impl TileTarget {
                     #[inline(always)]
                     |plane: &[f32x8], b: f32x8<S>| empty.blend(b, load(plane, i)),
                 );
-                let px = pack_rgba(c(red, bg.x), c(green, bg.y), c(blue, bg.z));
+                let [r, g, b] = tone_x8(&self.tone, [c(red, bg.x), c(green, bg.y), c(blue, bg.z)]);
+                let px = pack_rgba(r, g, b);
                 store_block(out, x, &self.rect, &px);
             }
         }
@@ -65,10 +66,11 @@ impl TileTarget {
                         let i = self.index(sx, sy);
                         let drawn = self.colors_valid || sample(&self.depth, i) != self.far;
                         let color = Vec3::new(sample(red, i), sample(green, i), sample(blue, i));
-                        sum += if drawn { color } else { self.background };
+                        sum += if drawn { color } else { self.background_at(i) };
                     }
                 }
-                out[px as usize] = crate::image::quantize_rgba((sum * scale).extend(1.0));
+                let color = if self.tone.is_identity() { sum * scale } else { self.tone.apply(sum * scale) };
+                out[px as usize] = crate::image::quantize_rgba(color.extend(1.0));
             }
         }
     }
@@ -115,6 +117,23 @@ fn pack_rgba<S: Level>(r: f32x8<S>, g: f32x8<S>, b: f32x8<S>) -> [u32; LANES] {
     let alpha = i32x8::splat(0xFF << 24);
     let packed = q(r) | (q(g) * i32x8::splat(1 << 8)) | (q(b) * i32x8::splat(1 << 16)) | alpha;
     bytemuck::cast(packed)
+}
+
+/// Eight pixels' channels through `tone` (SPEC §10), lane by lane with the
+/// scalar operator; unchanged when it is the identity (the clamp follows in
+/// the quantization).
+#[inline(always)]
+pub(crate) fn tone_x8<S: Level>(tone: &zline_shading::ToneMapping, rgb: [f32x8<S>; 3]) -> [f32x8<S>; 3] {
+    if tone.is_identity() {
+        return rgb;
+    }
+    let [r, g, b] = rgb.map(|c| c.to_array());
+    let mut out = [[0.0f32; LANES]; 3];
+    for k in 0..LANES {
+        let c = tone.apply(Vec3::new(r[k], g[k], b[k]));
+        (out[0][k], out[1][k], out[2][k]) = (c.x, c.y, c.z);
+    }
+    out.map(f32x8::from)
 }
 
 /// SPEC §10 for one channel of eight pixels: clamped (NaN to 0), scaled,

@@ -489,6 +489,7 @@ mod tests {
             cull_back_faces: false,
         };
         let mut scene = Scene {
+            environment: None,
             camera: Camera {
                 eye: Vec3::new(0.0, 3.0, 4.0),
                 target: Vec3::ZERO,

@@ -240,6 +240,7 @@ mod tests {
             _ => Vec::new(),
         };
         let scene = Scene {
+            environment: None,
             camera: Camera {
                 eye: Vec3::new(0.0, 5.0, 6.0),
                 target: Vec3::ZERO,

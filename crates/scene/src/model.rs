@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
-use zline_shading::{Fog, Light, Material, Sampler, ShadingMode, Texture};
+use zline_shading::{Environment, Fog, Light, Material, Sampler, ShadingMode, Texture};
 
 /// A texture and how to sample it. A diffuse map modulates ka and kd
 /// (SPEC §7).
@@ -304,6 +304,9 @@ pub struct RenderSettings {
     /// image holds straight (not premultiplied) colour. Off: the scene's
     /// background, alpha 255 everywhere.
     pub transparent_background: bool,
+    /// Exposure and tone mapping before quantization (SPEC §10); the
+    /// default, no operator at exposure 1, is the plain clamp.
+    pub tone_mapping: zline_shading::ToneMapping,
 }
 
 /// Where untextured Gouraud shading clamps the lit colour to [0, 1] (SPEC
@@ -401,6 +404,7 @@ impl Default for RenderSettings {
             visibility: crate::visibility::Visibility::ZBuffer,
             wireframe: crate::visibility::Wireframe::default(),
             transparent_background: false,
+            tone_mapping: zline_shading::ToneMapping::default(),
         }
     }
 }
@@ -416,6 +420,9 @@ pub struct Scene {
     pub ambient: Vec3,
     /// Light sources, in world space.
     pub lights: Vec<Light>,
+    /// Light from an environment map, in world space (SPEC §5.3), and
+    /// whether it is drawn as the background.
+    pub environment: Option<Environment>,
     /// The objects.
     pub objects: Vec<Object>,
     /// Render settings.

@@ -66,6 +66,7 @@ pub fn demo_scene() -> Scene {
         cull_back_faces: false,
     });
     Scene {
+        environment: None,
         shadows: Default::default(),
         camera: Camera {
             eye: Vec3::new(0.0, 2.8, 7.5),

@@ -130,6 +130,7 @@ fn flat_objects(triangles: Vec<([Vec3; 3], Vec3)>) -> Vec<Object> {
 /// A flat, ambient-lit scene of `objects` seen by `camera`.
 fn flat_scene(width: u32, height: u32, camera: Camera, objects: Vec<Object>) -> Scene {
     Scene {
+        environment: None,
         shadows: Default::default(),
         camera,
         background: Vec3::ZERO,
@@ -297,6 +298,7 @@ pub fn long_spans() -> Scene {
         cull_back_faces: false,
     };
     Scene {
+        environment: None,
         shadows: Default::default(),
         camera: Camera {
             eye: Vec3::ZERO,

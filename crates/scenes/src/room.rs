@@ -116,6 +116,7 @@ pub fn room_scene() -> Scene {
 
     let floor_plane = ShadowPlane::of_object(0, &objects[0]).expect("the floor is flat");
     Scene {
+        environment: None,
         shadows: Shadows { mode: ShadowMode::Planar, planes: vec![floor_plane], ..Default::default() },
         camera: Camera {
             eye: Vec3::new(-2.0, 1.95, 3.0),

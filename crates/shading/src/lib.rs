@@ -5,6 +5,7 @@
 //! vectors handed to [`LightingModel::shade`] must be in one space; the
 //! pipeline uses eye space, where the viewer sits at the origin.
 
+mod environment;
 mod fog;
 mod light;
 mod material;
@@ -15,8 +16,14 @@ mod simd;
 mod simd_pbr;
 mod split_sum_data;
 mod texture;
+mod tonemap;
 mod vec3x8;
 
+pub use environment::{
+    octahedral_decode, octahedral_encode, sh_basis, sky_radiance, texel_solid_angles, Environment,
+    EnvironmentLight, OctahedralMap, Panorama, PanoramaError, PreparedEnvironment, MAX_PANORAMA_SIDE,
+    PREFILTER_LEVELS, SH_COEFFICIENTS, SKY_SUN,
+};
 pub use fog::{Fog, FogCoordinate, FogMode};
 pub use light::{Attenuation, Light};
 pub use material::{Material, Model, ModelChoice};
@@ -29,6 +36,7 @@ pub use prepared::{PreparedLights, PreparedMaterial, Shininess, Surface, SPECULA
 pub use simd::Vec3x8;
 pub use simd_pbr::MapTexels;
 pub use texture::{lod, Filter, Sampler, Texture, TextureError, Wrap, MAX_TEXTURE_SIZE};
+pub use tonemap::{ToneMap, ToneMapping};
 
 /// How a triangle's colour is spread over its samples (SPEC §6).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]

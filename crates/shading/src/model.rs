@@ -13,6 +13,7 @@
 
 use glam::Vec3;
 
+use crate::environment::Environment;
 use crate::light::Light;
 use crate::material::{Material, Model};
 use crate::pbr::MicrofacetSums;
@@ -24,6 +25,10 @@ pub struct LightingModel {
     pub ambient: Vec3,
     /// The light sources.
     pub lights: Vec<Light>,
+    /// Light from an environment map (SPEC §5.3), added to the ambient
+    /// light: Ia + E(N)/π in the basic model's ambient term, the
+    /// irradiance and prefiltered radiance in Cook–Torrance's.
+    pub environment: Option<Environment>,
 }
 
 /// The two parts of the lit colour, kept apart so a texture can modulate the
@@ -41,7 +46,14 @@ impl LitParts {
     /// The lit colour, clamped to [0, 1] per channel.
     #[inline]
     pub fn color(&self) -> Vec3 {
-        (self.ambient_diffuse + self.specular).clamp(Vec3::ZERO, Vec3::ONE)
+        self.color_below(1.0)
+    }
+
+    /// The lit colour clamped to [0, `ceiling`] per channel (see
+    /// `PreparedLights::ceiling`).
+    #[inline]
+    pub fn color_below(&self, ceiling: f32) -> Vec3 {
+        (self.ambient_diffuse + self.specular).clamp(Vec3::ZERO, Vec3::splat(ceiling))
     }
 }
 
@@ -51,6 +63,7 @@ impl LightingModel {
         LightingModel {
             ambient: self.ambient,
             lights: self.lights.iter().map(|l| l.transformed(to)).collect(),
+            environment: self.environment.as_ref().map(|e| e.transformed(to)),
         }
     }
 
@@ -77,7 +90,14 @@ impl LightingModel {
                 let Some((to_light, intensity)) = incident(light, point) else { continue };
                 sums.add((&m, alpha2, f0), normal, view, nv, to_light, intensity);
             }
-            let (ambient_diffuse, specular) = sums.parts(&m, material.kd, material.ke, self.ambient, nv);
+            let environment = match &self.environment {
+                None => (self.ambient, self.ambient),
+                Some(e) => {
+                    let e = e.prepare(self.ambient);
+                    (e.diffuse(normal), e.specular(crate::pbr::reflect(view, normal), m.roughness))
+                }
+            };
+            let (ambient_diffuse, specular) = sums.parts(&m, material.kd, material.ke, environment, nv);
             return LitParts { ambient_diffuse, specular };
         }
         let mut diffuse = Vec3::ZERO;
@@ -98,8 +118,10 @@ impl LightingModel {
                 }
             }
         }
+        let ambient =
+            self.environment.as_ref().map_or(self.ambient, |e| e.prepare(self.ambient).diffuse(normal));
         LitParts {
-            ambient_diffuse: material.ka * self.ambient + material.kd * diffuse,
+            ambient_diffuse: material.ka * ambient + material.kd * diffuse,
             specular: material.ke + material.ks * specular,
         }
     }
@@ -133,6 +155,7 @@ mod tests {
         LightingModel {
             ambient: Vec3::ZERO,
             lights: vec![Light::Point { position: at, color: Vec3::ONE, attenuation }],
+            environment: None,
         }
     }
 
@@ -182,6 +205,7 @@ mod tests {
         let model = LightingModel {
             ambient: Vec3::splat(0.1),
             lights: vec![Light::Directional { direction: Vec3::new(0.0, -1.0, -1.0), color: Vec3::ONE }],
+            environment: None,
         };
         let c = model.shade(&m, Vec3::ZERO, Vec3::Z, Vec3::Z);
         check_close(c, Vec3::splat(std::f32::consts::FRAC_1_SQRT_2));

@@ -214,16 +214,32 @@ impl MicrofacetSums {
     }
 
     /// (ambient+diffuse, emission+specular) of the surface: `ke` its
-    /// emission, `base` its base colour, `ambient` Ia.
+    /// emission, `base` its base colour, the environment's radiance for the
+    /// diffuse and the specular lobe (Ia for both when it is uniform).
     #[inline]
-    pub(crate) fn parts(self, m: &Microfacet, base: Vec3, ke: Vec3, ambient: Vec3, nv: f32) -> (Vec3, Vec3) {
+    pub(crate) fn parts(
+        self,
+        m: &Microfacet,
+        base: Vec3,
+        ke: Vec3,
+        (diffuse_light, specular_light): (Vec3, Vec3),
+        nv: f32,
+    ) -> (Vec3, Vec3) {
         let (c_diff, f0) = m.colors(base);
         let [a, b] = split_sum(m.distribution, nv, m.roughness);
         let e_s = f0 * a + Vec3::splat(b);
-        let ambient_diffuse = ambient * (c_diff * (Vec3::ONE - e_s)) + c_diff * (self.diffuse * (1.0 / PI));
-        let specular = ke + ambient * e_s + self.specular;
+        let ambient_diffuse =
+            diffuse_light * (c_diff * (Vec3::ONE - e_s)) + c_diff * (self.diffuse * (1.0 / PI));
+        let specular = ke + specular_light * e_s + self.specular;
         (ambient_diffuse, specular)
     }
+}
+
+/// The mirror direction of unit `view` about unit `normal`, 2(N·V)N − V:
+/// where the environment's specular lobe is centred.
+#[inline]
+pub(crate) fn reflect(view: Vec3, normal: Vec3) -> Vec3 {
+    normal * (2.0 * normal.dot(view)) - view
 }
 
 /// Side of the split-sum table: √(N·V) and roughness at i/(SIZE − 1) (the
@@ -432,7 +448,13 @@ mod tests {
             for roughness in [0.0, 0.3, 1.0] {
                 let m = Microfacet { metallic: 0.0, roughness, distribution };
                 for nv in [0.05, 0.5, 1.0] {
-                    let (ad, sp) = MicrofacetSums::default().parts(&m, Vec3::ONE, Vec3::ZERO, Vec3::ONE, nv);
+                    let (ad, sp) = MicrofacetSums::default().parts(
+                        &m,
+                        Vec3::ONE,
+                        Vec3::ZERO,
+                        (Vec3::ONE, Vec3::ONE),
+                        nv,
+                    );
                     let total = ad + sp;
                     assert!((total - Vec3::ONE).abs().max_element() < 1e-6, "{total}");
                 }

@@ -11,6 +11,7 @@
 
 use glam::{Mat4, Vec3};
 
+use crate::environment::{Environment, PreparedEnvironment};
 use crate::light::{Attenuation, Light};
 use crate::material::{Material, Model};
 use crate::model::{LightingModel, LitParts};
@@ -39,6 +40,11 @@ struct Point {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PreparedLights {
     ambient: Vec3,
+    /// The environment map with the ambient folded in, when there is one.
+    environment: Option<PreparedEnvironment>,
+    /// Keep lit colours above 1 (a tone mapping follows): see
+    /// [`PreparedLights::ceiling`].
+    keep_above_one: bool,
     directional: Vec<Directional>,
     point: Vec<Point>,
 }
@@ -184,15 +190,22 @@ impl PreparedLights {
     /// [`Light::transformed`]), prepared.
     pub fn new(model: &LightingModel, to: &Mat4) -> PreparedLights {
         let mut out = PreparedLights::default();
-        out.prepare(model.ambient, &model.lights, to);
+        out.prepare((model.ambient, model.environment.as_ref()), &model.lights, to);
         out
     }
 
-    /// Prepares `ambient` and `lights` expressed through `to` in place,
-    /// reusing this value's storage: a renderer that prepares its lights
-    /// every frame allocates only when the scene gains lights.
-    pub fn prepare(&mut self, ambient: Vec3, lights: &[Light], to: &Mat4) {
+    /// Prepares the ambient light, the environment map if any and `lights`
+    /// expressed through `to` in place, reusing this value's storage: a
+    /// renderer that prepares its lights every frame allocates only when
+    /// the scene gains lights.
+    pub fn prepare(
+        &mut self,
+        (ambient, environment): (Vec3, Option<&Environment>),
+        lights: &[Light],
+        to: &Mat4,
+    ) {
         self.ambient = ambient;
+        self.environment = environment.map(|e| e.transformed(to).prepare(ambient));
         self.directional.clear();
         self.point.clear();
         for (index, light) in lights.iter().enumerate() {
@@ -240,8 +253,9 @@ impl PreparedLights {
         }
         let (diffuse, specular) = (sum.diffuse, sum.specular);
         let mat = &m.material;
+        let ambient = self.environment.as_ref().map_or(self.ambient, |e| e.diffuse(normal));
         LitParts {
-            ambient_diffuse: mat.ka * self.ambient + mat.kd * diffuse,
+            ambient_diffuse: mat.ka * ambient + mat.kd * diffuse,
             specular: mat.ke + mat.ks * specular,
         }
     }
@@ -312,15 +326,34 @@ impl PreparedLights {
             let f = p.attenuation.map_or(1.0, |a| a.factor(dist));
             sums.add((&microfacet, alpha2, f0), normal, view, nv, v / dist, p.color * f);
         }
-        let ambient = maps.occlusion.map_or(self.ambient, |o| self.ambient * o);
+        let mut light = match &self.environment {
+            None => (self.ambient, self.ambient),
+            Some(e) => {
+                (e.diffuse(normal), e.specular(crate::pbr::reflect(view, normal), microfacet.roughness))
+            }
+        };
+        if let Some(o) = maps.occlusion {
+            light = (light.0 * o, light.1 * o);
+        }
         let ke = maps.emission.map_or(m.material.ke, |e| m.material.ke * e);
-        let (ambient_diffuse, specular) = sums.parts(&microfacet, base, ke, ambient, nv);
+        let (ambient_diffuse, specular) = sums.parts(&microfacet, base, ke, light, nv);
         LitParts { ambient_diffuse, specular }
     }
 
     /// Ambient light Ia.
     pub(crate) fn ambient(&self) -> Vec3 {
         self.ambient
+    }
+
+    /// The environment map, prepared with the ambient folded in.
+    pub(crate) fn environment(&self) -> Option<&PreparedEnvironment> {
+        self.environment.as_ref()
+    }
+
+    /// True when the ambient light is the same in every direction (no
+    /// environment map): what the adaptive mode's bounds assume.
+    pub fn uniform_ambient(&self) -> bool {
+        self.environment.is_none()
     }
 
     /// (unit vector towards the light, colour, index in the scene's list)
@@ -338,7 +371,24 @@ impl PreparedLights {
     /// [`Self::shade_parts`], summed and clamped to [0, 1].
     #[inline]
     pub fn shade(&self, m: &PreparedMaterial, point: Vec3, normal: Vec3, eye: Vec3) -> Vec3 {
-        self.shade_parts(m, point, normal, eye).color()
+        self.shade_parts(m, point, normal, eye).color_below(self.ceiling())
+    }
+
+    /// The largest value a lit colour keeps per channel: 1 (SPEC §5's
+    /// clamp), or f32::MAX when a tone mapping follows and must see the
+    /// colour unclamped (SPEC §10).
+    #[inline]
+    pub fn ceiling(&self) -> f32 {
+        if self.keep_above_one {
+            f32::MAX
+        } else {
+            1.0
+        }
+    }
+
+    /// Keeps lit colours above 1 when `tone_mapping` is not the identity.
+    pub fn set_tone_mapping(&mut self, tone_mapping: &crate::tonemap::ToneMapping) {
+        self.keep_above_one = !tone_mapping.is_identity();
     }
 }
 
@@ -382,6 +432,7 @@ mod tests {
                     Light::Point { position: light_pos, color: Vec3::new(1.0, 0.5, 0.25), attenuation: Attenuation { a0: 1.0, a1, a2 } },
                     Light::Directional { direction: dir * 3.0, color: Vec3::new(0.3, 0.6, 0.9) },
                 ],
+                environment: None,
             };
             let m = Material { ke: Vec3::new(0.05, 0.0, 0.1), ka: Vec3::splat(0.2), kd: Vec3::new(0.9, 0.5, 0.1), ks: Vec3::splat(0.7), ns, opacity: 1.0, model: crate::material::Model::Basic };
             let plain = model.shade_parts(&m, p, n, eye);

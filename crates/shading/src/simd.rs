@@ -38,7 +38,7 @@ impl PreparedLights {
     #[inline(always)]
     pub fn shade_x8<L: Level>(&self, m: &PreparedMaterial, point: Vec3x8<L>, normal: Vec3x8<L>) -> Vec3x8<L> {
         let (ambient_diffuse, specular) = self.shade_parts_x8(m, point, normal);
-        ambient_diffuse.add(specular).clamp01()
+        ambient_diffuse.add(specular).clamp_to(self.ceiling())
     }
 
     /// [`PreparedLights::shade_parts`] for eight samples: the unclamped
@@ -206,8 +206,11 @@ impl PreparedLights {
             },
         );
         let mat = &m.material;
-        let ambient_diffuse =
-            Vec3x8::splat(mat.ka * self.ambient()).add(Vec3x8::splat(mat.kd).mul(sum.diffuse));
+        let ambient = match self.environment() {
+            None => Vec3x8::splat(mat.ka * self.ambient()),
+            Some(e) => Vec3x8::from_lanes(|k| mat.ka * e.diffuse(normal.lane(k))),
+        };
+        let ambient_diffuse = ambient.add(Vec3x8::splat(mat.kd).mul(sum.diffuse));
         let specular = Vec3x8::splat(mat.ke).add(Vec3x8::splat(mat.ks).mul(sum.specular));
         (ambient_diffuse, specular)
     }
@@ -299,8 +302,23 @@ mod tests {
     use crate::material::Material;
     use crate::model::LightingModel;
 
+    /// No environment map, and the procedural sky turned 30°.
+    fn environments() -> [Option<crate::environment::Environment>; 2] {
+        use crate::environment::{Environment, EnvironmentLight, Panorama};
+        let light = std::sync::Arc::new(EnvironmentLight::new(Panorama::sky(64, 32)));
+        let mut sky = Environment::new(light);
+        (sky.intensity, sky.rotation_degrees) = (0.7, 30.0);
+        [None, Some(sky)]
+    }
+
     #[test]
     fn every_lane_matches_the_scalar_path_bit_for_bit() {
+        for environment in environments() {
+            every_lane_matches_with(environment);
+        }
+    }
+
+    fn every_lane_matches_with(environment: Option<crate::environment::Environment>) {
         let model = LightingModel {
             ambient: Vec3::new(0.1, 0.15, 0.2),
             lights: vec![
@@ -316,8 +334,9 @@ mod tests {
                 },
                 Light::Directional { direction: Vec3::new(0.2, -1.0, -0.5), color: Vec3::new(0.3, 0.3, 0.5) },
             ],
+            environment,
         };
-        let lights = PreparedLights::new(&model, &Mat4::IDENTITY);
+        let lights = PreparedLights::new(&model, &Mat4::from_rotation_x(0.4));
         for ns in [1.0, 20.0, 64.0, 7.5] {
             let plastic = Material::plastic(Vec3::new(0.7, 0.4, 0.2), 0.6, ns);
             let m = PreparedMaterial::new(Material { ke: Vec3::new(0.05, 0.1, 0.3), ..plastic });
@@ -350,6 +369,12 @@ mod tests {
 
     #[test]
     fn cook_torrance_lanes_match_the_scalar_path_bit_for_bit() {
+        for environment in environments() {
+            cook_torrance_lanes_match_with(environment);
+        }
+    }
+
+    fn cook_torrance_lanes_match_with(environment: Option<crate::environment::Environment>) {
         use crate::material::Model;
         use crate::pbr::{Distribution, Microfacet};
         use crate::prepared::Surface;
@@ -363,8 +388,9 @@ mod tests {
                 },
                 Light::Directional { direction: Vec3::new(0.2, -1.0, -0.5), color: Vec3::new(0.9, 0.9, 1.5) },
             ],
+            environment,
         };
-        let lights = PreparedLights::new(&model, &Mat4::IDENTITY);
+        let lights = PreparedLights::new(&model, &Mat4::from_rotation_x(0.4));
         for distribution in [Distribution::Ggx, Distribution::Beckmann] {
             for (metallic, roughness) in [(0.0, 0.0), (0.0, 0.3), (1.0, 0.6), (0.5, 1.0), (0.98, 0.05)] {
                 let microfacet = Microfacet { metallic, roughness, distribution };

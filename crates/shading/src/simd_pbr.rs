@@ -174,19 +174,31 @@ impl PreparedLights {
         }
         let (a, b) = (f32x8::from(a), f32x8::from(b));
         let e_s = f0.scale(a).add(Vec3x8 { x: b, y: b, z: b });
-        let mut ambient = Vec3x8::splat(self.ambient());
+        let (mut diffuse_light, mut specular_light) = match self.environment() {
+            None => (Vec3x8::splat(self.ambient()), Vec3x8::splat(self.ambient())),
+            Some(e) => {
+                let roughness = microfacet.roughness.as_array_ref();
+                (
+                    Vec3x8::from_lanes(|k| e.diffuse(normal.lane(k))),
+                    Vec3x8::from_lanes(|k| {
+                        e.specular(crate::pbr::reflect(view.lane(k), normal.lane(k)), roughness[k])
+                    }),
+                )
+            }
+        };
         if let Some(occlusion) = maps.occlusion {
-            ambient = ambient.scale(occlusion);
+            diffuse_light = diffuse_light.scale(occlusion);
+            specular_light = specular_light.scale(occlusion);
         }
         let mut ke = Vec3x8::splat(m.material.ke);
         if let Some(emission) = maps.emission {
             ke = ke.mul(emission);
         }
         let one = Vec3x8::splat(glam::Vec3::ONE);
-        let ambient_diffuse = ambient
+        let ambient_diffuse = diffuse_light
             .mul(c_diff.mul(one.sub(e_s)))
             .add(c_diff.mul(sum.diffuse.scale(f32x8::splat(1.0 / std::f32::consts::PI))));
-        let specular = ke.add(ambient.mul(e_s)).add(sum.specular);
+        let specular = ke.add(specular_light.mul(e_s)).add(sum.specular);
         (ambient_diffuse, specular)
     }
 }

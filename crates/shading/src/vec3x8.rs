@@ -50,6 +50,18 @@ impl<L: Level> Vec3x8<L> {
         Vec3x8 { x: clamp(self.x), y: clamp(self.y), z: clamp(self.z) }
     }
 
+    /// Every lane clamped to [0, `ceiling`] (NaN becomes 0); with a
+    /// ceiling of 1 the same operations as [`Self::clamp01`].
+    #[inline(always)]
+    pub fn clamp_to(self, ceiling: f32) -> Vec3x8<L> {
+        let top = f32x8::splat(ceiling);
+        let clamp = zline_simd::inlined(
+            #[inline(always)]
+            |c: f32x8<L>| c.max(f32x8::ZERO).min(top),
+        );
+        Vec3x8 { x: clamp(self.x), y: clamp(self.y), z: clamp(self.z) }
+    }
+
     #[inline(always)]
     pub(crate) fn sub(self, o: Vec3x8<L>) -> Vec3x8<L> {
         Vec3x8 { x: self.x - o.x, y: self.y - o.y, z: self.z - o.z }
@@ -77,6 +89,18 @@ impl<L: Level> Vec3x8<L> {
             x: mask.blend(self.x, f32x8::ZERO),
             y: mask.blend(self.y, f32x8::ZERO),
             z: mask.blend(self.z, f32x8::ZERO),
+        }
+    }
+
+    /// Eight lanes, lane i = `f(i)` (for lookups that run per lane, the
+    /// same scalar code as the scalar path).
+    #[inline(always)]
+    pub(crate) fn from_lanes(f: impl Fn(usize) -> glam::Vec3) -> Vec3x8<L> {
+        let v: [glam::Vec3; 8] = std::array::from_fn(f);
+        Vec3x8 {
+            x: f32x8::from(v.map(|c| c.x)),
+            y: f32x8::from(v.map(|c| c.y)),
+            z: f32x8::from(v.map(|c| c.z)),
         }
     }
 

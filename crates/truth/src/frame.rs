@@ -23,7 +23,7 @@
 
 use std::sync::Arc;
 
-use glam::DVec3;
+use glam::{DMat4, DVec2, DVec3, DVec4};
 use rayon::prelude::*;
 use zline_scene::{
     Interpolation, LightingSides, Mesh, Projection, Scene, ShadowMode, SurfaceMaps, TextureMap,
@@ -33,6 +33,7 @@ use zline_shading::ShadingMode;
 use crate::camera::{self, Corner, ObjectTransforms, SampleSpace, Vertex};
 use crate::clip::clip_triangle;
 use crate::coverage::signed_area2;
+use crate::environment::EnvironmentF64;
 use crate::lighting::{EyeLights, MaterialF64, ModelF64};
 use crate::shadow::{Occluders, TriangleId};
 use crate::split_sum::SplitSum;
@@ -122,6 +123,19 @@ pub(crate) struct Frame<'a> {
     /// The caller's shading function, replacing the lighting model of
     /// Phong-shaded samples ([`crate::render_truth_shaded`]).
     pub(crate) shader: Option<Shader<'a>>,
+    /// Where undrawn samples show the environment (SPEC §5.3), the
+    /// mapping from sample space back to eye-space rays.
+    pub(crate) sky: Option<Sky>,
+}
+
+/// The rays behind the samples, for an environment drawn as the
+/// background: through the sample's centre from the eye (perspective), or
+/// along −z (orthographic).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Sky {
+    /// The inverse of clip_from_eye.
+    eye_from_clip: DMat4,
+    orthographic: bool,
 }
 
 /// A caller-supplied shading function ([`crate::render_truth_shaded`]).
@@ -162,18 +176,51 @@ impl<'a> Frame<'a> {
             objects.push(frame_object);
         }
         let occluders = shadow_casters(scene.shadows.mode, &objects);
+        let environment = scene.environment.as_ref().map(|e| EnvironmentF64::new(e, &eye_from_world));
+        // SPEC §5.3: with a transparent background the environment is not drawn.
+        let sky = environment
+            .as_ref()
+            .filter(|e| e.background && !s.transparent_background)
+            .map(|_| Sky { eye_from_clip: clip_from_eye.inverse(), orthographic });
         Frame {
             scene,
             n,
             size: (width, height),
             limit: (i64::from(width * n), i64::from(height * n)),
             perspective: s.interpolation == Interpolation::PerspectiveCorrect,
-            lights: EyeLights::new(scene.ambient, &scene.lights, &eye_from_world, split_sum),
+            lights: EyeLights::new(scene.ambient, &scene.lights, &eye_from_world, split_sum)
+                .with_environment(environment),
             objects,
             occluders,
             prims,
             shader: None,
+            sky,
         }
+    }
+
+    /// What an undrawn sample at sample-space position `p` shows: k·L along
+    /// its ray when the environment is drawn (SPEC §5.3), clamped to
+    /// [0, 1] per sample like a lit colour (the truth has no tone mapping),
+    /// else the background colour.
+    pub(crate) fn background(&self, p: DVec2) -> DVec3 {
+        let (Some(sky), Some(environment)) = (&self.sky, self.lights.environment()) else {
+            return self.scene.background.as_dvec3();
+        };
+        let ray = if sky.orthographic {
+            DVec3::NEG_Z
+        } else {
+            let ndc_x = p.x / self.limit.0 as f64 * 2.0 - 1.0;
+            let ndc_y = 1.0 - p.y / self.limit.1 as f64 * 2.0;
+            let q = sky.eye_from_clip * DVec4::new(ndc_x, ndc_y, 0.0, 1.0);
+            // A point of the ray (the eye is the origin), in front of it.
+            let d = (q.truncate() / q.w).normalize_or_zero();
+            if d.z > 0.0 {
+                -d
+            } else {
+                d
+            }
+        };
+        environment.radiance(ray).clamp(DVec3::ZERO, DVec3::ONE)
     }
 
     /// A prim's corners and weights.

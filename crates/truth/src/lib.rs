@@ -5,7 +5,10 @@
 //! It shares the scene model (`zline-scene`, and the material, light, fog
 //! and texture types of `zline-shading`) and none of the fast code: it never
 //! depends on `zline-raster` or `zline-pipeline`, and reads textures only
-//! through `Texture::texel`, `level_size` and `levels`. (The pipeline is a
+//! through `Texture::texel`, `level_size` and `levels`, and an environment
+//! map's panorama only through `Panorama::texels`, `width` and `height`
+//! (with the environment's intensity, rotation and background flag).
+//! (The pipeline is a
 //! dev-dependency: the property tests compare it with the truth.) Lighting, fog,
 //! filtering and level of detail are re-derived here from the spec; where
 //! the spec leaves a choice, the truth follows the fast renderer's stated
@@ -20,6 +23,10 @@
 //! functions, top-left rule, depth), `tile` (binning, opaque and
 //! transparency passes, box filter, diagnostics), `shade` (interpolation and
 //! shading modes), `lighting` (the basic and Cook–Torrance models),
+//! `environment` (light from an environment map, SPEC §5.3: E(N)/π from
+//! the truth's own f64 SH projection, L_pre by direct integration of
+//! GGX's lobe over the panorama, and the panorama drawn as the
+//! background),
 //! `microfacet` (Cook–Torrance's per-light terms), [`split_sum`] (its
 //! environment term, by quadrature), `shadow` (light visibility on shadow
 //! receivers), `texture`, `fog`, `image` and [`metrics`].
@@ -70,11 +77,18 @@
 //! lighting switches in the diagnostics. Both interpolate the lit values
 //! of a clipped Gouraud triangle's new vertices (SPEC §2) and, with Phong
 //! shading, multiply ka and kd (Cook–Torrance: the base colour) by the
-//! vertex colour interpolated to each sample.
+//! vertex colour interpolated to each sample. With an environment map
+//! (SPEC §5.3) the fast renderer reads E(N)/π from f32 SH coefficients
+//! (the same projection) and L_pre from six octahedral prefiltered
+//! levels, linear in r between them; the truth integrates the lobe at the
+//! material's own roughness, so near a small bright source (a sun) they
+//! differ by tens of percent of the specular term, elsewhere by a few
+//! (measured in `tests/it/environment.rs`).
 
 mod camera;
 mod clip;
 mod coverage;
+mod environment;
 mod fog;
 mod frame;
 mod image;
@@ -130,7 +144,9 @@ pub fn render_truth_with(scene: &Scene, options: &TruthOptions) -> TruthImage {
 /// interpolation, textures, normal maps, blending and the box filter are
 /// the truth's: a test can compare another transcription of a lighting
 /// model with the fast renderer on the same geometry. Diagnostics report
-/// edges and depth intersections only (no lighting switches).
+/// edges and depth intersections only (no lighting switches). An
+/// environment map's light is the shader's business too (it is not
+/// passed); the environment drawn as the background stays the truth's.
 pub fn render_truth_shaded(
     scene: &Scene,
     options: &TruthOptions,

@@ -34,6 +34,13 @@
 //! c_diff/π·Σ(1 − F)·E·N·L; specular = ke + the terms with f0,
 //! Ia·E_s + Σ F·D·Vis·E·N·L.
 //!
+//! With an environment map (SPEC §5.3, [`crate::environment`]) the
+//! uniform Ia becomes a function of direction: the basic model's ambient
+//! term is ka·(Ia + k·E(N)/π); Cook–Torrance's Ia·[c_diff·(1 − E_s) + E_s]
+//! becomes D·c_diff·(1 − E_s) + S·E_s with D = Ia + k·E(N)/π and S = Ia +
+//! k·L_pre(R, r), R = 2(N·V)N − V (N·V not clamped, as the fast
+//! renderer's `reflect`), the occlusion map multiplying both.
+//!
 //! Both: materials are `sanitized` first, as the fast renderer does; a
 //! light with N·L ≤ 0 adds nothing. On a shadow receiver, a light hidden
 //! from the surface point drops out of the sum, diffuse and specular
@@ -43,6 +50,7 @@
 use glam::{DMat4, DVec3};
 use zline_shading::{Light, Material, Model};
 
+use crate::environment::EnvironmentF64;
 use crate::microfacet::MicrofacetF64;
 use crate::shadow::{Occluders, TriangleId};
 use crate::split_sum::SplitSum;
@@ -132,6 +140,8 @@ pub(crate) struct EyeLights {
     ambient: DVec3,
     lights: Vec<EyeLight>,
     split_sum: SplitSum,
+    /// The environment map in eye space (SPEC §5.3), when the scene has one.
+    environment: Option<EnvironmentF64>,
 }
 
 /// The two parts of a lit colour (SPEC §7 keeps them apart), unclamped: a
@@ -204,7 +214,36 @@ impl EyeLights {
                 },
             })
             .collect();
-        EyeLights { ambient: ambient.as_dvec3(), lights, split_sum }
+        EyeLights { ambient: ambient.as_dvec3(), lights, split_sum, environment: None }
+    }
+
+    /// The same lights with an environment map (SPEC §5.3), prepared for
+    /// this eye space: the ambient light becomes Ia + k·(what it gives).
+    pub(crate) fn with_environment(self, environment: Option<EnvironmentF64>) -> EyeLights {
+        EyeLights { environment, ..self }
+    }
+
+    /// The environment, when there is one.
+    pub(crate) fn environment(&self) -> Option<&EnvironmentF64> {
+        self.environment.as_ref()
+    }
+
+    /// The diffuse light D at unit (or zero) `normal`: Ia + k·E(N)/π with
+    /// an environment, Ia without (SPEC §5.3).
+    fn diffuse_light(&self, normal: DVec3) -> DVec3 {
+        match &self.environment {
+            Some(e) => self.ambient + e.diffuse(normal),
+            None => self.ambient,
+        }
+    }
+
+    /// The specular light S for the mirror direction `reflected` and GGX
+    /// α² = `alpha2`: Ia + k·L_pre(R, r) with an environment, Ia without.
+    fn specular_light(&self, reflected: DVec3, alpha2: f64) -> DVec3 {
+        match &self.environment {
+            Some(e) => self.ambient + e.specular(reflected, alpha2),
+            None => self.ambient,
+        }
     }
 
     /// The lighting model at eye-space `point` with unit (or zero) `normal`.
@@ -282,7 +321,7 @@ impl EyeLights {
             }
         }
         Parts {
-            ambient_diffuse: m.ka * self.ambient + m.kd * diffuse,
+            ambient_diffuse: m.ka * self.diffuse_light(normal) + m.kd * diffuse,
             specular: m.ke + m.ks * specular,
             switch_margin,
         }
@@ -328,10 +367,15 @@ impl EyeLights {
         }
         let [a, b] = self.split_sum.eval(microfacet.distribution, nv, microfacet.roughness);
         let e_s = f0 * a + b;
-        let ambient = self.ambient * maps.occlusion;
+        // SPEC §5.3: D = Ia + k·E(N)/π and S = Ia + k·L_pre(R, r), R =
+        // 2(N·V)N − V (N·V unclamped), both times the occlusion.
+        let reflected = normal * (2.0 * n_dot_v) - view;
+        let diffuse_light = self.diffuse_light(normal) * maps.occlusion;
+        let specular_light = self.specular_light(reflected, microfacet.alpha2) * maps.occlusion;
         Parts {
-            ambient_diffuse: ambient * c_diff * (DVec3::ONE - e_s) + c_diff * diffuse / std::f64::consts::PI,
-            specular: m.ke * maps.emission + ambient * e_s + specular,
+            ambient_diffuse: diffuse_light * c_diff * (DVec3::ONE - e_s)
+                + c_diff * diffuse / std::f64::consts::PI,
+            specular: m.ke * maps.emission + specular_light * e_s + specular,
             switch_margin,
         }
     }

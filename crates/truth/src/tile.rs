@@ -15,7 +15,9 @@
 //!    fast renderer sorts whole triangles by mean depth instead; the two
 //!    differ where transparent surfaces intersect or overlap out of order.
 //! 3. Shading: the surviving opaque fragment (or the background, which is
-//!    not fogged), each fragment lit and fogged before blending.
+//!    not fogged: the background colour, or the environment along the
+//!    sample's ray when it is drawn, SPEC §5.3), each fragment lit and
+//!    fogged before blending.
 //! 4. The pixel is the mean of its n² sample colours, summed in a fixed
 //!    order, so the image does not depend on threads or tiles.
 //!
@@ -209,12 +211,13 @@ impl TileSamples<'_, '_> {
     /// blended over it; `switch` is set when the lighting is at a switch.
     fn compose(&self, s: usize, p: DVec2, frags: &[Fragment], switch: &mut bool) -> DVec3 {
         let frame = self.frame;
-        let mut color = frame.scene.background.as_dvec3();
-        if self.owner[s] != NONE {
+        let mut color = if self.owner[s] != NONE {
             let shaded = frame.shade(self.owner[s], p);
-            color = shaded.color;
             *switch |= shaded.switch_margin < SWITCH_MARGIN;
-        }
+            shaded.color
+        } else {
+            frame.background(p)
+        };
         for f in frags {
             let shaded = frame.shade(f.prim, p);
             let object = &frame.objects[frame.prims[f.prim as usize].object as usize];

@@ -95,6 +95,43 @@ pub(crate) fn apply_model(scene: &mut Scene, common: &Common) {
     }
 }
 
+/// `--environment` (loaded and prepared, replacing the scene's),
+/// `--environment-intensity`, `--environment-rotation` and
+/// `--environment-background` over the scene's environment; the last three
+/// without an environment are worth a warning.
+pub(crate) fn apply_environment(scene: &mut Scene, common: &Common) -> anyhow::Result<()> {
+    if let Some(spec) = &common.environment {
+        let (light, warnings) = zline::io::load_environment(spec)?;
+        for w in warnings {
+            eprintln!("warning: {w}");
+        }
+        let keep = scene.environment.take();
+        let mut environment = zline::shading::Environment::new(light);
+        if let Some(old) = keep {
+            (environment.intensity, environment.rotation_degrees) = (old.intensity, old.rotation_degrees);
+            environment.background = old.background;
+        }
+        scene.environment = Some(environment);
+    }
+    let adjusting = common.environment_intensity.is_some()
+        || common.environment_rotation.is_some()
+        || common.environment_background;
+    let Some(environment) = &mut scene.environment else {
+        if adjusting {
+            eprintln!("warning: --environment-*: the scene has no environment map (give --environment)");
+        }
+        return Ok(());
+    };
+    if let Some(x) = common.environment_intensity {
+        environment.intensity = x;
+    }
+    if let Some(deg) = common.environment_rotation {
+        environment.rotation_degrees = deg;
+    }
+    environment.background |= common.environment_background;
+    Ok(())
+}
+
 /// The render-setting flags (size, shading, filter, adaptive, ssaa, depth,
 /// clamp, lighting sides, interpolation, visibility, layers) over the
 /// scene's settings.
@@ -119,6 +156,12 @@ pub(crate) fn apply_overrides(settings: &mut RenderSettings, common: &Common) {
     }
     if let Some(t) = common.adaptive {
         settings.adaptive_tolerance = Some(t);
+    }
+    if let Some(t) = common.tonemap {
+        settings.tone_mapping.operator = t.into();
+    }
+    if let Some(x) = common.exposure {
+        settings.tone_mapping.exposure = x;
     }
     if let Some(n) = common.ssaa {
         settings.ssaa = n;

@@ -28,7 +28,7 @@ mod turntable;
 #[cfg(feature = "view")]
 mod view_command;
 
-use flags::{apply_camera, apply_fog, apply_model, apply_overrides, apply_shadows};
+use flags::{apply_camera, apply_environment, apply_fog, apply_model, apply_overrides, apply_shadows};
 
 /// zline — a CPU renderer for the classical rendering pipeline.
 #[derive(Parser)]
@@ -340,6 +340,7 @@ fn set_up(scene: &mut Scene, common: &Common) -> Result<()> {
         }
     }
     apply_model(scene, common);
+    apply_environment(scene, common)?;
     apply_overrides(&mut scene.settings, common);
     apply_fog(scene, common);
     apply_shadows(scene, common);

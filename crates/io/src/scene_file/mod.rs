@@ -47,7 +47,7 @@ use lights::{LightDef, LightEntry};
 use material::MaterialDef;
 use models::{ModelCache, ModelPart};
 use render::{settings, shadows, RenderDef, ShadingDef};
-use view::{CameraDef, FogDef};
+use view::{CameraDef, EnvironmentDef, FogDef};
 
 /// Loads a TOML scene file. Warnings about model files (a missing MTL
 /// file, say) are printed to stderr as `warning: ...` lines.
@@ -79,6 +79,8 @@ use view::{CameraDef, FogDef};
 /// wireframe_only = false            # true: the lines alone on the background
 /// feature_angle = 30                # degrees in [0, 180]: only borders, silhouettes, sharper creases; default every edge
 /// transparent_background = false    # true: RGBA output, alpha 0 where nothing is drawn, alpha = coverage
+/// tonemap = "none"                  # none | khr-pbr-neutral | aces (SPEC §10; the last two end in sRGB)
+/// exposure = 1.0                    # multiplies the colour before the tone mapping, ≥ 0
 ///
 /// [camera]                          # omitted: the scene is framed
 /// eye = [0, 1, 5]                   # required
@@ -122,6 +124,13 @@ use view::{CameraDef, FogDef};
 /// # density = 0.05                  # exp: f = e^(−ρz), exp2: f = e^(−(ρz)²); default 1
 /// color = [0.7, 0.75, 0.8]          # C_fog in [0, 1]; default 0.5 grey
 /// coordinate = "eye-plane"          # eye-plane (−z_eye, default) | radial (|p_eye|)
+///
+/// [environment]                     # optional (SPEC §5.3): light from every direction
+/// file = "studio.hdr"               # required: a Radiance HDR equirectangular panorama, or "sky"
+///                                   #   (the built-in procedural sky)
+/// intensity = 1.0                   # multiplies its radiance, ≥ 0; default 1
+/// rotation = 0                      # degrees about +y, counter-clockwise from above; default 0
+/// background = true                 # drawn where no surface is; default false
 ///
 /// [[objects]]                       # at least one
 /// model = "models/suzanne.obj"      # an OBJ, glTF, GLB, STL or PLY file (glTF: its nodes, not its camera or lights), or else:
@@ -199,6 +208,7 @@ struct SceneFile {
     camera: Option<S<CameraDef>>,
     lights: Option<Vec<S<LightDef>>>,
     fog: Option<S<FogDef>>,
+    environment: Option<S<EnvironmentDef>>,
     #[serde(default)]
     objects: Vec<S<ObjectDef>>,
 }
@@ -298,9 +308,20 @@ impl Builder<'_> {
             None => model_camera(&objects, aspect(&settings)),
         };
         let fog = file.fog.as_ref().map(|f| self.fog(f)).transpose()?;
+        let environment =
+            file.environment.as_ref().map(|e| view::environment(&self.check, e, self.options)).transpose()?;
         shadows.planes = planes;
-        let scene =
-            Scene { shadows, camera, background, ambient, lights: Vec::new(), objects, settings, fog };
+        let scene = Scene {
+            shadows,
+            camera,
+            background,
+            ambient,
+            lights: Vec::new(),
+            environment,
+            objects,
+            settings,
+            fog,
+        };
         Ok(lights::resolve(scene, entries, self.check.path))
     }
 

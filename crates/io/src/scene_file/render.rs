@@ -6,7 +6,7 @@
 //! its settings) keeps.
 
 use serde::Deserialize;
-use zline_shading::Filter;
+use zline_shading::{Filter, ToneMap};
 
 use zline_scene::{
     DepthMode, GouraudClamp, Interpolation, LightingSides, RenderSettings, ShadowMode, Shadows,
@@ -40,6 +40,17 @@ pub(super) struct RenderDef {
     wireframe_only: Option<bool>,
     feature_angle: Option<S<f32>>,
     transparent_background: Option<bool>,
+    tonemap: Option<ToneMapDef>,
+    exposure: Option<S<f32>>,
+}
+
+/// `[render] tonemap`.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub(super) enum ToneMapDef {
+    None,
+    KhrPbrNeutral,
+    Aces,
 }
 
 /// A shading mode: `[render] shading` and an object's `shading`.
@@ -215,6 +226,15 @@ pub(super) fn settings(check: &Checker, render: Option<RenderDef>) -> Result<Ren
     if let Some(t) = render.transparent_background {
         settings.transparent_background = t;
     }
+    if let Some(t) = render.tonemap {
+        settings.tone_mapping.operator = match t {
+            ToneMapDef::None => ToneMap::None,
+            ToneMapDef::KhrPbrNeutral => ToneMap::KhrPbrNeutral,
+            ToneMapDef::Aces => ToneMap::Aces,
+        };
+    }
+    settings.tone_mapping.exposure =
+        check.optional(&render.exposure, "render.exposure", 1.0, 0.0, f32::MAX)?;
     Ok(settings)
 }
 

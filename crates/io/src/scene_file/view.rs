@@ -1,12 +1,16 @@
-//! The view of a scene file: its `[camera]` and `[fog]` tables, checked
-//! into a [`Camera`] and a [`Fog`].
+//! The view of a scene file: its `[camera]`, `[fog]` and `[environment]`
+//! tables, checked into a [`Camera`], a [`Fog`] and an [`Environment`].
+
+use std::path::Path;
 
 use glam::Vec3;
 use serde::Deserialize;
 use zline_scene::{Camera, Projection};
-use zline_shading::{Fog, FogCoordinate, FogMode};
+use zline_shading::{Environment, Fog, FogCoordinate, FogMode};
 
 use super::checks::{Checker, Result, S};
+use crate::environment_file::{load_environment, SKY_NAME};
+use crate::files::{resolve, LoadOptions};
 use crate::framing::camera_is_finite;
 
 #[derive(Deserialize)]
@@ -167,4 +171,44 @@ fn fitted_depth_range(eye: Vec3, target: Vec3, (min, max): (Vec3, Vec3)) -> (f32
     let far = (d + 1.1 * radius).max(radius);
     let near = (d - 1.1 * radius).max(far * 1e-4);
     (near as f32, far as f32)
+}
+
+/// The `[environment]` table.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct EnvironmentDef {
+    pub(super) file: S<String>,
+    pub(super) intensity: Option<S<f32>>,
+    pub(super) rotation: Option<S<f32>>,
+    pub(super) background: Option<bool>,
+}
+
+/// The `[environment]` table: the panorama loaded and prepared (see
+/// `load_environment`), its intensity ≥ 0, rotation in degrees, and
+/// whether it is drawn as the background.
+pub(super) fn environment(
+    check: &Checker<'_>,
+    def: &S<EnvironmentDef>,
+    options: LoadOptions,
+) -> Result<Environment> {
+    let e = def.get_ref();
+    let intensity = check.optional(&e.intensity, "environment.intensity", 1.0, 0.0, f32::MAX)?;
+    let rotation = check.optional(&e.rotation, "environment.rotation", 0.0, -1e6, 1e6)?;
+    let name = Path::new(e.file.get_ref());
+    let light = if name == Path::new(SKY_NAME) {
+        load_environment(name)
+    } else {
+        let path = resolve(check.path, name, options)
+            .map_err(|why| check.error(e.file.span(), "environment.file", why))?;
+        load_environment(&path)
+    };
+    let (light, warnings) = light.map_err(|err| check.error(e.file.span(), "environment.file", err))?;
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    let mut environment = Environment::new(light);
+    environment.intensity = intensity;
+    environment.rotation_degrees = rotation;
+    environment.background = e.background.unwrap_or(false);
+    Ok(environment)
 }

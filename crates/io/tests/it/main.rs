@@ -3,6 +3,7 @@
 //! repository's `examples/` and `assets/` (OBJ and glTF models).
 
 mod bump;
+mod environment;
 mod examples;
 mod fuzz_regressions;
 mod gltf;

@@ -7,13 +7,15 @@
 mod tiles;
 
 use rayon::prelude::*;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use glam::{Mat4, Vec3};
 use zline_raster::Rect;
 use zline_scene::{DepthMode, Object, Projection, Scene, ShadowMode, TextureMap, Visibility};
-use zline_shading::{Filter, LightingModel, Material, PreparedLights, PreparedMaterial, ShadingMode};
+use zline_shading::{
+    Filter, LightingModel, Material, PreparedLights, PreparedMaterial, ShadingMode, Texture,
+};
 
 use crate::adaptive::Adaptive;
 use crate::bin::{bin_primitives, bin_primitives_painter, Bins, PrimitiveRef, TileGrid};
@@ -139,6 +141,26 @@ struct FrameTables {
     /// Per object: its bump or normal map, when it has one with texture
     /// coordinates and tangents.
     object_maps: Vec<Option<NormalMapUse>>,
+    /// Colour textures decoded from sRGB (for a tone mapping that ends in
+    /// sRGB), each beside the texture it was made from; kept from frame to
+    /// frame.
+    linear: Vec<(Arc<Texture>, Arc<Texture>)>,
+}
+
+impl FrameTables {
+    /// `texture` as a frame reads a colour texture: decoded from sRGB
+    /// when `decode` (once per texture, kept), else as stored.
+    fn colour_texture(&mut self, texture: &Arc<Texture>, decode: bool) -> Arc<Texture> {
+        if !decode {
+            return texture.clone();
+        }
+        if let Some((_, linear)) = self.linear.iter().find(|(t, _)| Arc::ptr_eq(t, texture)) {
+            return linear.clone();
+        }
+        let linear = Arc::new(texture.srgb_decoded());
+        self.linear.push((texture.clone(), linear.clone()));
+        linear
+    }
 }
 
 /// A thread's tile buffers and the transparency pass's sort scratch,
@@ -193,8 +215,14 @@ impl Frame {
             Projection::Orthographic { .. } => Viewer::AlongMinusZ,
         };
         let eye_from_world = scene.camera.eye_from_world();
-        let adaptive = s.adaptive_tolerance.and_then(|t| {
-            let model = LightingModel { ambient: scene.ambient, lights: scene.lights.clone() };
+        // The adaptive bounds assume the ambient light is the same in every
+        // direction: an environment map leaves the frame at full evaluation.
+        // Nor do they hold through a tone mapping (their tolerance is in
+        // steps of the clamped colour).
+        let uniform = scene.environment.is_none() && s.tone_mapping.is_identity();
+        let adaptive = s.adaptive_tolerance.filter(|_| uniform).and_then(|t| {
+            let model =
+                LightingModel { ambient: scene.ambient, lights: scene.lights.clone(), environment: None };
             Adaptive::new(t, &model.transformed(&eye_from_world))
         });
         let clip_from_eye = scene.camera.clip_from_eye(width as f32 / height as f32);
@@ -294,7 +322,8 @@ impl Renderer {
     /// filter override applied; texels shared, not copied).
     fn prepare_tables(&mut self, scene: &Scene, frame: &Frame) {
         let t = &mut self.tables;
-        t.lighting.prepare(scene.ambient, &scene.lights, &frame.eye_from_world);
+        t.lighting.prepare((scene.ambient, scene.environment.as_ref()), &scene.lights, &frame.eye_from_world);
+        t.lighting.set_tone_mapping(&scene.settings.tone_mapping);
         t.materials.clear();
         t.materials.extend(scene.objects.iter().map(|o| PreparedMaterial::new(o.material().sanitized())));
         for (p, plane) in scene.shadows.planes.iter().enumerate() {
@@ -314,6 +343,12 @@ impl Renderer {
         }
         t.textures.clear();
         t.object_textures.clear();
+        // A tone mapping that ends in sRGB reads colour textures as linear
+        // values (SPEC §7); without one they are used as stored.
+        let decode_srgb = scene.settings.tone_mapping.operator != zline_shading::ToneMap::None;
+        if !decode_srgb {
+            t.linear.clear();
+        }
         for object in &scene.objects {
             let map = object.mesh.diffuse_map.as_ref().filter(|_| !object.mesh.uvs.is_empty());
             let Some(map) = map else {
@@ -336,7 +371,8 @@ impl Renderer {
             let index = t.textures.len() as u32;
             t.object_textures.push(Some((TextureUse { index, lod, alpha }, map.alpha_blend)));
             let cutoff = map.alpha_cutoff.unwrap_or(0.0);
-            t.textures.push(FrameTexture { texture: map.texture.clone(), sampler, cutoff });
+            let texture = t.colour_texture(&map.texture, decode_srgb);
+            t.textures.push(FrameTexture { texture, sampler, cutoff });
         }
         // A Cook–Torrance material's maps, read with the base colour
         // texture's coordinates (so only beside one).
@@ -344,19 +380,22 @@ impl Renderer {
         for (index, object) in scene.objects.iter().enumerate() {
             let maps = &object.mesh.surface_maps;
             let used = t.object_textures[index].is_some() && t.materials[index].microfacet.is_some();
-            let mut push = |map: Option<&TextureMap>| {
+            let mut push = |map: Option<&TextureMap>, colour: bool| {
                 let map = map.filter(|_| used)?;
                 let mut sampler = map.sampler;
                 if let Some(filter) = scene.settings.texture_filter {
                     sampler.filter = filter;
                 }
-                t.textures.push(FrameTexture { texture: map.texture.clone(), sampler, cutoff: 0.0 });
+                let texture = t.colour_texture(&map.texture, colour && decode_srgb);
+                t.textures.push(FrameTexture { texture, sampler, cutoff: 0.0 });
                 Some(t.textures.len() as u32 - 1)
             };
-            let metallic_roughness = push(maps.metallic_roughness.as_ref());
-            let occlusion =
-                maps.occlusion.as_ref().and_then(|(map, strength)| Some((push(Some(map))?, *strength)));
-            let emission = push(maps.emission.as_ref());
+            let metallic_roughness = push(maps.metallic_roughness.as_ref(), false);
+            let occlusion = maps
+                .occlusion
+                .as_ref()
+                .and_then(|(map, strength)| Some((push(Some(map), false)?, *strength)));
+            let emission = push(maps.emission.as_ref(), true);
             t.surfaces.push(SurfaceUse { metallic_roughness, occlusion, emission });
         }
         crate::normal_map::prepare(scene, &mut t.textures, &mut t.object_maps);

@@ -14,6 +14,7 @@ use crate::fog::FogPass;
 use crate::image::{quantize_rgba, Image};
 use crate::lines::Lines;
 use crate::setup::{DepthEncoding, PrimitiveChunk};
+use crate::sky::SkyView;
 use crate::tile::{ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 
 impl Renderer {
@@ -55,7 +56,10 @@ impl Renderer {
         // A transparent background is black (the colour planes then hold
         // premultiplied colour: `crate::coverage`) with alpha 0.
         let (background_color, background) = match coverage {
-            false => (scene.background, quantize_rgba(scene.background.extend(1.0))),
+            false => {
+                let shown = scene.settings.tone_mapping.apply(scene.background);
+                (scene.background, quantize_rgba(shown.extend(1.0)))
+            }
             true => (Vec3::ZERO, 0),
         };
         let depth_bands = match depth {
@@ -79,7 +83,12 @@ impl Renderer {
             export_depth: matches!(depth_bands, Either::Left(_)),
             clear,
             background: (background_color, background),
+            sky: scene.environment.as_ref().filter(|e| e.background && !coverage).map(|e| {
+                let size = (vw, vh, t.lighting.ceiling());
+                SkyView::new(e, (frame.eye_from_world, frame.clip_from_eye), frame.viewer, size)
+            }),
             coverage,
+            tone: scene.settings.tone_mapping,
             size: (width, n),
         };
         image
@@ -140,7 +149,11 @@ struct TilePasses<'a> {
     clear: f32,
     /// The background as a colour and as a quantized pixel.
     background: (Vec3, u32),
+    /// The environment drawn behind the scene, when it is.
+    sky: Option<SkyView>,
     coverage: bool,
+    /// The frame's tone mapping, for the resolve.
+    tone: zline_shading::ToneMapping,
     /// The image width and the supersampling factor.
     size: (u32, u32),
 }
@@ -162,12 +175,13 @@ impl TilePasses<'_> {
         let (rect, opaque, transparent) =
             (self.grid.rect(col, row), &bins.opaque[tile], &bins.transparent[tile]);
         let line_bin = self.lines.map_or(&[][..], |l| l.bin_of(tile));
-        if opaque.is_empty() && transparent.is_empty() && line_bin.is_empty() {
+        if opaque.is_empty() && transparent.is_empty() && line_bin.is_empty() && self.sky.is_none() {
             // Nothing to draw: the background's bytes, without the buffers.
             fill_rect(band, width, pixels_of(rect, n), self.background.1);
             return 0;
         }
         target.clear(rect, self.background.0, self.clear);
+        target.paint_sky(self.sky.as_ref());
         let (shade, fog) = (&self.shade, self.fog.as_ref());
         let mut shaded = 0;
         if self.lines_only && self.lines.is_some() {
@@ -196,6 +210,7 @@ impl TilePasses<'_> {
         if let Some(depth_band) = depth_band {
             target.export_depth(depth_band, width, n);
         }
+        target.tone = self.tone;
         match (self.coverage, n) {
             (false, 1) => target.resolve(band, width),
             (false, _) => target.resolve_supersampled(band, width, n),

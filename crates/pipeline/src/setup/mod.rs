@@ -270,7 +270,7 @@ fn lit_in_setup(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
     if ctx.texture.is_some() {
         ClipVertex { color: parts.ambient_diffuse, normal: parts.specular, ..*v }
     } else {
-        ClipVertex { color: lit_color(parts, ctx.gouraud_clamp), ..*v }
+        ClipVertex { color: lit_color(parts, ctx.gouraud_clamp, ctx.lighting.ceiling()), ..*v }
     }
 }
 
@@ -278,9 +278,9 @@ fn lit_in_setup(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
 /// to [0, 1] ([`GouraudClamp::PerVertex`]), or the unclamped sum that the
 /// kernel clamps per sample ([`GouraudClamp::PerSample`]).
 #[inline]
-fn lit_color(parts: LitParts, clamp: GouraudClamp) -> Vec3 {
+fn lit_color(parts: LitParts, clamp: GouraudClamp, ceiling: f32) -> Vec3 {
     match clamp {
-        GouraudClamp::PerVertex => parts.color(),
+        GouraudClamp::PerVertex => parts.color_below(ceiling),
         GouraudClamp::PerSample => parts.ambient_diffuse + parts.specular,
     }
 }
@@ -306,7 +306,8 @@ fn turned(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
     let tangent = -v.tangent;
     let color = match ctx.vertex_lighting {
         VertexLighting::VertexStage => {
-            lit_color(ctx.lighting.shade_parts(ctx.material.0, v.eye, normal, Vec3::ZERO), ctx.gouraud_clamp)
+            let parts = ctx.lighting.shade_parts(ctx.material.0, v.eye, normal, Vec3::ZERO);
+            lit_color(parts, ctx.gouraud_clamp, ctx.lighting.ceiling())
         }
         VertexLighting::Unlit | VertexLighting::Setup => v.color,
     };
@@ -480,9 +481,11 @@ fn emit_untextured(
     let interpolation = sc.interpolation;
     match (ctx.shading, sc.lighting) {
         (_, Shortcut::Flat(color)) => push.push(&mut t.flat, Kernel::Flat, Flat { color }),
-        (_, Shortcut::LitOnce(parts)) => push.push(&mut t.flat, Kernel::Flat, Flat { color: parts.color() }),
+        (_, Shortcut::LitOnce(parts)) => {
+            push.push(&mut t.flat, Kernel::Flat, Flat { color: parts.color_below(ctx.lighting.ceiling()) })
+        }
         (ShadingMode::Flat, Shortcut::None) => {
-            push.push(&mut t.flat, Kernel::Flat, Flat { color: flat.color() })
+            push.push(&mut t.flat, Kernel::Flat, Flat { color: flat.color_below(ctx.lighting.ceiling()) })
         }
         (ShadingMode::Gouraud, Shortcut::None) => {
             let planes = planes.build(|v| [v.color]);

@@ -66,6 +66,12 @@ impl<'a> Lit<'a> {
         }
     }
 
+    /// The largest value a lit colour keeps (`PreparedLights::ceiling`).
+    #[inline(always)]
+    pub(super) fn ceiling(&self) -> f32 {
+        self.lights.ceiling()
+    }
+
     /// Runs `kernel` with this lighting and `normals` (the normals frame),
     /// in one of two copies: the basic model's unshadowed lighting of a
     /// colour frame (the common case, where all three are constants: every
@@ -358,7 +364,11 @@ impl TileTarget {
                         if normals {
                             return (encode_normal(normal), f32x8::ONE);
                         }
-                        (lit(&how, eye, normal, mask, unmodulated, MapTexels::NONE).clamp01(), f32x8::ONE)
+                        (
+                            lit(&how, eye, normal, mask, unmodulated, MapTexels::NONE)
+                                .clamp_to(how.ceiling()),
+                            f32x8::ONE,
+                        )
                     },
                 )
             },
@@ -388,7 +398,10 @@ impl TileTarget {
                     |a, mask| {
                         let (w, eye, normal) = phong_point(interp, a);
                         let tint = times(triple(a, phong::COLOR, w));
-                        (lit(&how, eye, normal, mask, tint, MapTexels::NONE).clamp01(), f32x8::ONE)
+                        (
+                            lit(&how, eye, normal, mask, tint, MapTexels::NONE).clamp_to(how.ceiling()),
+                            f32x8::ONE,
+                        )
                     },
                 )
             },
@@ -412,7 +425,7 @@ impl TileTarget {
         &mut self,
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
         (map, interp, lod, alpha): (&FrameTexture, Interp, Lod, AlphaTest),
-        surface: Option<&SurfaceMaps<'_>>,
+        (surface, ceiling): (Option<&SurfaceMaps<'_>>, f32),
         pass: &AnyPass<'_>,
         color: impl Fn(&[f32x8<S>; N], f32x8<S>, i32x8<S>, Vec3x8<S>, MapTexels<S>) -> Vec3x8<S> + Copy,
     ) -> u64 {
@@ -458,7 +471,7 @@ impl TileTarget {
                     }
                 }
                 let texel = Vec3x8 { x: r, y: g, z: b };
-                (color(a, inv, mask, texel, surface).clamp01(), texel_alpha)
+                (color(a, inv, mask, texel, surface).clamp_to(ceiling), texel_alpha)
             },
         )
     }
@@ -479,7 +492,7 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
-            None,
+            (None, ctx.lighting.ceiling()),
             pass,
             #[inline(always)]
             |_, _, _, texel, _| texel * ad + spec,
@@ -501,7 +514,7 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
-            None,
+            (None, ctx.lighting.ceiling()),
             pass,
             #[inline(always)]
             |a, w, _, texel, _| {
@@ -527,7 +540,7 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
-            surface.as_ref(),
+            (surface.as_ref(), ctx.lighting.ceiling()),
             pass,
             #[inline(always)]
             |a, w, mask, texel, surface| {
@@ -555,7 +568,7 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
-            surface.as_ref(),
+            (surface.as_ref(), ctx.lighting.ceiling()),
             pass,
             #[inline(always)]
             |a, w, mask, texel, surface| {

@@ -40,10 +40,11 @@ impl TileTarget {
 
     /// Sets every sample's colour to the background (lines alone).
     pub fn fill_background(&mut self) {
-        let bg = self.background;
-        for (plane, c) in self.rgb.iter_mut().zip([bg.x, bg.y, bg.z]) {
-            for i in (0..plane.len() * LANES).step_by(LANES) {
-                store(plane, i, f32x8::<Baseline>::splat(c));
+        for i in (0..self.depth.len() * LANES).step_by(LANES) {
+            let bg = self.background_block::<Baseline>(i);
+            let [red, green, blue] = &mut self.rgb;
+            for (plane, c) in [(red, bg.x), (green, bg.y), (blue, bg.z)] {
+                store(plane, i, c);
             }
         }
         if self.coverage {

@@ -175,9 +175,9 @@ impl TileTarget {
     /// C_behind.
     #[inline(always)]
     pub(crate) fn materialize_background<S: Level>(&mut self) {
-        let bg = Vec3x8::<S>::splat(self.background);
-        let [red, green, blue] = &mut self.rgb;
         for i in (0..self.depth.len() * LANES).step_by(LANES) {
+            let bg: Vec3x8<S> = self.background_block(i);
+            let [red, green, blue] = &mut self.rgb;
             let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
             for (plane, c) in [(&mut *red, bg.x), (&mut *green, bg.y), (&mut *blue, bg.z)] {
                 let old = load_for_blend(plane, i);
@@ -220,7 +220,10 @@ impl TileTarget {
                 || self.flat::<P, S>(&t.flat[i], pass),
             ),
             Kernel::Gouraud { interpolation, clamp } => {
-                let how = (Interp::of(interpolation), clamp == GouraudClamp::PerSample);
+                // Lit colours are never negative: with a tone mapping
+                // (ceiling above 1) there is nothing left to clamp.
+                let clamp = clamp == GouraudClamp::PerSample && ctx.lighting.ceiling() == 1.0;
+                let how = (Interp::of(interpolation), clamp);
                 apart::<S, _>(
                     #[inline(always)]
                     || self.gouraud::<P, S>(&t.gouraud[i], how, pass),

@@ -152,7 +152,8 @@ impl TileTarget {
                     return (encode_normal(normal), f32x8::ONE);
                 }
                 (
-                    lit(&how, eye, normal, mask, unmodulated, zline_shading::MapTexels::NONE).clamp01(),
+                    lit(&how, eye, normal, mask, unmodulated, zline_shading::MapTexels::NONE)
+                        .clamp_to(how.ceiling()),
                     f32x8::ONE,
                 )
             },
@@ -182,7 +183,7 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
-            surface.as_ref(),
+            (surface.as_ref(), ctx.lighting.ceiling()),
             pass,
             #[inline(always)]
             |a, w, mask, texel, surface| {

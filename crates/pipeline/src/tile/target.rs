@@ -81,6 +81,13 @@ pub struct TileTarget {
     pub(crate) far: f32,
     pub(crate) rgb: [Vec<f32x8>; 3],
     pub(crate) background: Vec3,
+    /// The environment's radiance behind each sample (`crate::sky`), read
+    /// instead of `background` when `sky_drawn`.
+    pub(crate) sky: [Vec<f32x8>; 3],
+    /// True when this tile's undrawn samples show the sky.
+    pub(crate) sky_drawn: bool,
+    /// Applied by the resolve, before quantization.
+    pub(crate) tone: zline_shading::ToneMapping,
     /// False while undrawn samples (depth `far`) hold stale colours that
     /// the resolve replaces by the background.
     pub(crate) colors_valid: bool,
@@ -117,6 +124,7 @@ impl TileTarget {
         self.depth.resize(n / LANES, f32x8::splat(far));
         self.far = far;
         self.background = background;
+        self.sky_drawn = false;
         self.colors_valid = false;
         self.shadow.clear();
         for plane in &mut self.rgb {
@@ -155,6 +163,29 @@ impl TileTarget {
     #[inline]
     pub(crate) fn index(&self, x: i32, y: i32) -> usize {
         (y - self.rect.y0) as usize * self.stride + (x - self.origin) as usize
+    }
+
+    /// The background behind samples `i..i + 8` (`i` a multiple of
+    /// [`LANES`]): the sky there, or the background colour.
+    #[inline(always)]
+    pub(crate) fn background_block<S: Level>(&self, i: usize) -> zline_shading::Vec3x8<S> {
+        if self.sky_drawn {
+            let [r, g, b] = &self.sky;
+            zline_shading::Vec3x8 { x: load(r, i), y: load(g, i), z: load(b, i) }
+        } else {
+            zline_shading::Vec3x8::splat(self.background)
+        }
+    }
+
+    /// The background behind sample `i`.
+    #[inline]
+    pub(crate) fn background_at(&self, i: usize) -> Vec3 {
+        if self.sky_drawn {
+            let [r, g, b] = &self.sky;
+            Vec3::new(sample(r, i), sample(g, i), sample(b, i))
+        } else {
+            self.background
+        }
     }
 }
 

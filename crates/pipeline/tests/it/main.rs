@@ -8,6 +8,7 @@ mod coverage;
 mod depth_image;
 mod depth_modes;
 mod determinism;
+mod environment;
 mod fog;
 mod interpolation;
 mod lines;

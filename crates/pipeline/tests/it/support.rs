@@ -56,6 +56,7 @@ pub(crate) fn origin_camera(near: f32, far: f32) -> Camera {
 /// A scene with the origin camera, black background and the given parts.
 pub(crate) fn scene(size: u32, ambient: Vec3, lights: Vec<Light>, objects: Vec<Object>) -> Scene {
     Scene {
+        environment: None,
         shadows: Default::default(),
         camera: origin_camera(0.5, 10.0),
         background: Vec3::ZERO,

@@ -292,6 +292,7 @@ pub fn terrain_scene(
         }
     });
     let scene = Scene {
+        environment: None,
         camera,
         background: SKY,
         ambient: Vec3::new(0.34, 0.36, 0.40),

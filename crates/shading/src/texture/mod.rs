@@ -203,6 +203,27 @@ impl Texture {
         Ok(Texture { texels: texels.into_boxed_slice(), levels: levels.into_boxed_slice() })
     }
 
+    /// The same image with its colour channels decoded from sRGB to linear
+    /// (IEC 61966-2-1; alpha kept) and the mip chain rebuilt from the
+    /// decoded level 0, so filtering averages linear values: what a colour
+    /// texture becomes when the frame's tone mapping ends in sRGB
+    /// (SPEC §7, §10).
+    pub fn srgb_decoded(&self) -> Texture {
+        let base = self.levels[0];
+        let decode = |c: f32| if c <= 0.040_45 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) };
+        let mut texels: Vec<Vec4> = self.texels[..(base.width * base.height) as usize]
+            .iter()
+            .map(|t| Vec4::new(decode(t.x), decode(t.y), decode(t.z), t.w))
+            .collect();
+        let mut levels = vec![base];
+        let mut last = base;
+        while (last.width, last.height) != (1, 1) {
+            last = push_coarser_level(&mut texels, last);
+            levels.push(last);
+        }
+        Texture { texels: texels.into_boxed_slice(), levels: levels.into_boxed_slice() }
+    }
+
     /// A 1×1 texture of one colour (one level).
     pub fn solid(color: Vec4) -> Texture {
         Texture { texels: Box::new([color]), levels: Box::new([Level { offset: 0, width: 1, height: 1 }]) }

@@ -96,6 +96,7 @@ prop_compose! {
             cull_back_faces: false,
         };
         Scene {
+            environment: None,
             shadows: Default::default(),
             camera,
             background: Vec3::ZERO,

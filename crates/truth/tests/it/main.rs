@@ -4,6 +4,7 @@
 mod bump;
 mod cook_torrance;
 mod emission_colors;
+mod environment;
 mod hand;
 mod sample_viewer;
 mod shadows;

@@ -74,6 +74,7 @@ pub(crate) fn scene(
     mode: ShadowMode,
 ) -> Scene {
     Scene {
+        environment: None,
         shadows: Shadows {
             mode,
             planes: vec![ShadowPlane { receiver: 0, plane: glam::Vec4::Y }],

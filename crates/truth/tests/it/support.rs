@@ -68,6 +68,7 @@ pub(crate) fn origin_camera(near: f32, far: f32) -> Camera {
 /// A scene with the origin camera (near 0.5, far 10), black background.
 pub(crate) fn scene(size: u32, ambient: Vec3, lights: Vec<Light>, objects: Vec<Object>) -> Scene {
     Scene {
+        environment: None,
         shadows: Default::default(),
         camera: origin_camera(0.5, 10.0),
         background: Vec3::ZERO,

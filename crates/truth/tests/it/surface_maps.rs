@@ -152,6 +152,7 @@ prop_compose! {
     ) -> Scene {
         let interpolation = if linear { Interpolation::ScreenLinear } else { Interpolation::PerspectiveCorrect };
         Scene {
+            environment: None,
             shadows: Default::default(),
             camera,
             background,

@@ -321,6 +321,7 @@ prop_compose! {
         objects.extend(glass);
         let interpolation = if linear { Interpolation::ScreenLinear } else { Interpolation::PerspectiveCorrect };
         Scene {
+            environment: None,
             shadows: Default::default(),
             camera,
             background,
@@ -452,6 +453,7 @@ prop_compose! {
         objects.extend(casters);
         let plane = ShadowPlane::of_object(0, &objects[0]).expect("the floor is flat");
         Scene {
+            environment: None,
             shadows: Shadows { mode: ShadowMode::Planar, planes: vec![plane], ..Default::default() },
             camera,
             background: Vec3::ZERO,

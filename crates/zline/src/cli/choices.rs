@@ -119,6 +119,27 @@ pub(crate) enum Interp {
     Linear,
 }
 
+/// `--tonemap`: the operator before quantization (SPEC §10).
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum Tonemap {
+    /// Clamp to [0, 1], as without the flag.
+    None,
+    /// Khronos PBR Neutral, then sRGB (the glTF Sample Viewer's default).
+    KhrPbrNeutral,
+    /// ACES filmic (Hill's fit), then sRGB.
+    Aces,
+}
+
+impl From<Tonemap> for zline::shading::ToneMap {
+    fn from(t: Tonemap) -> zline::shading::ToneMap {
+        match t {
+            Tonemap::None => zline::shading::ToneMap::None,
+            Tonemap::KhrPbrNeutral => zline::shading::ToneMap::KhrPbrNeutral,
+            Tonemap::Aces => zline::shading::ToneMap::Aces,
+        }
+    }
+}
+
 /// `--model`: the reflection model forced on every material
 /// ([`zline::shading::Material::with_model`]).
 #[derive(Clone, Copy, ValueEnum)]

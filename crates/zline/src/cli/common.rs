@@ -9,11 +9,11 @@ use zline::pipeline::RenderOptions;
 use zline::scene::{FogMode, MAX_SHADOW_MAP_SIZE, MAX_TILE_SIZE, MIN_TILE_SIZE};
 
 use super::choices::{
-    Clamp, Depth, FogCoord, Interp, LightModel, Shading, ShadowFilter, Shadows, Sides, TexFilter,
+    Clamp, Depth, FogCoord, Interp, LightModel, Shading, ShadowFilter, Shadows, Sides, TexFilter, Tonemap,
 };
 use super::parse::{
-    parse_angle, parse_color, parse_direction, parse_fog, parse_fov, parse_positive, parse_size,
-    parse_tolerance,
+    parse_angle, parse_color, parse_direction, parse_fog, parse_fov, parse_non_negative, parse_positive,
+    parse_size, parse_tolerance,
 };
 
 /// The smallest `--shadow-map-size`, as the scene file's.
@@ -40,6 +40,30 @@ pub(crate) struct Common {
     /// Beckmann distribution (docs/SPEC.md §5.2).
     #[arg(long, value_enum)]
     pub(crate) model: Option<LightModel>,
+    /// Light from an environment map (docs/SPEC.md §5.3): a Radiance HDR
+    /// equirectangular panorama, or `sky` for the built-in procedural sky.
+    /// Replaces the scene's; adds to its ambient light.
+    #[arg(long, value_name = "FILE.hdr|sky")]
+    pub(crate) environment: Option<PathBuf>,
+    /// Multiplies the environment's radiance (default: the scene's, or 1).
+    #[arg(long, value_name = "X", value_parser = parse_non_negative)]
+    pub(crate) environment_intensity: Option<f32>,
+    /// Turns the environment about +y, in degrees counter-clockwise seen
+    /// from above (default: the scene's, or 0).
+    #[arg(long, value_name = "DEG", value_parser = parse_angle)]
+    pub(crate) environment_rotation: Option<f32>,
+    /// Draw the environment where no surface is, instead of the background
+    /// colour.
+    #[arg(long)]
+    pub(crate) environment_background: bool,
+    /// Tone mapping before the 8-bit output (docs/SPEC.md §10; replaces
+    /// `[render] tonemap`): `none` clamps; the operators end in sRGB.
+    #[arg(long, value_enum)]
+    pub(crate) tonemap: Option<Tonemap>,
+    /// Multiplies the linear colour before the tone mapping (replaces
+    /// `[render] exposure`; default 1).
+    #[arg(long, value_name = "X", value_parser = parse_non_negative)]
+    pub(crate) exposure: Option<f32>,
     /// Attribute interpolation.
     #[arg(long, value_enum)]
     pub(crate) interpolation: Option<Interp>,

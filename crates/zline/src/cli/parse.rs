@@ -60,6 +60,13 @@ pub(crate) fn parse_angle(s: &str) -> Result<f32, String> {
     }
 }
 
+pub(crate) fn parse_non_negative(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err(format!("expected a number ≥ 0, got '{s}'")),
+    }
+}
+
 pub(crate) fn parse_positive(s: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),

@@ -1,5 +1,6 @@
 //! `--model basic|cook-torrance|beckmann`: one reflection model forced on
-//! every material (docs/SPEC.md §5.2), on every command that renders.
+//! every material (docs/SPEC.md §5.2), on every command that renders; the
+//! environment map and tone mapping flags (§5.3, §10).
 
 use std::path::Path;
 
@@ -104,4 +105,45 @@ fn turntable_frames_take_the_model() {
     let frame = std::fs::read(folder.join("frame-0000.png")).unwrap();
     assert!(frame == single, "turntable's frame 0 is not render's image with the same --model");
     assert!(frame != plain, "--model cook-torrance changed nothing on suzanne");
+}
+
+/// `--environment sky` lights a glTF model and, with
+/// `--environment-background`, replaces the background; `--tonemap` and
+/// `--exposure` change the picture; a bad environment file is an error
+/// naming it, and the adjusting flags without an environment a warning.
+#[test]
+fn environment_and_tone_mapping_flags() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let model = repo().join("assets/gltf/Box/glTF-Binary/Box.glb");
+    let args = ["render", model.to_str().unwrap()];
+    let plain = render(&args, &d.join("plain.png"), &[]);
+    let lit = render(&args, &d.join("lit.png"), &["--environment", "sky", "--environment-intensity", "0.7"]);
+    assert_ne!(plain, lit, "the environment changed nothing");
+    let sky = ["--environment", "sky", "--environment-background"];
+    let behind = render(&args, &d.join("sky.png"), &sky);
+    let corner = |bytes: &[u8]| image::load_from_memory(bytes).unwrap().to_rgb8().get_pixel(0, 0).0;
+    assert_ne!(corner(&lit), corner(&behind), "the background did not change");
+    let turned =
+        render(&args, &d.join("turned.png"), &[&sky[..], &["--environment-rotation", "120"]].concat());
+    assert_ne!(behind, turned, "the rotation changed nothing");
+    let mapped =
+        render(&args, &d.join("aces.png"), &[&sky[..], &["--tonemap", "aces", "--exposure", "0.8"]].concat());
+    assert_ne!(behind, mapped, "the tone mapping changed nothing");
+
+    let out =
+        zline(&[&args[..], &["-o", d.join("x.png").to_str().unwrap(), "--environment", "none.hdr"]].concat());
+    assert_ne!(out.status.code(), Some(0));
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("none.hdr"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = zline(
+        &[&args[..], &["-o", d.join("y.png").to_str().unwrap(), "--environment-intensity", "2"]].concat(),
+    );
+    assert_eq!(out.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no environment map"));
+    let out = zline(&[&args[..], &["-o", d.join("z.png").to_str().unwrap(), "--tonemap", "filmic"]].concat());
+    assert_eq!(out.status.code(), Some(2));
 }
