@@ -18,9 +18,43 @@ impl TileTarget {
         zline_simd::vectorize(Resolve { target: self, band, width });
     }
 
-    /// [`Self::resolve`] at level `S`.
+    /// [`Self::resolve`] at level `S`: the plain loop when the background
+    /// is one colour and no tone mapping follows (the common frame, whose
+    /// loop must stay as lean as before the sky existed), else the general
+    /// one.
     #[inline(always)]
     fn resolve_at<S: Level>(&self, band: &mut [u32], width: usize) {
+        if self.sky_drawn || !self.tone.is_identity() {
+            return self.resolve_rows::<S>(
+                band,
+                width,
+                #[inline(always)]
+                |i| self.background_block(i),
+                #[inline(always)]
+                |rgb| tone_x8(&self.tone, rgb),
+            );
+        }
+        let bg = Vec3x8::<S>::splat(self.background);
+        self.resolve_rows::<S>(
+            band,
+            width,
+            #[inline(always)]
+            |_| bg,
+            #[inline(always)]
+            |rgb| rgb,
+        )
+    }
+
+    /// The resolve's loop, with the background of each block and the
+    /// mapping before quantization given.
+    #[inline(always)]
+    fn resolve_rows<S: Level>(
+        &self,
+        band: &mut [u32],
+        width: usize,
+        background: impl Fn(usize) -> Vec3x8<S>,
+        map: impl Fn([f32x8<S>; 3]) -> [f32x8<S>; 3],
+    ) {
         if self.stride == 0 {
             return;
         }
@@ -30,7 +64,7 @@ impl TileTarget {
             let out = &mut band[row * width..(row + 1) * width];
             for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
                 let i = line + (x - self.origin) as usize;
-                let bg: Vec3x8<S> = self.background_block(i);
+                let bg = background(i);
                 let empty = if self.colors_valid {
                     f32x8::ZERO
                 } else {
@@ -40,7 +74,7 @@ impl TileTarget {
                     #[inline(always)]
                     |plane: &[f32x8], b: f32x8<S>| empty.blend(b, load(plane, i)),
                 );
-                let [r, g, b] = tone_x8(&self.tone, [c(red, bg.x), c(green, bg.y), c(blue, bg.z)]);
+                let [r, g, b] = map([c(red, bg.x), c(green, bg.y), c(blue, bg.z)]);
                 let px = pack_rgba(r, g, b);
                 store_block(out, x, &self.rect, &px);
             }

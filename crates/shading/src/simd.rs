@@ -91,7 +91,8 @@ impl PreparedLights {
         let (visible, shared) = hidden_lights(m, (point, normal), mask, &share);
         match m.microfacet {
             None => {
-                let (ambient_diffuse, specular) = self.basic_parts_x8(m, point, normal, visible, shared);
+                let (ambient_diffuse, specular) =
+                    self.basic_parts_x8(m, (point, normal, true), visible, shared);
                 modulate(ambient_diffuse) + specular
             }
             Some(microfacet) => {
@@ -106,18 +107,21 @@ impl PreparedLights {
 
     /// [`Self::shade_x8_with`] for the basic model only (a material known
     /// not to be Cook–Torrance): the kernels' copy for the common case,
-    /// without the microfacet model's code.
+    /// without the microfacet model's code; `environment` false promises
+    /// there is no environment map (see [`Self::uniform_ambient`]), so a
+    /// copy compiled with it false has no environment code either.
     #[inline(always)]
     pub fn shade_x8_basic<L: Level>(
         &self,
         m: &PreparedMaterial,
         (point, normal): (Vec3x8<L>, Vec3x8<L>),
-        mask: Option<i32x8<L>>,
+        (mask, environment): (Option<i32x8<L>>, bool),
         share: Option<impl Fn(u32, Vec3x8<L>, Vec3x8<L>) -> f32x8<L>>,
         modulate: impl Fn(Vec3x8<L>) -> Vec3x8<L>,
     ) -> Vec3x8<L> {
         let (visible, shared) = hidden_lights(m, (point, normal), mask, &share);
-        let (ambient_diffuse, specular) = self.basic_parts_x8(m, point, normal, visible, shared);
+        let (ambient_diffuse, specular) =
+            self.basic_parts_x8(m, (point, normal, environment), visible, shared);
         modulate(ambient_diffuse) + specular
     }
 
@@ -173,7 +177,7 @@ impl PreparedLights {
         share: impl Fn(u32) -> Option<f32x8<L>>,
     ) -> (Vec3x8<L>, Vec3x8<L>) {
         match m.microfacet {
-            None => self.basic_parts_x8(m, point, normal, visible, share),
+            None => self.basic_parts_x8(m, (point, normal, true), visible, share),
             Some(microfacet) => {
                 let base = Vec3x8::splat(m.material.kd);
                 let lanes = MicrofacetX8::new(microfacet, None);
@@ -189,8 +193,7 @@ impl PreparedLights {
     fn basic_parts_x8<L: Level>(
         &self,
         m: &PreparedMaterial,
-        point: Vec3x8<L>,
-        normal: Vec3x8<L>,
+        (point, normal, environment): (Vec3x8<L>, Vec3x8<L>, bool),
         visible: impl Fn(u32) -> f32x8<L>,
         share: impl Fn(u32) -> Option<f32x8<L>>,
     ) -> (Vec3x8<L>, Vec3x8<L>) {
@@ -206,7 +209,9 @@ impl PreparedLights {
             },
         );
         let mat = &m.material;
-        let ambient = match self.environment() {
+        // `environment` false says there is none (the kernels' common copy
+        // knows it where it is compiled).
+        let ambient = match self.environment().filter(|_| environment) {
             None => Vec3x8::splat(mat.ka * self.ambient()),
             Some(e) => Vec3x8::from_lanes(|k| mat.ka * e.diffuse(normal.lane(k))),
         };

@@ -49,6 +49,9 @@ pub(super) struct Lit<'a> {
     /// The material may be Cook–Torrance (false: the basic model only,
     /// known where the copy is compiled).
     microfacet: bool,
+    /// The frame has an environment map (false: the uniform ambient light
+    /// only, known where the copy is compiled).
+    environment: bool,
 }
 
 impl<'a> Lit<'a> {
@@ -63,6 +66,7 @@ impl<'a> Lit<'a> {
             maps: ctx.maps,
             planar,
             microfacet: material.microfacet.is_some(),
+            environment: !ctx.lighting.uniform_ambient(),
         }
     }
 
@@ -74,13 +78,14 @@ impl<'a> Lit<'a> {
 
     /// Runs `kernel` with this lighting and `normals` (the normals frame),
     /// in one of two copies: the basic model's unshadowed lighting of a
-    /// colour frame (the common case, where all three are constants: every
-    /// shadow test and the microfacet model fold away), or any other. Both
+    /// colour frame under a uniform ambient light (the common case, where
+    /// all four are constants: every shadow test, the microfacet model and
+    /// the environment fold away), or any other. Both
     /// go through the one seam, [`lit`].
     #[inline(always)]
     pub(super) fn split<R>(self, normals: bool, kernel: impl FnOnce(Lit<'a>, bool) -> R) -> R {
-        if self.maps.is_none() && !self.planar && !normals && !self.microfacet {
-            kernel(Lit { maps: None, planar: false, microfacet: false, ..self }, false)
+        if self.maps.is_none() && !self.planar && !normals && !self.microfacet && !self.environment {
+            kernel(Lit { maps: None, planar: false, microfacet: false, environment: false, ..self }, false)
         } else {
             kernel(self, normals)
         }
@@ -116,7 +121,7 @@ pub(super) fn lit<S: Level>(
     if how.microfacet {
         how.lights.shade_x8_with(how.material, (eye, normal), mask, share, modulate, maps)
     } else {
-        how.lights.shade_x8_basic(how.material, (eye, normal), mask, share, modulate)
+        how.lights.shade_x8_basic(how.material, (eye, normal), (mask, how.environment), share, modulate)
     }
 }
 
@@ -353,6 +358,7 @@ impl TileTarget {
             ctx.normals,
             #[inline(always)]
             |how, normals| {
+                let ceiling = how.ceiling();
                 self.scan::<_, _, S>(
                     (&p.edges, &p.depth),
                     &p.shader.planes,
@@ -365,8 +371,7 @@ impl TileTarget {
                             return (encode_normal(normal), f32x8::ONE);
                         }
                         (
-                            lit(&how, eye, normal, mask, unmodulated, MapTexels::NONE)
-                                .clamp_to(how.ceiling()),
+                            lit(&how, eye, normal, mask, unmodulated, MapTexels::NONE).clamp_to(ceiling),
                             f32x8::ONE,
                         )
                     },
@@ -389,6 +394,7 @@ impl TileTarget {
             false,
             #[inline(always)]
             |how, _| {
+                let ceiling = how.ceiling();
                 self.scan::<_, _, S>(
                     (&p.edges, &p.depth),
                     &p.shader.planes,
@@ -398,10 +404,7 @@ impl TileTarget {
                     |a, mask| {
                         let (w, eye, normal) = phong_point(interp, a);
                         let tint = times(triple(a, phong::COLOR, w));
-                        (
-                            lit(&how, eye, normal, mask, tint, MapTexels::NONE).clamp_to(how.ceiling()),
-                            f32x8::ONE,
-                        )
+                        (lit(&how, eye, normal, mask, tint, MapTexels::NONE).clamp_to(ceiling), f32x8::ONE)
                     },
                 )
             },

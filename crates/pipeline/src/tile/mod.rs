@@ -175,14 +175,17 @@ impl TileTarget {
     /// C_behind.
     #[inline(always)]
     pub(crate) fn materialize_background<S: Level>(&mut self) {
-        for i in (0..self.depth.len() * LANES).step_by(LANES) {
-            let bg: Vec3x8<S> = self.background_block(i);
-            let [red, green, blue] = &mut self.rgb;
-            let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
-            for (plane, c) in [(&mut *red, bg.x), (&mut *green, bg.y), (&mut *blue, bg.z)] {
-                let old = load_for_blend(plane, i);
-                store(plane, i, empty.blend(c, old));
-            }
+        if self.sky_drawn {
+            self.fill_undrawn::<S>(
+                #[inline(always)]
+                |t, i| t.background_block(i),
+            );
+        } else {
+            let plain = Vec3x8::<S>::splat(self.background);
+            self.fill_undrawn::<S>(
+                #[inline(always)]
+                move |_, _| plain,
+            );
         }
         if self.coverage {
             // Drawn samples are opaque (alpha 1), undrawn ones empty (0).
@@ -192,6 +195,21 @@ impl TileTarget {
             }
         }
         self.colors_valid = true;
+    }
+
+    /// Writes `background(self, i)` into the undrawn samples of each block
+    /// i (one loop per kind of background, the branch outside it).
+    #[inline(always)]
+    fn fill_undrawn<S: Level>(&mut self, background: impl Fn(&TileTarget, usize) -> Vec3x8<S>) {
+        for i in (0..self.depth.len() * LANES).step_by(LANES) {
+            let bg = background(self, i);
+            let empty = load(&self.depth, i).cmp_eq(f32x8::splat(self.far));
+            let [red, green, blue] = &mut self.rgb;
+            for (plane, c) in [(&mut *red, bg.x), (&mut *green, bg.y), (&mut *blue, bg.z)] {
+                let old = load_for_blend(plane, i);
+                store(plane, i, empty.blend(c, old));
+            }
+        }
     }
 
     /// Fogs every drawn sample of the tile (see [`crate::fog`]), with the

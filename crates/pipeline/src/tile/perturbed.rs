@@ -140,6 +140,7 @@ impl TileTarget {
         // One copy, lighting as values (`Lit::split` would double the
         // map reads, the costliest code here to compile).
         let (how, normals) = (Lit::of(ctx, p.shader.material), ctx.normals);
+        let ceiling = how.ceiling();
         self.scan::<_, _, S>(
             (&p.edges, &p.depth),
             &p.shader.planes,
@@ -153,7 +154,7 @@ impl TileTarget {
                 }
                 (
                     lit(&how, eye, normal, mask, unmodulated, zline_shading::MapTexels::NONE)
-                        .clamp_to(how.ceiling()),
+                        .clamp_to(ceiling),
                     f32x8::ONE,
                 )
             },
