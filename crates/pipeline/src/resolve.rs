@@ -161,13 +161,18 @@ pub(crate) fn tone_x8<S: Level>(tone: &zline_shading::ToneMapping, rgb: [f32x8<S
     if tone.is_identity() {
         return rgb;
     }
-    let [r, g, b] = rgb.map(|c| c.to_array());
+    tone_lanes(tone, rgb.map(|c| c.to_array())).map(f32x8::from)
+}
+
+/// [`tone_x8`]'s lanes: one compiled copy for every SIMD level.
+#[inline(never)]
+fn tone_lanes(tone: &zline_shading::ToneMapping, [r, g, b]: [[f32; LANES]; 3]) -> [[f32; LANES]; 3] {
     let mut out = [[0.0f32; LANES]; 3];
     for k in 0..LANES {
         let c = tone.apply(Vec3::new(r[k], g[k], b[k]));
         (out[0][k], out[1][k], out[2][k]) = (c.x, c.y, c.z);
     }
-    out.map(f32x8::from)
+    out
 }
 
 /// SPEC §10 for one channel of eight pixels: clamped (NaN to 0), scaled,

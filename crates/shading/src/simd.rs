@@ -213,7 +213,10 @@ impl PreparedLights {
         // knows it where it is compiled).
         let ambient = match self.environment().filter(|_| environment) {
             None => Vec3x8::splat(mat.ka * self.ambient()),
-            Some(e) => Vec3x8::from_lanes(|k| mat.ka * e.diffuse(normal.lane(k))),
+            Some(e) => {
+                let [x, y, z] = crate::environment::ambient_lanes(e, mat.ka, normal.to_lanes());
+                Vec3x8::from_arrays([x, y, z])
+            }
         };
         let ambient_diffuse = ambient.add(Vec3x8::splat(mat.kd).mul(sum.diffuse));
         let specular = Vec3x8::splat(mat.ke).add(Vec3x8::splat(mat.ks).mul(sum.specular));

@@ -176,7 +176,14 @@ impl PreparedLights {
         let e_s = f0.scale(a).add(Vec3x8 { x: b, y: b, z: b });
         let (mut diffuse_light, mut specular_light) = match self.environment() {
             None => (Vec3x8::splat(self.ambient()), Vec3x8::splat(self.ambient())),
-            Some(e) => environment_light(e, (normal, view), microfacet.roughness),
+            Some(e) => {
+                let (d, s) = crate::environment::environment_lanes(
+                    e,
+                    (normal.to_lanes(), view.to_lanes()),
+                    microfacet.roughness.to_array(),
+                );
+                (Vec3x8::from_arrays(d), Vec3x8::from_arrays(s))
+            }
         };
         if let Some(occlusion) = maps.occlusion {
             diffuse_light = diffuse_light.scale(occlusion);
@@ -193,22 +200,4 @@ impl PreparedLights {
         let specular = ke.add(specular_light.mul(e_s)).add(sum.specular);
         (ambient_diffuse, specular)
     }
-}
-
-/// (D, S) of SPEC §5.3 per lane — the environment's radiance for the
-/// diffuse lobe at N and for the specular lobe along R = 2(N·V)N − V at
-/// the lane's roughness — with the scalar code of the scalar path; out of
-/// line, so the kernels' loops carry none of it without an environment.
-#[cold]
-#[inline(never)]
-fn environment_light<L: Level>(
-    e: &crate::environment::PreparedEnvironment,
-    (normal, view): (Vec3x8<L>, Vec3x8<L>),
-    roughness: f32x8<L>,
-) -> (Vec3x8<L>, Vec3x8<L>) {
-    let roughness = roughness.as_array_ref();
-    (
-        Vec3x8::from_lanes(|k| e.diffuse(normal.lane(k))),
-        Vec3x8::from_lanes(|k| e.specular(crate::pbr::reflect(view.lane(k), normal.lane(k)), roughness[k])),
-    )
 }

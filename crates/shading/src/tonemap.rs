@@ -70,7 +70,6 @@ impl ToneMapping {
     }
 
     /// The display colour of linear colour `c`, in [0, 1] (NaN becomes 0).
-    #[inline]
     pub fn apply(&self, c: Vec3) -> Vec3 {
         let c = (c * self.exposure).max(Vec3::ZERO);
         let mapped = match self.operator {

@@ -92,16 +92,16 @@ impl<L: Level> Vec3x8<L> {
         }
     }
 
-    /// Eight lanes, lane i = `f(i)` (for lookups that run per lane, the
-    /// same scalar code as the scalar path).
+    /// The lanes as three arrays (x, y, z).
     #[inline(always)]
-    pub(crate) fn from_lanes(f: impl Fn(usize) -> glam::Vec3) -> Vec3x8<L> {
-        let v: [glam::Vec3; 8] = std::array::from_fn(f);
-        Vec3x8 {
-            x: f32x8::from(v.map(|c| c.x)),
-            y: f32x8::from(v.map(|c| c.y)),
-            z: f32x8::from(v.map(|c| c.z)),
-        }
+    pub(crate) fn to_lanes(self) -> [[f32; 8]; 3] {
+        [self.x.to_array(), self.y.to_array(), self.z.to_array()]
+    }
+
+    /// Eight vectors from three arrays of coordinates.
+    #[inline(always)]
+    pub(crate) fn from_arrays([x, y, z]: [[f32; 8]; 3]) -> Vec3x8<L> {
+        Vec3x8 { x: f32x8::from(x), y: f32x8::from(y), z: f32x8::from(z) }
     }
 
     /// Lane `i` as a glam vector.

@@ -182,6 +182,7 @@ impl TilePasses<'_> {
         }
         target.clear(rect, self.background.0, self.clear);
         target.paint_sky(self.sky.as_ref());
+        target.ceiling = self.shade.lighting.ceiling();
         let (shade, fog) = (&self.shade, self.fog.as_ref());
         let mut shaded = 0;
         if self.lines_only && self.lines.is_some() {

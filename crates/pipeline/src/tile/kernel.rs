@@ -70,12 +70,6 @@ impl<'a> Lit<'a> {
         }
     }
 
-    /// The largest value a lit colour keeps (`PreparedLights::ceiling`).
-    #[inline(always)]
-    pub(super) fn ceiling(&self) -> f32 {
-        self.lights.ceiling()
-    }
-
     /// Runs `kernel` with this lighting and `normals` (the normals frame),
     /// in one of two copies: the basic model's unshadowed lighting of a
     /// colour frame under a uniform ambient light (the common case, where
@@ -358,7 +352,7 @@ impl TileTarget {
             ctx.normals,
             #[inline(always)]
             |how, normals| {
-                let ceiling = how.ceiling();
+                let ceiling = self.ceiling;
                 self.scan::<_, _, S>(
                     (&p.edges, &p.depth),
                     &p.shader.planes,
@@ -394,7 +388,7 @@ impl TileTarget {
             false,
             #[inline(always)]
             |how, _| {
-                let ceiling = how.ceiling();
+                let ceiling = self.ceiling;
                 self.scan::<_, _, S>(
                     (&p.edges, &p.depth),
                     &p.shader.planes,
@@ -428,7 +422,7 @@ impl TileTarget {
         &mut self,
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
         (map, interp, lod, alpha): (&FrameTexture, Interp, Lod, AlphaTest),
-        (surface, ceiling): (Option<&SurfaceMaps<'_>>, f32),
+        surface: Option<&SurfaceMaps<'_>>,
         pass: &AnyPass<'_>,
         color: impl Fn(&[f32x8<S>; N], f32x8<S>, i32x8<S>, Vec3x8<S>, MapTexels<S>) -> Vec3x8<S> + Copy,
     ) -> u64 {
@@ -436,6 +430,7 @@ impl TileTarget {
         // (0 the base texture, 1 + the map's index): a primitive without
         // maps runs the loop below once.
         let mut maps: [Option<(&FrameTexture, &Lod, u8)>; 4] = [Some((map, &lod, 0)), None, None, None];
+        let ceiling = self.ceiling;
         let (mut count, mut strength) = (1, 0.0);
         if let Some(surface) = surface {
             strength = surface.strength;
@@ -495,7 +490,7 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
-            (None, ctx.lighting.ceiling()),
+            None,
             pass,
             #[inline(always)]
             |_, _, _, texel, _| texel * ad + spec,
@@ -517,7 +512,7 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
-            (None, ctx.lighting.ceiling()),
+            None,
             pass,
             #[inline(always)]
             |a, w, _, texel, _| {
@@ -543,7 +538,7 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
-            (surface.as_ref(), ctx.lighting.ceiling()),
+            surface.as_ref(),
             pass,
             #[inline(always)]
             |a, w, mask, texel, surface| {
@@ -571,7 +566,7 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
-            (surface.as_ref(), ctx.lighting.ceiling()),
+            surface.as_ref(),
             pass,
             #[inline(always)]
             |a, w, mask, texel, surface| {

@@ -140,7 +140,7 @@ impl TileTarget {
         // One copy, lighting as values (`Lit::split` would double the
         // map reads, the costliest code here to compile).
         let (how, normals) = (Lit::of(ctx, p.shader.material), ctx.normals);
-        let ceiling = how.ceiling();
+        let ceiling = self.ceiling;
         self.scan::<_, _, S>(
             (&p.edges, &p.depth),
             &p.shader.planes,
@@ -184,7 +184,7 @@ impl TileTarget {
         self.textured::<_, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
-            (surface.as_ref(), ctx.lighting.ceiling()),
+            surface.as_ref(),
             pass,
             #[inline(always)]
             |a, w, mask, texel, surface| {

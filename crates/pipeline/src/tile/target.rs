@@ -88,6 +88,9 @@ pub struct TileTarget {
     pub(crate) sky_drawn: bool,
     /// Applied by the resolve, before quantization.
     pub(crate) tone: zline_shading::ToneMapping,
+    /// The largest value a lit colour keeps (`PreparedLights::ceiling`),
+    /// set for the frame.
+    pub(crate) ceiling: f32,
     /// False while undrawn samples (depth `far`) hold stale colours that
     /// the resolve replaces by the background.
     pub(crate) colors_valid: bool,

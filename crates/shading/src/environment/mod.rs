@@ -212,3 +212,45 @@ impl PreparedEnvironment {
         self.ambient + self.light.prefiltered(self.to_panorama * r, roughness) * self.intensity
     }
 }
+
+/// Eight lanes of coordinates (x, y, z), as the kernels hand them over.
+type Lanes = [[f32; 8]; 3];
+
+/// The lane `k` of `lanes` as a vector.
+#[inline]
+fn lane(lanes: &Lanes, k: usize) -> Vec3 {
+    Vec3::new(lanes[0][k], lanes[1][k], lanes[2][k])
+}
+
+/// Vectors into lanes.
+#[inline]
+fn to_lanes(v: [Vec3; 8]) -> Lanes {
+    [v.map(|c| c.x), v.map(|c| c.y), v.map(|c| c.z)]
+}
+
+/// ka ⊙ D per lane for the basic model's ambient term (SPEC §5.3), the
+/// scalar path's code lane by lane. One compiled copy for every kernel and
+/// SIMD level (lanes as plain arrays): the kernels call it, out of line,
+/// only when the frame has an environment.
+#[inline(never)]
+pub(crate) fn ambient_lanes(e: &PreparedEnvironment, ka: Vec3, normals: Lanes) -> Lanes {
+    to_lanes(std::array::from_fn(|k| ka * e.diffuse(lane(&normals, k))))
+}
+
+/// (D, S) per lane for Cook–Torrance (SPEC §5.3): the environment's
+/// radiance for the diffuse lobe at N and for the specular lobe along
+/// R = 2(N·V)N − V at the lane's roughness; one compiled copy, as
+/// [`ambient_lanes`].
+#[inline(never)]
+pub(crate) fn environment_lanes(
+    e: &PreparedEnvironment,
+    (normals, views): (Lanes, Lanes),
+    roughness: [f32; 8],
+) -> (Lanes, Lanes) {
+    let diffuse = std::array::from_fn(|k| e.diffuse(lane(&normals, k)));
+    let specular = std::array::from_fn(|k| {
+        let (n, v) = (lane(&normals, k), lane(&views, k));
+        e.specular(crate::pbr::reflect(v, n), roughness[k])
+    });
+    (to_lanes(diffuse), to_lanes(specular))
+}
