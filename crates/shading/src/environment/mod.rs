@@ -45,6 +45,15 @@ pub struct EnvironmentLight {
     levels: Vec<OctahedralMap>,
 }
 
+/// Two prepared environments are equal when they are the same one: the
+/// preparation is costly and shared, and its identity is what a scene
+/// compares.
+impl PartialEq for EnvironmentLight {
+    fn eq(&self, o: &EnvironmentLight) -> bool {
+        std::ptr::eq(self, o)
+    }
+}
+
 impl EnvironmentLight {
     /// Prepares `panorama` (SH projection and the prefiltered chain).
     pub fn new(panorama: Panorama) -> EnvironmentLight {
@@ -103,7 +112,7 @@ impl EnvironmentLight {
 /// intensity, its rotation about +y and whether it is drawn behind the
 /// scene. Like a light, it lives in a coordinate frame: world space when
 /// made, another after [`Environment::transformed`].
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Environment {
     /// The prepared environment.
     pub light: Arc<EnvironmentLight>,
@@ -116,16 +125,6 @@ pub struct Environment {
     pub background: bool,
     /// Directions of the current frame into world space (unit columns).
     frame_to_world: Mat3,
-}
-
-impl PartialEq for Environment {
-    fn eq(&self, o: &Environment) -> bool {
-        Arc::ptr_eq(&self.light, &o.light)
-            && self.intensity == o.intensity
-            && self.rotation_degrees == o.rotation_degrees
-            && self.background == o.background
-            && self.frame_to_world == o.frame_to_world
-    }
 }
 
 impl Environment {
@@ -179,21 +178,12 @@ impl Environment {
 /// An environment ready for per-sample shading in one frame: the rotation
 /// into the panorama's frame, the intensity and the uniform ambient folded
 /// into its two lookups.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct PreparedEnvironment {
     light: Arc<EnvironmentLight>,
     to_panorama: Mat3,
     intensity: f32,
     ambient: Vec3,
-}
-
-impl PartialEq for PreparedEnvironment {
-    fn eq(&self, o: &PreparedEnvironment) -> bool {
-        Arc::ptr_eq(&self.light, &o.light)
-            && self.to_panorama == o.to_panorama
-            && self.intensity == o.intensity
-            && self.ambient == o.ambient
-    }
 }
 
 impl PreparedEnvironment {
