@@ -51,7 +51,11 @@
 //!    Δf ≤ f(min dᵢ − ℓ) − f(min dᵢ + ℓ); directional lights have ΔL = Δf =
 //!    0. Taken when this plus shortcut 3's bound is ≤ τ/255: the triangle is
 //!    drawn flat (textured: its texel still modulates the one lit value;
-//!    texels are ≤ 1, so the bound holds).
+//!    texels are ≤ 1, so the bound holds). A range window keeps f
+//!    non-increasing, so both bounds hold with it. A spot light's cone
+//!    factor is at most 1, so shortcut 3 counts it as a point light; its
+//!    change across the triangle is not bounded here, so a frame with a
+//!    spot light does not take shortcut 4.
 //!
 //! Otherwise Phong keeps its per-sample normal and position, and textured
 //! triangles keep their texture coordinates' divide: a bound on how a
@@ -73,8 +77,11 @@ pub struct Adaptive {
     tolerance: f32,
     /// Σ of the largest channel of each directional light (f = 1).
     directional: f32,
-    /// Point lights in eye space: position, largest channel, attenuation.
+    /// Point and spot lights in eye space: position, largest channel,
+    /// attenuation.
     point: Vec<(Vec3, f32, Attenuation)>,
+    /// The frame has a spot light (no shortcut 4).
+    spot: bool,
 }
 
 /// What a Phong triangle can be drawn as.
@@ -110,15 +117,20 @@ impl Adaptive {
         }
         let mut directional = 0.0;
         let mut point = Vec::new();
+        let mut spot = false;
         for light in &eye_lighting.lights {
             match *light {
                 Light::Directional { color, .. } => directional += color.max_element().max(0.0),
                 Light::Point { position, color, attenuation } => {
                     point.push((position, color.max_element().max(0.0), attenuation))
                 }
+                Light::Spot { position, color, attenuation, .. } => {
+                    spot = true;
+                    point.push((position, color.max_element().max(0.0), attenuation))
+                }
             }
         }
-        Some(Adaptive { tolerance: tolerance / 255.0, directional, point })
+        Some(Adaptive { tolerance: tolerance / 255.0, directional, point, spot })
     }
 
     /// Shortcuts 1 and 2 for a Gouraud triangle with vertex colours
@@ -165,7 +177,7 @@ impl Adaptive {
     /// most `budget` over the triangle.
     fn diffuse_within(&self, kd: f32, normal: [Vec3; 3], eye: [Vec3; 3], budget: f32) -> bool {
         let n = normal.map(Vec3::normalize_or_zero);
-        if n.contains(&Vec3::ZERO) {
+        if self.spot || n.contains(&Vec3::ZERO) {
             return false;
         }
         let spread = (n[0] - n[1]).length().max((n[1] - n[2]).length()).max((n[2] - n[0]).length());
@@ -259,7 +271,7 @@ mod tests {
         let point = |position| Light::Point {
             position,
             color: Vec3::ONE,
-            attenuation: Attenuation { a0: 1.0, a1: 0.0, a2: 1.0 },
+            attenuation: Attenuation::new(1.0, 0.0, 1.0),
         };
         let far = point(Vec3::new(0.0, 0.0, 100.0));
         // f ≤ 1/(1 + 99²) ≈ 1.02e-4 < 1/255 with ks = 1.

@@ -178,7 +178,11 @@ impl ShadowMaps {
                     Light::Directional { direction, .. } => {
                         directional(tris, (lo, hi), direction, size, slot)
                     }
-                    Light::Point { position, .. } => point(tris, position, extent, size, slot),
+                    // A spot light's map is a point light's: its cone only
+                    // scales what reaches the surface.
+                    Light::Point { position, .. } | Light::Spot { position, .. } => {
+                        point(tris, position, extent, size, slot)
+                    }
                 }
             },
         );

@@ -92,7 +92,7 @@ mod tests {
             .iter()
             .map(|l| match l {
                 Light::Point { position, .. } => *position,
-                Light::Directional { .. } => panic!("area samples are point lights"),
+                _ => panic!("area samples are point lights"),
             })
             .collect()
     }

@@ -48,7 +48,7 @@ pub use primitives::{cube, plane, torus, uv_sphere};
 pub use shadow::{light_position, shadow_matrix, shadow_matrix_f64};
 pub use visibility::{Visibility, Wireframe, WireframeMode};
 pub use zline_shading::{
-    Attenuation, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
+    Attenuation, Cone, Fog, FogCoordinate, FogMode, Light, LightingModel, Material, ShadingMode,
 };
 
 // The command line's and the pipeline's limits (threads, tiles, samples).

@@ -64,7 +64,9 @@ pub fn shadow_matrix_f64(ground: DVec4, light: DVec4) -> DMat4 {
 /// The homogeneous position of a light for [`shadow_matrix`].
 pub fn light_position(light: &zline_shading::Light) -> Vec4 {
     match *light {
-        zline_shading::Light::Point { position, .. } => position.extend(1.0),
+        zline_shading::Light::Point { position, .. } | zline_shading::Light::Spot { position, .. } => {
+            position.extend(1.0)
+        }
         zline_shading::Light::Directional { direction, .. } => (-direction).extend(0.0),
     }
 }

@@ -80,12 +80,12 @@ pub fn demo_scene() -> Scene {
             Light::Point {
                 position: Vec3::new(-3.5, 4.5, 4.0),
                 color: Vec3::new(1.0, 0.82, 0.6) * 1.3,
-                attenuation: Attenuation { a0: 1.0, a1: 0.02, a2: 0.012 },
+                attenuation: Attenuation::new(1.0, 0.02, 0.012),
             },
             Light::Point {
                 position: Vec3::new(4.5, 3.0, 2.5),
                 color: Vec3::new(0.45, 0.6, 1.0),
-                attenuation: Attenuation { a0: 1.0, a1: 0.02, a2: 0.015 },
+                attenuation: Attenuation::new(1.0, 0.02, 0.015),
             },
             Light::Directional { direction: Vec3::new(0.3, -1.0, -0.4), color: Vec3::splat(0.15) },
         ],

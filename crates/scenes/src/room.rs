@@ -130,12 +130,12 @@ pub fn room_scene() -> Scene {
             Light::Point {
                 position: Vec3::new(LAMP_XZ.x, LAMP_LIGHT_Y, LAMP_XZ.y),
                 color: Vec3::new(1.0, 0.86, 0.62) * 1.6,
-                attenuation: Attenuation { a0: 1.0, a1: 0.1, a2: 0.05 },
+                attenuation: Attenuation::new(1.0, 0.1, 0.05),
             },
             Light::Point {
                 position: Vec3::new(3.2, 2.7, 3.0),
                 color: Vec3::new(0.3, 0.34, 0.42),
-                attenuation: Attenuation { a0: 1.0, a1: 0.05, a2: 0.02 },
+                attenuation: Attenuation::new(1.0, 0.05, 0.02),
             },
         ],
         objects,
@@ -478,10 +478,7 @@ mod tests {
         let positions: Vec<Vec3> = scene
             .lights
             .iter()
-            .map(|l| match *l {
-                Light::Point { position, .. } => position,
-                Light::Directional { .. } => panic!("a directional light would cast the walls' shadows"),
-            })
+            .map(|l| l.position().expect("a directional light would cast the walls' shadows"))
             .collect();
         assert!(positions.iter().all(|&p| inside_room(p, 0.2)), "{positions:?}");
         // The lamp's light is the first; its bulb, shade and cord lie above it.

@@ -25,7 +25,7 @@ pub use environment::{
     PREFILTER_LEVELS, SH_COEFFICIENTS, SKY_SUN,
 };
 pub use fog::{Fog, FogCoordinate, FogMode};
-pub use light::{Attenuation, Light};
+pub use light::{Attenuation, Cone, Light};
 pub use material::{Material, Model, ModelChoice};
 pub use model::{LightingModel, LitParts};
 pub use pbr::{

@@ -137,6 +137,12 @@ fn incident(light: &Light, point: Vec3) -> Option<(Vec3, Vec3)> {
             let dist = d.length();
             (dist != 0.0).then(|| (d / dist, color * attenuation.factor(dist)))
         }
+        Light::Spot { position, direction, color, attenuation, cone } => {
+            let d = position - point;
+            let dist = d.length();
+            let cos_axis = direction.normalize_or_zero().dot(-d / dist);
+            (dist != 0.0).then(|| (d / dist, color * (attenuation.factor(dist) * cone.factor(cos_axis))))
+        }
         Light::Directional { direction, color } => Some((-direction.normalize_or_zero(), color)),
     }
 }
@@ -178,9 +184,9 @@ mod tests {
 
     #[test]
     fn attenuation_follows_the_formula_and_clamps_at_one() {
-        let a = Attenuation { a0: 1.0, a1: 0.5, a2: 0.25 };
+        let a = Attenuation::new(1.0, 0.5, 0.25);
         assert_eq!(a.factor(2.0), 1.0 / (1.0 + 1.0 + 1.0));
-        let strong = Attenuation { a0: 0.1, a1: 0.0, a2: 0.0 };
+        let strong = Attenuation::new(0.1, 0.0, 0.0);
         assert_eq!(strong.factor(3.0), 1.0);
     }
 

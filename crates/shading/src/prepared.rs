@@ -4,7 +4,8 @@
 //! evaluates it millions of times with the same lights and materials, so
 //! [`PreparedLights`] does once what does not change per sample: directional
 //! lights get their unit L, point lights whose attenuation is 1 everywhere
-//! skip the distance polynomial, and [`PreparedMaterial`] turns an integer
+//! skip the distance polynomial (and plain ones the range window and the
+//! spot cone), and [`PreparedMaterial`] turns an integer
 //! shininess into repeated squaring instead of `powf` (which measured about
 //! a fifth of a Phong frame). The results agree with `shade_parts` to f32
 //! rounding; a property test checks it.
@@ -12,7 +13,7 @@
 use glam::{Mat4, Vec3};
 
 use crate::environment::{Environment, PreparedEnvironment};
-use crate::light::{Attenuation, Light};
+use crate::light::{Attenuation, Cone, Light};
 use crate::material::{Material, Model};
 use crate::model::{LightingModel, LitParts};
 use crate::pbr::{Microfacet, MicrofacetSums};
@@ -26,14 +27,78 @@ struct Directional {
     index: u32,
 }
 
-/// A point light; `attenuation` is `None` when f(d) = 1 everywhere.
+/// A point or spot light; `attenuation` is `None` when its polynomial is 1
+/// everywhere, `shape` when it has neither a range nor a cone.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Point {
-    position: Vec3,
-    color: Vec3,
-    attenuation: Option<Attenuation>,
+pub(crate) struct Point {
+    pub(crate) position: Vec3,
+    pub(crate) color: Vec3,
+    pub(crate) attenuation: Option<Attenuation>,
+    pub(crate) shape: Option<Shape>,
     /// The light's index in the scene's list (its shadow bit).
-    index: u32,
+    pub(crate) index: u32,
+}
+
+impl Point {
+    /// The light's intensity at distance `dist` along the unit
+    /// `to_light`: its colour times the attenuation polynomial, then
+    /// times its shape's factor. The order the lanes keep
+    /// ([`crate::simd`]'s light fold).
+    #[inline(always)]
+    fn intensity(&self, to_light: Vec3, dist: f32) -> Vec3 {
+        let c = self.color * self.attenuation.map_or(1.0, |a| a.polynomial(dist));
+        match &self.shape {
+            None => c,
+            Some(shape) => c * shape.factor(to_light, dist),
+        }
+    }
+}
+
+/// What limits a point light's reach besides its attenuation polynomial:
+/// the range window and a spot light's cone (SPEC §5.1). Evaluated out of
+/// the kernels' line ([`Shape::factor_lanes`]), so the common point light
+/// costs them one test.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Shape {
+    attenuation: Attenuation,
+    /// The unit axis the spot points along, with its cone's (scale,
+    /// offset).
+    spot: Option<(Vec3, f32, f32)>,
+}
+
+impl Shape {
+    /// The shape of a light with `attenuation` and, for a spot light, its
+    /// unit axis and cone; `None` when both are plain.
+    fn new(attenuation: Attenuation, spot: Option<(Vec3, Cone)>) -> Option<Shape> {
+        let spot = spot.map(|(axis, cone)| {
+            let (scale, offset) = cone.scale_offset();
+            (axis, scale, offset)
+        });
+        (attenuation.range != f32::INFINITY || spot.is_some()).then_some(Shape { attenuation, spot })
+    }
+
+    /// The range window at `dist` times the cone's factor for the unit
+    /// `to_light` (from the surface to the light).
+    #[inline]
+    pub(crate) fn factor(&self, to_light: Vec3, dist: f32) -> f32 {
+        let window = self.attenuation.window(dist);
+        match self.spot {
+            None => window,
+            Some((axis, scale, offset)) => {
+                let c = (-axis.dot(to_light) * scale + offset).clamp(0.0, 1.0);
+                window * (c * c)
+            }
+        }
+    }
+
+    /// [`Self::factor`] for eight lanes, one compiled copy for every
+    /// kernel: the lanes' (x, y, z) of `to_light` and their distances.
+    #[inline(never)]
+    pub(crate) fn factor_lanes(&self, to_light: [[f32; 8]; 3], dist: [f32; 8]) -> [f32; 8] {
+        std::array::from_fn(|k| {
+            self.factor(Vec3::new(to_light[0][k], to_light[1][k], to_light[2][k]), dist[k])
+        })
+    }
 }
 
 /// Lights in the frame where shading happens, ready for per-sample use.
@@ -218,8 +283,15 @@ impl PreparedLights {
                     }
                 }
                 Light::Point { position, color, attenuation } => {
-                    let attenuation = (!attenuation.is_none()).then_some(attenuation);
-                    self.point.push(Point { position, color, attenuation, index });
+                    let shape = Shape::new(attenuation, None);
+                    let attenuation = (!attenuation.is_polynomial_none()).then_some(attenuation);
+                    self.point.push(Point { position, color, attenuation, shape, index });
+                }
+                Light::Spot { position, direction, color, attenuation, cone } => {
+                    let axis = direction.normalize_or_zero();
+                    let shape = Shape::new(attenuation, Some((axis, cone)));
+                    let attenuation = (!attenuation.is_polynomial_none()).then_some(attenuation);
+                    self.point.push(Point { position, color, attenuation, shape, index });
                 }
             }
         }
@@ -248,8 +320,8 @@ impl PreparedLights {
             if dist == 0.0 {
                 continue;
             }
-            let f = p.attenuation.map_or(1.0, |a| a.factor(dist));
-            sum.add(m, normal, view, v / dist, p.color * f);
+            let to_light = v / dist;
+            sum.add(m, normal, view, to_light, p.intensity(to_light, dist));
         }
         let (diffuse, specular) = (sum.diffuse, sum.specular);
         let mat = &m.material;
@@ -323,8 +395,8 @@ impl PreparedLights {
             if dist == 0.0 {
                 continue;
             }
-            let f = p.attenuation.map_or(1.0, |a| a.factor(dist));
-            sums.add((&microfacet, alpha2, f0), normal, view, nv, v / dist, p.color * f);
+            let to_light = v / dist;
+            sums.add((&microfacet, alpha2, f0), normal, view, nv, to_light, p.intensity(to_light, dist));
         }
         let mut light = match &self.environment {
             None => (self.ambient, self.ambient),
@@ -362,10 +434,9 @@ impl PreparedLights {
         self.directional.iter().map(|d| (d.to_light, d.color, d.index))
     }
 
-    /// (position, colour, attenuation unless 1, index in the scene's list)
-    /// of each point light.
-    pub(crate) fn point_lights(&self) -> impl Iterator<Item = (Vec3, Vec3, Option<Attenuation>, u32)> + '_ {
-        self.point.iter().map(|p| (p.position, p.color, p.attenuation, p.index))
+    /// The point and spot lights.
+    pub(crate) fn point_lights(&self) -> &[Point] {
+        &self.point
     }
 
     /// [`Self::shade_parts`], summed and clamped to [0, 1].
@@ -424,13 +495,17 @@ mod tests {
         fn prepared_agrees_with_the_plain_model(
             p in vec3(), n in unit(), eye in vec3(), light_pos in vec3(), dir in unit(),
             ns in prop_oneof![Just(1.0f32), Just(16.0), Just(64.0), 0.5f32..100.0],
-            a1 in 0.0f32..1.0, a2 in 0.0f32..1.0,
+            a1 in 0.0f32..1.0, a2 in 0.0f32..1.0, range in prop_oneof![Just(f32::INFINITY), 0.5f32..20.0],
+            spot_pos in vec3(), axis in unit(), inner in 0.0f32..1.0, width in 0.01f32..0.5,
         ) {
+            let attenuation = Attenuation::new(1.0, a1, a2).with_range(range);
+            let cone = Cone { inner, outer: inner + width };
             let model = LightingModel {
                 ambient: Vec3::new(0.1, 0.2, 0.3),
                 lights: vec![
-                    Light::Point { position: light_pos, color: Vec3::new(1.0, 0.5, 0.25), attenuation: Attenuation { a0: 1.0, a1, a2 } },
+                    Light::Point { position: light_pos, color: Vec3::new(1.0, 0.5, 0.25), attenuation },
                     Light::Directional { direction: dir * 3.0, color: Vec3::new(0.3, 0.6, 0.9) },
+                    Light::Spot { position: spot_pos, direction: axis * 2.0, color: Vec3::new(0.5, 0.7, 0.2), attenuation, cone },
                 ],
                 environment: None,
             };

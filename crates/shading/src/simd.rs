@@ -13,7 +13,7 @@ use std::ops::{Add, Mul};
 
 use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 
-use crate::prepared::{pow_by_squaring, PreparedLights, PreparedMaterial, Shininess};
+use crate::prepared::{pow_by_squaring, Point, PreparedLights, PreparedMaterial, Shininess};
 use crate::simd_pbr::{MapTexels, MicrofacetX8};
 use crate::vec3x8::all_lanes;
 pub use crate::vec3x8::Vec3x8;
@@ -147,20 +147,25 @@ impl PreparedLights {
             }
             sums = add(sums, Vec3x8::splat(to_light), intensity, visible(k));
         }
-        for (position, color, attenuation, k) in self.point_lights() {
+        for &Point { position, color, attenuation, ref shape, index: k } in self.point_lights() {
             let v = Vec3x8::splat(position).sub(point);
             let dist = v.dot(v).sqrt();
             let present = dist.cmp_gt(f32x8::ZERO) & visible(k);
+            let to_light = v.div(dist);
             let mut intensity = Vec3x8::splat(color);
             if let Some(a) = attenuation {
                 let denom = f32x8::splat(a.a0) + dist * (f32x8::splat(a.a1) + dist * f32x8::splat(a.a2));
                 let f = denom.cmp_gt(f32x8::ONE).blend(f32x8::ONE / denom, f32x8::ONE);
                 intensity = intensity.scale(f);
             }
+            if let Some(shape) = shape {
+                let f = shape.factor_lanes(to_light.to_lanes(), dist.to_array());
+                intensity = intensity.scale(f32x8::from(f));
+            }
             if let Some(f) = share(k) {
                 intensity = intensity.scale(f);
             }
-            sums = add(sums, v.div(dist), intensity, present);
+            sums = add(sums, to_light, intensity, present);
         }
         sums
     }
@@ -326,6 +331,19 @@ mod tests {
         }
     }
 
+    /// A spot light with a range whose cone's edge and range cross the
+    /// test points: lanes fall inside the cone, within its falloff and
+    /// outside it, within and past the range.
+    fn spot_light() -> Light {
+        Light::Spot {
+            position: Vec3::new(0.0, 1.5, -1.0),
+            direction: Vec3::new(0.1, -1.0, -0.6),
+            color: Vec3::new(0.7, 0.9, 0.4),
+            attenuation: Attenuation::new(1.0, 0.0, 0.2).with_range(3.0),
+            cone: crate::light::Cone { inner: 0.15, outer: 0.4 },
+        }
+    }
+
     fn every_lane_matches_with(environment: Option<crate::environment::Environment>) {
         let model = LightingModel {
             ambient: Vec3::new(0.1, 0.15, 0.2),
@@ -333,7 +351,7 @@ mod tests {
                 Light::Point {
                     position: Vec3::new(1.0, 2.0, 0.5),
                     color: Vec3::new(1.0, 0.8, 0.6),
-                    attenuation: Attenuation { a0: 1.0, a1: 0.3, a2: 0.1 },
+                    attenuation: Attenuation::new(1.0, 0.3, 0.1),
                 },
                 Light::Point {
                     position: Vec3::new(-2.0, 0.0, -1.0),
@@ -341,6 +359,7 @@ mod tests {
                     attenuation: Attenuation::NONE,
                 },
                 Light::Directional { direction: Vec3::new(0.2, -1.0, -0.5), color: Vec3::new(0.3, 0.3, 0.5) },
+                spot_light(),
             ],
             environment,
         };
@@ -392,9 +411,10 @@ mod tests {
                 Light::Point {
                     position: Vec3::new(1.0, 2.0, 0.5),
                     color: Vec3::new(1.0, 0.8, 0.6),
-                    attenuation: Attenuation { a0: 1.0, a1: 0.3, a2: 0.1 },
+                    attenuation: Attenuation::new(1.0, 0.3, 0.1),
                 },
                 Light::Directional { direction: Vec3::new(0.2, -1.0, -0.5), color: Vec3::new(0.9, 0.9, 1.5) },
+                spot_light(),
             ],
             environment,
         };

@@ -112,8 +112,36 @@ impl MaterialF64 {
 /// A light in eye space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum EyeLight {
-    Point { position: DVec3, color: DVec3, a: [f64; 3] },
-    Directional { to_light: DVec3, color: DVec3 },
+    /// A point light, or a spot light with its cone.
+    Point {
+        position: DVec3,
+        color: DVec3,
+        a: [f64; 3],
+        range: f64,
+        spot: Option<SpotF64>,
+    },
+    Directional {
+        to_light: DVec3,
+        color: DVec3,
+    },
+}
+
+/// A spot light's unit axis and the cosines of its cone's half-angles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct SpotF64 {
+    axis: DVec3,
+    cos_inner: f64,
+    cos_outer: f64,
+}
+
+impl SpotF64 {
+    /// The cone's falloff for the unit vector from the light to the
+    /// surface (SPEC §5.1: KHR_lights_punctual's squared ramp between the
+    /// cosines, its difference kept ≥ 0.001).
+    fn factor(&self, from_light: DVec3) -> f64 {
+        let t = (self.axis.dot(from_light) - self.cos_outer) / (self.cos_inner - self.cos_outer).max(0.001);
+        t.clamp(0.0, 1.0).powi(2)
+    }
 }
 
 /// What a Cook–Torrance sample reads from its material's occlusion and
@@ -207,6 +235,19 @@ impl EyeLights {
                     position: eye_from_world.transform_point3(position.as_dvec3()),
                     color: color.as_dvec3(),
                     a: [at.a0, at.a1, at.a2].map(f64::from),
+                    range: f64::from(at.range),
+                    spot: None,
+                },
+                Light::Spot { position, direction, color, attenuation: at, cone } => EyeLight::Point {
+                    position: eye_from_world.transform_point3(position.as_dvec3()),
+                    color: color.as_dvec3(),
+                    a: [at.a0, at.a1, at.a2].map(f64::from),
+                    range: f64::from(at.range),
+                    spot: Some(SpotF64 {
+                        axis: eye_from_world.transform_vector3(direction.as_dvec3()).normalize_or_zero(),
+                        cos_inner: f64::from(cone.inner).cos(),
+                        cos_outer: f64::from(cone.outer).cos(),
+                    }),
                 },
                 Light::Directional { direction, color } => EyeLight::Directional {
                     to_light: -eye_from_world.transform_vector3(direction.as_dvec3()).normalize_or_zero(),
@@ -278,10 +319,14 @@ impl EyeLights {
     /// `point` itself is left out.
     fn incident(&self, point: DVec3) -> impl Iterator<Item = (&EyeLight, DVec3, DVec3)> + '_ {
         self.lights.iter().filter_map(move |light| match *light {
-            EyeLight::Point { position, color, a } => {
+            EyeLight::Point { position, color, a, range, spot } => {
                 let d = position - point;
                 let dist = d.length();
-                (dist != 0.0).then(|| (light, d / dist, color * attenuation(a, dist)))
+                let cone = |l: DVec3| spot.map_or(1.0, |s| s.factor(-l));
+                (dist != 0.0).then(|| {
+                    let l = d / dist;
+                    (light, l, color * (attenuation(a, dist) * window(range, dist) * cone(l)))
+                })
             }
             EyeLight::Directional { to_light, color } => Some((light, to_light, color)),
         })
@@ -382,6 +427,16 @@ impl EyeLights {
 }
 
 /// f(d) = min(1, 1/(a0 + a1·d + a2·d²)); 1 where the denominator is ≤ 1.
+/// KHR_lights_punctual's range window clamp(1 − (d/range)⁴, 0, 1) (SPEC
+/// §5.1); 1 for an infinite range.
+fn window(range: f64, d: f64) -> f64 {
+    if range.is_infinite() {
+        1.0
+    } else {
+        (1.0 - (d / range).powi(4)).clamp(0.0, 1.0)
+    }
+}
+
 fn attenuation(a: [f64; 3], d: f64) -> f64 {
     let denom = a[0] + d * (a[1] + d * a[2]);
     if denom > 1.0 {
@@ -408,7 +463,7 @@ mod tests {
             opacity: 1.0,
             model: ModelF64::Basic,
         };
-        let at = Attenuation { a0: 1.0, a1: 0.5, a2: 0.25 };
+        let at = Attenuation::new(1.0, 0.5, 0.25);
         let light = Light::Point { position: Vec3::new(0.0, 0.0, -3.0), color: Vec3::ONE, attenuation: at };
         let lights = EyeLights::new(Vec3::ZERO, &[light], &DMat4::IDENTITY, SplitSum::Integral);
         // Surface at z = −5 facing the eye: N = L = V = H = +z, d = 2, f = 1/3.
@@ -453,7 +508,7 @@ mod tests {
         // environment term with E_s = f0·A + B at N·V = 1.
         let m = cook_torrance(Vec3::new(0.8, 0.4, 0.2), 0.5, 0.5, Distribution::Ggx);
         let ModelF64::CookTorrance(microfacet) = m.model else { unreachable!() };
-        let at = Attenuation { a0: 1.0, a1: 0.5, a2: 0.25 };
+        let at = Attenuation::new(1.0, 0.5, 0.25);
         let light = Light::Point { position: Vec3::new(0.0, 0.0, -3.0), color: Vec3::ONE, attenuation: at };
         let ambient = Vec3::new(0.2, 0.3, 0.4);
         let lights = EyeLights::new(ambient, &[light], &DMat4::IDENTITY, SplitSum::Integral);

@@ -306,6 +306,9 @@ fn light_info(light: &Light) -> LightInfo {
         Light::Point { position, color, .. } => {
             LightInfo { kind: "point", vector: position.to_array(), color: color.to_array() }
         }
+        Light::Spot { position, color, .. } => {
+            LightInfo { kind: "spot", vector: position.to_array(), color: color.to_array() }
+        }
         Light::Directional { direction, color } => {
             LightInfo { kind: "directional", vector: direction.to_array(), color: color.to_array() }
         }

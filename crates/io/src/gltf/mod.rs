@@ -86,10 +86,12 @@
 //! **Lights** (KHR_lights_punctual), colour = color × intensity:
 //! point → [`Light::Point`] at the node's origin with attenuation
 //! a0 = a1 = 0, a2 = 1, the inverse-square law glTF prescribes (SPEC §5's
-//! clamp to 1 applies within unit distance); `range` is ignored (a smooth
-//! cut-off is not in the model) with a warning. Directional →
-//! [`Light::Directional`] along the node's −z in world space. Spot → a
-//! point light, with a warning that the cone is ignored.
+//! clamp to 1 applies within unit distance), and `range` as the
+//! attenuation's range window (SPEC §5.1). Spot → [`Light::Spot`] the same
+//! way, pointing along the node's −z, with its cone's inner and outer
+//! angles (a cone the extension forbids, e.g. inner ≥ outer or outer past
+//! π/2, is warned about and clamped into one). Directional →
+//! [`Light::Directional`] along the node's −z in world space.
 //!
 //! Vertex colours: COLOR_0 (RGB; an alpha below 1 is warned about and
 //! ignored) becomes [`Mesh::colors`], a per-vertex factor on kd and ka as
@@ -108,7 +110,7 @@
 //! **Warned and ignored:** COLOR_0 alpha, MIRRORED_REPEAT, primitive
 //! modes other than TRIANGLES, skins (drawn in the bind pose), morph
 //! targets (drawn without), animations (drawn at rest), extensions other
-//! than the two above, light ranges and spot cones, a node reached twice
+//! than the two above, a node reached twice
 //! (the node graph must be a tree). An `extensionsRequired` entry that the
 //! `gltf` crate does not know is an error: the file says it cannot be drawn
 //! without it. A node whose world transform is not finite, or collapses
@@ -133,7 +135,7 @@ use std::sync::Arc;
 use glam::{Mat4, Vec3};
 use gltf::mesh::Mode;
 use zline_scene::{Camera, Mesh, Object, Projection};
-use zline_shading::{Attenuation, Light, Sampler, Texture};
+use zline_shading::{Attenuation, Cone, Light, Sampler, Texture};
 
 use crate::culling::default_culling;
 use crate::error::SceneError;
@@ -585,20 +587,42 @@ impl Loader<'_> {
             self.warn(format!("light {index} has an unusable colour × intensity {color}; ignored"));
             return;
         }
-        if light.range().is_some() {
-            self.warn(format!("light {index}: range is not supported; the light reaches everywhere"));
-        }
-        let inverse_square = Attenuation { a0: 0.0, a1: 0.0, a2: 1.0 };
-        let position = world.transform_point3(Vec3::ZERO);
-        let added = match light.kind() {
-            Kind::Directional => {
-                let direction = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
-                (direction != Vec3::ZERO).then_some(Light::Directional { direction, color })
+        let range = match light.range() {
+            Some(r) if r.is_finite() && r > 0.0 => r,
+            Some(r) => {
+                self.warn(format!(
+                    "light {index} has range {r}, not a number > 0; the light reaches everywhere"
+                ));
+                f32::INFINITY
             }
-            Kind::Point => Some(Light::Point { position, color, attenuation: inverse_square }),
-            Kind::Spot { .. } => {
-                self.warn(format!("light {index}: spot cone is not supported; drawn as a point light"));
-                Some(Light::Point { position, color, attenuation: inverse_square })
+            None => f32::INFINITY,
+        };
+        let attenuation = Attenuation::new(0.0, 0.0, 1.0).with_range(range);
+        let position = world.transform_point3(Vec3::ZERO);
+        let direction = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
+        let added = match light.kind() {
+            Kind::Directional => (direction != Vec3::ZERO).then_some(Light::Directional { direction, color }),
+            Kind::Point => Some(Light::Point { position, color, attenuation }),
+            Kind::Spot { inner_cone_angle, outer_cone_angle } => {
+                let cone = Cone { inner: inner_cone_angle, outer: outer_cone_angle };
+                let cone = match cone.check() {
+                    Ok(()) => cone,
+                    Err(why) => {
+                        let clamped = clamped_cone(cone);
+                        self.warn(format!(
+                            "light {index}: {why}; drawn with inner {}, outer {}",
+                            clamped.inner, clamped.outer
+                        ));
+                        clamped
+                    }
+                };
+                (direction != Vec3::ZERO).then_some(Light::Spot {
+                    position,
+                    direction,
+                    color,
+                    attenuation,
+                    cone,
+                })
             }
         };
         match added {
@@ -649,4 +673,14 @@ impl TextureSource for Loader<'_> {
     fn path(&self) -> &Path {
         self.path
     }
+}
+
+/// A cone the extension allows (0 ≤ inner < outer ≤ π/2) near `cone`:
+/// angles that are not finite take glTF's defaults, the outer angle is
+/// clamped to [10⁻³, π/2] and the inner one below it.
+fn clamped_cone(cone: Cone) -> Cone {
+    let pick = |a: f32, default: f32| if a.is_finite() { a } else { default };
+    let outer = pick(cone.outer, Cone::GLTF_DEFAULT.outer).clamp(1e-3, std::f32::consts::FRAC_PI_2);
+    let inner = pick(cone.inner, 0.0).clamp(0.0, outer * 0.999);
+    Cone { inner, outer }
 }

@@ -1,4 +1,4 @@
-//! The `[[lights]]` entries of a scene file: point and directional lights,
+//! The `[[lights]]` entries of a scene file: point, spot and directional lights,
 //! and area lights (`rect`, `disc`) expanded into their k × k samples — k
 //! given, or chosen once the scene is built (`samples = "auto"`,
 //! [`zline_scene::choose_area_samples`]).
@@ -8,7 +8,7 @@ use std::path::Path;
 use glam::Vec3;
 use serde::Deserialize;
 use zline_scene::{choose_area_samples, AreaLight, AreaShape, Scene, ShadowMode, MAX_AREA_SAMPLES_PER_SIDE};
-use zline_shading::{Attenuation, Light};
+use zline_shading::{Attenuation, Cone, Light};
 
 use super::checks::{Checker, Result, S};
 
@@ -41,6 +41,7 @@ pub(super) enum LightEntry {
 #[serde(rename_all = "lowercase")]
 pub(super) enum LightKind {
     Point,
+    Spot,
     Directional,
     Rect,
     Disc,
@@ -51,6 +52,7 @@ impl LightKind {
     fn name(self) -> &'static str {
         match self {
             LightKind::Point => "point",
+            LightKind::Spot => "spot",
             LightKind::Directional => "directional",
             LightKind::Rect => "rect",
             LightKind::Disc => "disc",
@@ -67,6 +69,9 @@ pub(super) struct LightDef {
     direction: Option<S<[f32; 3]>>,
     color: Option<S<[f32; 3]>>,
     attenuation: Option<S<[f32; 3]>>,
+    range: Option<S<f32>>,
+    inner_angle: Option<S<f32>>,
+    outer_angle: Option<S<f32>>,
     u: Option<S<[f32; 3]>>,
     v: Option<S<[f32; 3]>>,
     normal: Option<S<[f32; 3]>>,
@@ -100,13 +105,18 @@ pub(super) fn light(check: &Checker<'_>, def: &S<LightDef>, key: &str) -> Result
         area_only("normal", l.normal.is_some())?;
         area_only("radius", l.radius.is_some())?;
     }
+    if !matches!(l.kind, LightKind::Spot) {
+        check.not_allowed(&l.inner_angle, key, "inner_angle", "lights other than spot lights")?;
+        check.not_allowed(&l.outer_angle, key, "outer_angle", "lights other than spot lights")?;
+    }
     let attenuation = match &l.attenuation {
         Some(a) => {
             let [a0, a1, a2] = check.vec3_in(a, &format!("{key}.attenuation"), 0.0, f32::INFINITY)?.into();
-            Attenuation { a0, a1, a2 }
+            Attenuation::new(a0, a1, a2)
         }
         None => Attenuation::NONE,
-    };
+    }
+    .with_range(check.positive(&l.range, &format!("{key}.range"), f32::INFINITY)?);
     let position = || match &l.position {
         Some(p) => check.vec3(p, &format!("{key}.position")),
         None => Err(check.error(def.span(), key, format!("a {} light needs 'position'", l.kind.name()))),
@@ -183,9 +193,26 @@ pub(super) fn light(check: &Checker<'_>, def: &S<LightDef>, key: &str) -> Result
             let position = position()?;
             Ok(LightEntry::Lights(vec![Light::Point { position, color, attenuation }]))
         }
+        LightKind::Spot => {
+            let position = position()?;
+            let direction = vector(&l.direction, "direction")?;
+            let degrees = |v: &Option<S<f32>>, name: &str, default: f32| {
+                check.optional(v, &format!("{key}.{name}"), default, 0.0, 90.0)
+            };
+            let inner = degrees(&l.inner_angle, "inner_angle", 0.0)?;
+            let outer = degrees(&l.outer_angle, "outer_angle", 45.0)?;
+            if inner >= outer {
+                let at = l.inner_angle.as_ref().or(l.outer_angle.as_ref());
+                let message = format!("must be less than outer_angle, got {inner} ≥ {outer} degrees");
+                return Err(check.value_error(at, def, &format!("{key}.inner_angle"), message));
+            }
+            let cone = Cone { inner: inner.to_radians(), outer: outer.to_radians() };
+            Ok(LightEntry::Lights(vec![Light::Spot { position, direction, color, attenuation, cone }]))
+        }
         LightKind::Directional => {
             check.not_allowed(&l.position, key, "position", "directional lights")?;
             check.not_allowed(&l.attenuation, key, "attenuation", "directional lights")?;
+            check.not_allowed(&l.range, key, "range", "directional lights")?;
             let Some(d) = &l.direction else {
                 return Err(check.error(def.span(), key, "a directional light needs 'direction'"));
             };

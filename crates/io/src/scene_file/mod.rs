@@ -97,6 +97,14 @@ use view::{CameraDef, EnvironmentDef, FogDef};
 /// position = [2, 3, 4]              # required for point lights
 /// color = [1, 0.9, 0.8]             # Il, ≥ 0; default white
 /// attenuation = [1.0, 0.05, 0.0]    # a0 a1 a2 ≥ 0; default [1, 0, 0] (none)
+/// range = 10                        # > 0: the light fades out by this distance (KHR_lights_punctual's
+///                                   #   window, SPEC §5.1); default none. Point, spot and area lights
+/// [[lights]]
+/// type = "spot"                     # a point light shining into a cone (SPEC §5.1)
+/// position = [0, 4, 0]              # required
+/// direction = [0, -1, 0]            # required: the way the spot points
+/// inner_angle = 20                  # degrees from the axis, full intensity within; default 0
+/// outer_angle = 30                  # degrees, none past it, ≤ 90 and > inner_angle; default 45
 /// [[lights]]
 /// type = "directional"
 /// direction = [-1, -1, -1]          # required: the way the light travels

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use glam::{Mat4, Quat, Vec2, Vec3};
 use zline_io::{load_gltf, load_gltf_with_warnings, scene_for_gltf, GltfScene, FRAMING_FOVY_DEGREES};
-use zline_scene::{Attenuation, Light, Projection, RenderSettings};
+use zline_scene::{Attenuation, Cone, Light, Projection, RenderSettings};
 use zline_shading::{Filter, Sampler, Wrap};
 
 use crate::{check_message, repo};
@@ -237,38 +237,45 @@ fn the_first_camera_is_taken_and_an_infinite_one_gets_a_fitted_far_plane() {
 }
 
 #[test]
-fn punctual_lights_become_point_and_directional_lights() {
+fn punctual_lights_become_point_spot_and_directional_lights() {
     let path = quad_gltf(
         "lights",
         r#""extensionsUsed": ["KHR_lights_punctual"],
         "extensions": {"KHR_lights_punctual": {"lights": [
             {"type": "point", "color": [1, 0.5, 0], "intensity": 2},
             {"type": "directional", "intensity": 3},
-            {"type": "spot", "range": 5, "spot": {"outerConeAngle": 0.5}}
+            {"type": "spot", "range": 5, "spot": {"innerConeAngle": 0.25, "outerConeAngle": 0.5}},
+            {"type": "spot", "spot": {"innerConeAngle": 0.8, "outerConeAngle": 0.5}}
         ]}},
         "nodes": [
             {"mesh": 0},
             {"translation": [1, 2, 3], "extensions": {"KHR_lights_punctual": {"light": 0}}},
             {"rotation": [0, 0.7071068, 0, 0.7071068], "extensions": {"KHR_lights_punctual": {"light": 1}}},
-            {"extensions": {"KHR_lights_punctual": {"light": 2}}}
+            {"rotation": [0, 0.7071068, 0, 0.7071068], "extensions": {"KHR_lights_punctual": {"light": 2}}},
+            {"extensions": {"KHR_lights_punctual": {"light": 3}}}
         ],
-        "scenes": [{"nodes": [0, 1, 2, 3]}]"#,
+        "scenes": [{"nodes": [0, 1, 2, 3, 4]}]"#,
     );
     let (gltf, warnings) = load_gltf_with_warnings(&path).unwrap();
-    let inverse_square = Attenuation { a0: 0.0, a1: 0.0, a2: 1.0 };
-    assert_eq!(gltf.lights.len(), 3);
+    let inverse_square = Attenuation::new(0.0, 0.0, 1.0);
+    assert_eq!(gltf.lights.len(), 4);
     let Light::Point { position, color, attenuation } = gltf.lights[0] else { panic!() };
     check_close(position, Vec3::new(1.0, 2.0, 3.0));
     assert_eq!((color, attenuation), (Vec3::new(2.0, 1.0, 0.0), inverse_square));
     let Light::Directional { direction, color } = gltf.lights[1] else { panic!() };
     check_close(direction, Vec3::NEG_X); // −z turned 90° about y
     assert_eq!(color, Vec3::splat(3.0));
-    assert!(matches!(gltf.lights[2], Light::Point { attenuation, .. } if attenuation == inverse_square));
-    assert_eq!(warnings.len(), 2, "{warnings:?}");
-    check_message(&warnings[0], &["quad.gltf", "light 2: range is not supported"]);
-    check_message(&warnings[1], &["quad.gltf", "light 2: spot cone is not supported"]);
+    let Light::Spot { direction, attenuation, cone, .. } = gltf.lights[2] else { panic!() };
+    check_close(direction, Vec3::NEG_X);
+    assert_eq!(attenuation, inverse_square.with_range(5.0));
+    assert_eq!(cone, Cone { inner: 0.25, outer: 0.5 });
+    // A cone the extension forbids is warned about and clamped into one.
+    let Light::Spot { cone, .. } = gltf.lights[3] else { panic!() };
+    assert!(cone.check().is_ok() && cone.outer == 0.5 && cone.inner < 0.5, "{cone:?}");
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    check_message(&warnings[0], &["quad.gltf", "light 3: cone angles must satisfy", "drawn with inner"]);
     let scene = scene_for_gltf(gltf, RenderSettings::default());
-    assert_eq!(scene.lights.len(), 3, "the file's lights replace the default ones");
+    assert_eq!(scene.lights.len(), 4, "the file's lights replace the default ones");
 }
 
 #[test]

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use glam::Vec3;
 use zline_io::{default_lights, load_scene_with_options, LoadOptions, SceneError, DEFAULT_AMBIENT};
 use zline_scene::{
-    Attenuation, DepthMode, FogCoordinate, FogMode, GouraudClamp, Interpolation, Light, LightingSides,
+    Attenuation, Cone, DepthMode, FogCoordinate, FogMode, GouraudClamp, Interpolation, Light, LightingSides,
     Projection, RenderSettings, Scene, ShadingMode,
 };
 
@@ -55,6 +55,13 @@ attenuation = [1.0, 0.05, 0.01]
 [[lights]]
 type = "directional"
 direction = [-1, -1, -1]
+[[lights]]
+type = "spot"
+position = [0, 4, 0]
+direction = [0, -1, 0]
+range = 12
+inner_angle = 20
+outer_angle = 30
 [[objects]]
 model = {model:?}
 translate = [1, 2, 3]
@@ -91,9 +98,16 @@ radius = 2
             Light::Point {
                 position: Vec3::new(2.0, 3.0, 4.0),
                 color: Vec3::new(1.0, 0.9, 0.8),
-                attenuation: Attenuation { a0: 1.0, a1: 0.05, a2: 0.01 }
+                attenuation: Attenuation::new(1.0, 0.05, 0.01)
             },
             Light::Directional { direction: Vec3::splat(-1.0), color: Vec3::ONE },
+            Light::Spot {
+                position: Vec3::new(0.0, 4.0, 0.0),
+                direction: Vec3::NEG_Y,
+                color: Vec3::ONE,
+                attenuation: Attenuation::NONE.with_range(12.0),
+                cone: Cone { inner: 20f32.to_radians(), outer: 30f32.to_radians() },
+            },
         ]
     );
     // two.obj has two meshes: both objects get both, sharing the loaded meshes.
@@ -354,7 +368,38 @@ fn bad_lights_are_rejected() {
         &light("type = \"point\"\nposition = [0, 1, 0]\nattenuation = [1, -1, 0]"),
         &["lights[0].attenuation"],
     );
-    check_scene_error("kind.toml", &light("type = \"spot\""), &["unknown variant `spot`"]);
+    check_scene_error("kind.toml", &light("type = \"cone\""), &["unknown variant `cone`"]);
+    check_scene_error(
+        "spotdir.toml",
+        &light("type = \"spot\"\nposition = [0, 1, 0]"),
+        &["lights[0]: a spot light needs 'direction'"],
+    );
+    let spot = "type = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, -1, 0]";
+    check_scene_error(
+        "cone.toml",
+        &light(&format!("{spot}\ninner_angle = 40\nouter_angle = 30")),
+        &["line 5, column 15: lights[0].inner_angle: must be less than outer_angle, got 40 ≥ 30 degrees"],
+    );
+    check_scene_error(
+        "wide.toml",
+        &light(&format!("{spot}\nouter_angle = 120")),
+        &["lights[0].outer_angle: must be in [0, 90], got 120"],
+    );
+    check_scene_error(
+        "pointcone.toml",
+        &light("type = \"point\"\nposition = [0, 1, 0]\nouter_angle = 30"),
+        &["lights[0].outer_angle: does not apply to lights other than spot lights"],
+    );
+    check_scene_error(
+        "range.toml",
+        &light("type = \"point\"\nposition = [0, 1, 0]\nrange = 0"),
+        &["lights[0].range: must be > 0, got 0"],
+    );
+    check_scene_error(
+        "sunrange.toml",
+        &light("type = \"directional\"\ndirection = [0, -1, 0]\nrange = 3"),
+        &["lights[0].range: does not apply to directional lights"],
+    );
 }
 
 #[test]

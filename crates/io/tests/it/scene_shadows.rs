@@ -16,7 +16,7 @@ fn area_lights_become_their_samples() {
     );
     let scene = load_scene(&temp_file("area.toml", &text)).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.lights.len(), 4 + 16, "2 × 2 rect samples and the disc's default 4 × 4");
-    let attenuation = Attenuation { a0: 1.0, a1: 0.5, a2: 0.0 };
+    let attenuation = Attenuation::new(1.0, 0.5, 0.0);
     let color = Vec3::new(0.2, 0.1, 0.4);
     for (light, (x, z)) in scene.lights.iter().zip([(-0.5, -0.25), (0.5, -0.25), (-0.5, 0.25), (0.5, 0.25)]) {
         assert_eq!(*light, Light::Point { position: Vec3::new(x, 3.0, z), color, attenuation });

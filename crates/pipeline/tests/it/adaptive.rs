@@ -42,7 +42,7 @@ fn shiny_scene(mode: ShadingMode, light: Vec3, color: Vec3, a2: f32, distance: f
         ..object(Arc::new(sphere), Some(mode))
     };
     let lights = vec![
-        Light::Point { position: light, color, attenuation: Attenuation { a0: 1.0, a1: 0.0, a2 } },
+        Light::Point { position: light, color, attenuation: Attenuation::new(1.0, 0.0, a2) },
         Light::Directional { direction: Vec3::new(-0.2, -0.3, -1.0), color: Vec3::splat(0.1) },
     ];
     let mut s = scene(

@@ -13,7 +13,7 @@ fn test_scene(mode: ShadingMode, interpolation: Interpolation) -> zline_scene::S
         Light::Point {
             position: Vec3::new(1.0, 2.0, 0.0),
             color: Vec3::new(1.0, 0.8, 0.6),
-            attenuation: Attenuation { a0: 1.0, a1: 0.1, a2: 0.05 },
+            attenuation: Attenuation::new(1.0, 0.1, 0.05),
         },
         Light::Directional { direction: Vec3::new(-0.3, -0.2, -1.0), color: Vec3::new(0.2, 0.3, 0.5) },
     ];

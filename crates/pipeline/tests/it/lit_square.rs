@@ -11,7 +11,7 @@
 //! is that triangle's left edge in window space).
 
 use glam::{DVec3, Vec3};
-use zline_shading::{Attenuation, Light, Material, ShadingMode};
+use zline_shading::{Attenuation, Cone, Light, Material, ShadingMode};
 
 use crate::support::{draw, object, quantize_robust, scene, square};
 
@@ -30,13 +30,19 @@ fn v(a: [f64; 3]) -> DVec3 {
 
 /// SPEC §5 in f64 for one point light, the eye at the origin, unclamped.
 fn lighting(p: DVec3, n: DVec3) -> DVec3 {
+    lighting_shaped(p, n, |_, _| 1.0)
+}
+
+/// [`lighting`] with the light's intensity also scaled by `shape(unit
+/// vector from the light to p, distance)`: a range window, a spot cone.
+fn lighting_shaped(p: DVec3, n: DVec3, shape: impl Fn(DVec3, f64) -> f64) -> DVec3 {
     let to_light = v(LIGHT) - p;
     let d = to_light.length();
     let l = to_light / d;
     let view = (-p).normalize();
     let h = (l + view).normalize();
     let [a0, a1, a2] = ATTENUATION;
-    let f = (1.0 / (a0 + a1 * d + a2 * d * d)).min(1.0);
+    let f = (1.0 / (a0 + a1 * d + a2 * d * d)).min(1.0) * shape(-l, d);
     let n_dot_l = n.dot(l).max(0.0);
     let spec = if n_dot_l > 0.0 { n.dot(h).max(0.0).powf(NS) } else { 0.0 };
     v(KA) * v(AMBIENT) + f * v(LIGHT_COLOR) * (v(KD) * n_dot_l + v(KS) * spec)
@@ -44,6 +50,16 @@ fn lighting(p: DVec3, n: DVec3) -> DVec3 {
 
 #[track_caller]
 fn check_centre(mode: ShadingMode, expected: DVec3) {
+    let light = Light::Point {
+        position: Vec3::from_array(LIGHT.map(|x| x as f32)),
+        color: Vec3::from_array(LIGHT_COLOR.map(|x| x as f32)),
+        attenuation: Attenuation::new(1.0, 0.2, 0.5),
+    };
+    check_centre_lit(mode, light, expected);
+}
+
+#[track_caller]
+fn check_centre_lit(mode: ShadingMode, light: Light, expected: DVec3) {
     let material = Material {
         ka: Vec3::from_array(KA.map(|x| x as f32)),
         kd: Vec3::from_array(KD.map(|x| x as f32)),
@@ -51,11 +67,6 @@ fn check_centre(mode: ShadingMode, expected: DVec3) {
         ns: NS as f32,
         opacity: 1.0,
         ..Material::default()
-    };
-    let light = Light::Point {
-        position: Vec3::from_array(LIGHT.map(|x| x as f32)),
-        color: Vec3::from_array(LIGHT_COLOR.map(|x| x as f32)),
-        attenuation: Attenuation { a0: 1.0, a1: 0.2, a2: 0.5 },
     };
     let s = scene(
         65,
@@ -87,6 +98,36 @@ fn gouraud_centre_averages_the_diagonal_vertices() {
 fn flat_centre_is_the_lower_right_triangles_centroid() {
     let centroid = DVec3::new(1.0 / 3.0, -1.0 / 3.0, -2.0);
     check_centre(ShadingMode::Flat, lighting(centroid, DVec3::Z));
+}
+
+/// The same light as a spot with a range (SPEC §5.1), aimed so that the
+/// centre lies within the cone's falloff (about 0.24 rad off its axis,
+/// between 0.15 and 0.4) and at 0.56 of its range.
+#[test]
+fn a_spot_light_with_a_range_scales_the_centre_by_its_window_and_cone() {
+    let (inner, outer, range) = (0.15f64, 0.4f64, 2.5f64);
+    let aim = DVec3::new(0.2, 0.3, -2.0);
+    let axis = (aim - v(LIGHT)).normalize();
+    let shape = |from_light: DVec3, d: f64| {
+        let window = (1.0 - (d / range).powi(4)).clamp(0.0, 1.0);
+        let t = (axis.dot(from_light) - outer.cos()) / (inner.cos() - outer.cos());
+        window * t.clamp(0.0, 1.0).powi(2)
+    };
+    let centre = DVec3::new(0.0, 0.0, -2.0);
+    let (from_light, d) = ((centre - v(LIGHT)).normalize(), (centre - v(LIGHT)).length());
+    let share = shape(from_light, d);
+    assert!(0.3 < share && share < 0.6, "the centre is within the falloff and the window: {share}");
+    let light = Light::Spot {
+        position: Vec3::from_array(LIGHT.map(|x| x as f32)),
+        direction: (aim - v(LIGHT)).as_vec3(),
+        color: Vec3::from_array(LIGHT_COLOR.map(|x| x as f32)),
+        attenuation: Attenuation::new(1.0, 0.2, 0.5).with_range(range as f32),
+        cone: Cone { inner: inner as f32, outer: outer as f32 },
+    };
+    check_centre_lit(ShadingMode::Phong, light, lighting_shaped(centre, DVec3::Z, shape));
+    // Flat shading lights the lower-right triangle's centroid.
+    let centroid = DVec3::new(1.0 / 3.0, -1.0 / 3.0, -2.0);
+    check_centre_lit(ShadingMode::Flat, light, lighting_shaped(centroid, DVec3::Z, shape));
 }
 
 #[test]

@@ -91,7 +91,7 @@ fn compare(path: &Path) -> (usize, usize, u8) {
             Light::Directional { direction, color } => {
                 (-eye_from_world.transform_vector3(direction.as_dvec3()).normalize(), color.as_dvec3())
             }
-            Light::Point { .. } => unreachable!("directional lights only"),
+            Light::Point { .. } | Light::Spot { .. } => unreachable!("directional lights only"),
         })
         .collect();
     let options = TruthOptions { diagnostics: true, ..Default::default() };

@@ -38,7 +38,7 @@ const FLOOR: Material = Material {
 const AMBIENT: Vec3 = Vec3::new(0.25, 0.25, 0.25);
 
 /// No attenuation: f = 1.
-const NO_ATTENUATION: Attenuation = Attenuation { a0: 1.0, a1: 0.0, a2: 0.0 };
+const NO_ATTENUATION: Attenuation = Attenuation::new(1.0, 0.0, 0.0);
 
 /// A white point light at height 4 over the origin.
 pub(crate) const TOP: Vec3 = Vec3::new(0.0, 4.0, 0.0);

@@ -99,7 +99,7 @@ pub(crate) const F64_TOLERANCE: f64 = 1e-12;
 /// attenuation, and the ambient light.
 pub(crate) const LIGHT: Vec3 = Vec3::new(0.3, 0.8, -0.9);
 pub(crate) const LIGHT_COLOR: Vec3 = Vec3::new(1.0, 0.85, 0.7);
-pub(crate) const ATTENUATION: Attenuation = Attenuation { a0: 1.0, a1: 0.2, a2: 0.5 };
+pub(crate) const ATTENUATION: Attenuation = Attenuation::new(1.0, 0.2, 0.5);
 pub(crate) const AMBIENT: Vec3 = Vec3::new(0.15, 0.1, 0.05);
 
 /// The two parts of SPEC §5 for `m` under the one point light, the eye at

@@ -55,7 +55,8 @@ use zline_scene::{
     ShadowMode, ShadowPlane, Shadows, TextureMap,
 };
 use zline_shading::{
-    Attenuation, Filter, Fog, FogCoordinate, FogMode, Light, Material, Sampler, ShadingMode, Texture, Wrap,
+    Attenuation, Cone, Filter, Fog, FogCoordinate, FogMode, Light, Material, Sampler, ShadingMode, Texture,
+    Wrap,
 };
 use zline_truth::{render_truth_with, SplitSum, TruthOptions};
 
@@ -270,9 +271,27 @@ pub(crate) fn light() -> impl Strategy<Value = Light> {
             .prop_map(|((x, y, z), color, (a0, a1, a2))| Light::Point {
                 position: Vec3::new(x, y, z),
                 color,
-                attenuation: Attenuation { a0, a1, a2 },
+                attenuation: Attenuation::new(a0, a1, a2),
             }),
         (direction(), color()).prop_map(|(direction, color)| Light::Directional { direction, color }),
+        // A spot light aimed near the scene's middle, its range past or
+        // within the objects.
+        (
+            ((-4.0f32..4.0, 1.0f32..5.0, -7.0f32..-2.0), (-1.5f32..1.5, -1.5f32..1.5)),
+            color(),
+            (0.0f32..0.3, 0.05f32..0.5),
+            prop_oneof![Just(f32::INFINITY), 4.0f32..12.0],
+        )
+            .prop_map(|(((x, y, z), (tx, ty)), color, (inner, width), range)| {
+                let position = Vec3::new(x, y, z);
+                Light::Spot {
+                    position,
+                    direction: Vec3::new(tx, ty, -5.0) - position,
+                    color,
+                    attenuation: Attenuation::new(1.0, 0.05, 0.0).with_range(range),
+                    cone: Cone { inner, outer: inner + width },
+                }
+            }),
     ]
 }
 
