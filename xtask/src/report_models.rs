@@ -13,6 +13,7 @@
 //! - The scene under the procedural sky as environment map (SPEC §5.3):
 //!   its cost, and its error against the truth's own SH projection and
 //!   direct lobe integrals.
+//! - `tests/scenes/lights_spot.toml`: spot lights with ranges (SPEC §5.1).
 //! - Where the shared assets are present, Suzanne and FlightHelmet (glTF
 //!   metallic–roughness materials with textures) under two lights.
 
@@ -21,7 +22,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use anyhow::{Context, Result};
-use zline::scene::{Scene, ShadingMode};
+use zline::scene::{Scene, ShadingMode, ShadowMode};
 use zline::shading::{Distribution, Light, ModelChoice};
 use zline_truth::{render_truth, ErrorStats};
 
@@ -93,6 +94,7 @@ pub(crate) fn section(assets: &Path, frames: usize) -> Result<String> {
         &rows,
         frames,
     );
+    spot_table(&mut md, frames)?;
     let models = ["Suzanne/glTF/Suzanne.gltf", "FlightHelmet/glTF/FlightHelmet.gltf"];
     let mut rows = Vec::new();
     for model in models {
@@ -122,6 +124,32 @@ pub(crate) fn section(assets: &Path, frames: usize) -> Result<String> {
         table(&mut md, "glTF models (their textures; two directional lights)", &rows, frames);
     }
     Ok(md)
+}
+
+/// `tests/scenes/lights_spot.toml`: two spot lights with a range and a
+/// hard or soft cone (SPEC §5.1), without shadows and with its shadow maps.
+fn spot_table(md: &mut String, frames: usize) -> Result<()> {
+    let path = repo_file("tests/scenes/lights_spot.toml");
+    let options = zline::io::LoadOptions { allow_outside: true };
+    let mut scene = zline::io::load_scene_with_options(&path, options).map_err(anyhow::Error::from)?;
+    (scene.settings.width, scene.settings.height) = SIZE;
+    let mut rows = Vec::new();
+    for (name, shading, shadows) in [
+        ("phong, no shadows", ShadingMode::Phong, ShadowMode::None),
+        ("gouraud, no shadows", ShadingMode::Gouraud, ShadowMode::None),
+        ("phong, shadow maps", ShadingMode::Phong, ShadowMode::Map),
+    ] {
+        let mut s = scene.clone();
+        (s.settings.shading, s.shadows.mode) = (shading, shadows);
+        rows.push((name.to_string(), s));
+    }
+    table(
+        md,
+        "`tests/scenes/lights_spot.toml` (two spot lights with ranges; basic and Cook–Torrance)",
+        &rows,
+        frames,
+    );
+    Ok(())
 }
 
 fn table(md: &mut String, title: &str, rows: &[(String, Scene)], frames: usize) {
