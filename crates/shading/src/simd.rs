@@ -159,8 +159,13 @@ impl PreparedLights {
                 intensity = intensity.scale(f);
             }
             if let Some(shape) = shape {
-                let f = shape.factor_lanes(to_light.to_lanes(), dist.to_array());
-                intensity = intensity.scale(f32x8::from(f));
+                // Shape::factor's operations, in its order.
+                let x = dist * f32x8::splat(shape.inv_range);
+                let x2 = x * x;
+                let window = (f32x8::ONE - x2 * x2).max(f32x8::ZERO).min(f32x8::ONE);
+                let along = to_light.dot(Vec3x8::splat(shape.axis)) * f32x8::splat(shape.scale);
+                let c = (f32x8::splat(shape.offset) - along).max(f32x8::ZERO).min(f32x8::ONE);
+                intensity = intensity.scale(window * (c * c));
             }
             if let Some(f) = share(k) {
                 intensity = intensity.scale(f);
