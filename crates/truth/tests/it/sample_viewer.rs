@@ -7,7 +7,10 @@
 //! geometry — eye-space point, normal after the normal map, view vector,
 //! base colour (factor ⊙ texel ⊙ COLOR_0), metallic and roughness after
 //! their texture — through `render_truth_shaded`; the transcription
-//! replaces only the lighting. Two directional lights, no environment
+//! replaces only the lighting. Two directional lights and a point light
+//! with a `range` (`getRangeAttenuation`: the window over d², placed at
+//! least 1.5 from every surface, where zline's clamp of 1/d² to 1 (SPEC §5)
+//! never acts), no environment
 //! (ambient 0), no emission in these models, linear output (no tone
 //! mapping, no sRGB encoding; texels as stored, SPEC §7). Pixels within one
 //! pixel of a triangle edge (the truth's `boundary_distance`) are left
@@ -19,12 +22,28 @@ use std::path::{Path, PathBuf};
 use glam::{DVec3, Vec3};
 use zline_pipeline::{render, RenderOptions};
 use zline_scene::Scene;
-use zline_shading::Light;
+use zline_shading::{Attenuation, Light};
 use zline_truth::{render_truth_shaded, SampleShading, TruthOptions};
 
-/// The Sample Viewer's punctual lighting at one sample, for lights given
-/// as (unit vector towards the light, intensity × colour) in eye space.
-fn sample_viewer(s: &SampleShading, lights: &[(DVec3, DVec3)]) -> DVec3 {
+/// A KHR_lights_punctual light in eye space, as the Sample Viewer's light
+/// loop takes it.
+enum ViewerLight {
+    /// Unit vector towards the light, intensity × colour.
+    Directional(DVec3, DVec3),
+    /// Position, intensity × colour, range.
+    Point(DVec3, DVec3, f64),
+}
+
+/// `punctual.glsl`'s `getRangeAttenuation`: unlimited for range ≤ 0.
+fn range_attenuation(range: f64, distance: f64) -> f64 {
+    if range <= 0.0 {
+        return 1.0 / distance.powi(2);
+    }
+    (1.0 - (distance / range).powi(4)).clamp(0.0, 1.0) / distance.powi(2)
+}
+
+/// The Sample Viewer's punctual lighting at one sample.
+fn sample_viewer(s: &SampleShading, lights: &[ViewerLight]) -> DVec3 {
     let Some((metallic, roughness)) = s.metallic_roughness else { return DVec3::ZERO };
     let clamped_dot = |a: DVec3, b: DVec3| a.dot(b).clamp(0.0, 1.0);
     // mix(x, y, a) = x·(1 − a) + y·a, as GLSL defines it.
@@ -35,7 +54,15 @@ fn sample_viewer(s: &SampleShading, lights: &[(DVec3, DVec3)]) -> DVec3 {
     let alpha_roughness = roughness * roughness;
     let (n, v) = (s.normal, s.view);
     let mut color = DVec3::ZERO;
-    for &(l, intensity) in lights {
+    for light in lights {
+        let (l, intensity) = match *light {
+            ViewerLight::Directional(l, intensity) => (l, intensity),
+            ViewerLight::Point(position, color, range) => {
+                let point_to_light = position - s.point;
+                let distance = point_to_light.length();
+                (point_to_light / distance, color * range_attenuation(range, distance))
+            }
+        };
         let h = (l + v).normalize_or_zero();
         let (n_dot_l, n_dot_v) = (clamped_dot(n, l), clamped_dot(n, v));
         let (n_dot_h, v_dot_h) = (clamped_dot(n, h), clamped_dot(v, h));
@@ -70,7 +97,7 @@ fn repo(path: &str) -> PathBuf {
 
 /// (pixels compared, pixels within one step in every channel, the
 /// largest difference) of zline against the transcription on the model at
-/// `path`, 400 × 400, two directional lights, no environment: the pixels
+/// `path`, 400 × 400, two directional lights and a ranged point light, no environment: the pixels
 /// the model covers, more than a pixel from every triangle edge.
 fn compare(path: &Path) -> (usize, usize, u8) {
     let gltf = zline_io::load_gltf(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -79,19 +106,42 @@ fn compare(path: &Path) -> (usize, usize, u8) {
     scene.ambient = Vec3::ZERO;
     // A background no lit pixel of these models has: its pixels are left out.
     scene.background = Vec3::new(1.0, 0.0, 1.0);
+    // The point light 1.5 beyond the model's bounding sphere, its range
+    // reaching 1.5 past the far side, its colour scaled to its distance.
+    let (lo, hi) = scene.objects.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), o| {
+        o.mesh
+            .positions
+            .iter()
+            .map(|&p| o.world_from_object.transform_point3(p))
+            .fold((lo, hi), |(a, b), p| (a.min(p), b.max(p)))
+    });
+    let (centre, radius) = ((lo + hi) * 0.5, (hi - lo).length() * 0.5);
+    let distance = radius + 1.5;
+    let position = centre + Vec3::new(0.4, 0.8, 0.6).normalize() * distance;
     scene.lights = vec![
         Light::Directional { direction: Vec3::new(-0.5, -0.7, -1.0), color: Vec3::new(1.6, 1.5, 1.4) },
         Light::Directional { direction: Vec3::new(0.8, -0.2, -0.4), color: Vec3::new(0.5, 0.6, 0.9) },
+        Light::Point {
+            position,
+            color: Vec3::new(0.9, 0.8, 1.2) * distance * distance,
+            attenuation: Attenuation::new(0.0, 0.0, 1.0).with_range(distance + radius + 1.5),
+        },
     ];
     let eye_from_world = scene.camera.eye_from_world().as_dmat4();
-    let lights: Vec<(DVec3, DVec3)> = scene
+    let lights: Vec<ViewerLight> = scene
         .lights
         .iter()
         .map(|l| match *l {
-            Light::Directional { direction, color } => {
-                (-eye_from_world.transform_vector3(direction.as_dvec3()).normalize(), color.as_dvec3())
-            }
-            Light::Point { .. } | Light::Spot { .. } => unreachable!("directional lights only"),
+            Light::Directional { direction, color } => ViewerLight::Directional(
+                -eye_from_world.transform_vector3(direction.as_dvec3()).normalize(),
+                color.as_dvec3(),
+            ),
+            Light::Point { position, color, attenuation } => ViewerLight::Point(
+                eye_from_world.transform_point3(position.as_dvec3()),
+                color.as_dvec3(),
+                f64::from(attenuation.range),
+            ),
+            Light::Spot { .. } => unreachable!("no spot lights here"),
         })
         .collect();
     let options = TruthOptions { diagnostics: true, ..Default::default() };
