@@ -14,7 +14,9 @@ pub struct Attenuation {
     /// Quadratic term.
     pub a2: f32,
     /// The distance at which the light ends, smoothly; `f32::INFINITY`
-    /// for a light that reaches everywhere.
+    /// for a light that reaches everywhere. A range that is not a finite
+    /// number > 0 (0, negative, NaN) means none, as the glTF Sample
+    /// Viewer reads one ≤ 0.
     pub range: f32,
 }
 
@@ -51,10 +53,16 @@ impl Attenuation {
         }
     }
 
+    /// True when the light has a range: a finite number > 0.
+    #[inline]
+    pub fn has_range(&self) -> bool {
+        self.range > 0.0 && self.range.is_finite()
+    }
+
     /// The range window clamp(1 − (d/range)⁴, 0, 1); 1 without a range.
     #[inline]
     pub fn window(&self, d: f32) -> f32 {
-        if self.range == f32::INFINITY {
+        if !self.has_range() {
             return 1.0;
         }
         let x = d / self.range;
@@ -71,7 +79,7 @@ impl Attenuation {
     /// True when f(d) = 1 for every distance, so `d` need not be computed.
     #[inline]
     pub fn is_none(&self) -> bool {
-        self.is_polynomial_none() && self.range == f32::INFINITY
+        self.is_polynomial_none() && !self.has_range()
     }
 }
 
@@ -226,6 +234,13 @@ mod tests {
         assert!(Attenuation::NONE.with_range(1.0).is_polynomial_none());
         assert!(!Attenuation::NONE.with_range(1.0).is_none());
         assert_eq!(Attenuation::NONE.factor(1e30), 1.0);
+        // A range that is not a number > 0 is none.
+        for bad in [0.0, -2.0, f32::NAN, f32::NEG_INFINITY] {
+            let a = Attenuation::new(1.0, 0.0, 1.0).with_range(bad);
+            assert!(!a.has_range() && !a.is_polynomial_none());
+            assert_eq!(a.factor(3.0), 0.1, "range {bad}");
+            assert!(Attenuation::NONE.with_range(bad).is_none());
+        }
     }
 
     #[test]

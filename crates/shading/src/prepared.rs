@@ -79,7 +79,7 @@ impl Shape {
     /// The shape of a light with `attenuation` and, for a spot light, its
     /// unit axis and cone; `None` when both are plain.
     fn new(attenuation: Attenuation, spot: Option<(Vec3, Cone)>) -> Option<Shape> {
-        let ranged = attenuation.range != f32::INFINITY;
+        let ranged = attenuation.has_range();
         if !ranged && spot.is_none() {
             return None;
         }

@@ -428,9 +428,9 @@ impl EyeLights {
 
 /// f(d) = min(1, 1/(a0 + a1·d + a2·d²)); 1 where the denominator is ≤ 1.
 /// KHR_lights_punctual's range window clamp(1 − (d/range)⁴, 0, 1) (SPEC
-/// §5.1); 1 for an infinite range.
+/// §5.1); 1 for a range that is not a finite number > 0.
 fn window(range: f64, d: f64) -> f64 {
-    if range.is_infinite() {
+    if !(range > 0.0 && range.is_finite()) {
         1.0
     } else {
         (1.0 - (d / range).powi(4)).clamp(0.0, 1.0)
