@@ -40,6 +40,18 @@ pub(crate) struct Point {
 }
 
 impl Point {
+    /// The light at `position` of `color` and `attenuation`, a spot with
+    /// its unit axis and cone when `spot` is given.
+    fn new(
+        (position, color, attenuation): (Vec3, Vec3, Attenuation),
+        spot: Option<(Vec3, Cone)>,
+        index: u32,
+    ) -> Point {
+        let shape = Shape::new(attenuation, spot);
+        let attenuation = (!attenuation.is_polynomial_none()).then_some(attenuation);
+        Point { position, color, attenuation, shape, index }
+    }
+
     /// The light's intensity at distance `dist` along the unit
     /// `to_light`: its colour times the attenuation polynomial, then
     /// times its shape's factor. The order the lanes keep
@@ -285,15 +297,11 @@ impl PreparedLights {
                     }
                 }
                 Light::Point { position, color, attenuation } => {
-                    let shape = Shape::new(attenuation, None);
-                    let attenuation = (!attenuation.is_polynomial_none()).then_some(attenuation);
-                    self.point.push(Point { position, color, attenuation, shape, index });
+                    self.point.push(Point::new((position, color, attenuation), None, index));
                 }
                 Light::Spot { position, direction, color, attenuation, cone } => {
-                    let axis = direction.normalize_or_zero();
-                    let shape = Shape::new(attenuation, Some((axis, cone)));
-                    let attenuation = (!attenuation.is_polynomial_none()).then_some(attenuation);
-                    self.point.push(Point { position, color, attenuation, shape, index });
+                    let spot = Some((direction.normalize_or_zero(), cone));
+                    self.point.push(Point::new((position, color, attenuation), spot, index));
                 }
             }
         }

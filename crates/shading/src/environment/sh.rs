@@ -31,25 +31,22 @@ const SH_NORMS: [f64; 5] = [
 /// (Y00; Y1−1, Y10, Y11; Y2−2 … Y22) with z as the polar axis.
 #[inline]
 pub fn sh_basis(n: Vec3) -> [f32; SH_COEFFICIENTS] {
-    let (x, y, z) = (n.x, n.y, n.z);
-    let k = SH_NORMS.map(|c| c as f32);
-    [
-        k[0],
-        k[1] * y,
-        k[1] * z,
-        k[1] * x,
-        k[2] * x * y,
-        k[2] * y * z,
-        k[3] * (3.0 * z * z - 1.0),
-        k[2] * x * z,
-        k[4] * (x * x - y * y),
-    ]
+    basis(n.x, n.y, n.z, SH_NORMS.map(|c| c as f32))
 }
 
 /// The basis in f64, for the projection.
 fn sh_basis_f64(n: DVec3) -> [f64; SH_COEFFICIENTS] {
-    let (x, y, z) = (n.x, n.y, n.z);
-    let k = SH_NORMS;
+    basis(n.x, n.y, n.z, SH_NORMS)
+}
+
+/// The basis at (x, y, z) with the normalizations `k`, written once for
+/// f32 and f64.
+#[inline]
+fn basis<T>(x: T, y: T, z: T, k: [T; 5]) -> [T; SH_COEFFICIENTS]
+where
+    T: Copy + From<f32> + std::ops::Mul<Output = T> + std::ops::Sub<Output = T>,
+{
+    let (one, three) = (T::from(1.0), T::from(3.0));
     [
         k[0],
         k[1] * y,
@@ -57,7 +54,7 @@ fn sh_basis_f64(n: DVec3) -> [f64; SH_COEFFICIENTS] {
         k[1] * x,
         k[2] * x * y,
         k[2] * y * z,
-        k[3] * (3.0 * z * z - 1.0),
+        k[3] * (three * z * z - one),
         k[2] * x * z,
         k[4] * (x * x - y * y),
     ]
