@@ -141,11 +141,15 @@ impl PreparedLights {
         add: impl Fn(T, Vec3x8<L>, Vec3x8<L>, f32x8<L>) -> T,
     ) -> T {
         for (to_light, color, k) in self.directional_lights() {
+            // The direction and the lanes first: after the share's branch,
+            // the compiler loaded the direction before it and broadcast it
+            // after (three more instructions a light).
+            let (to_light, active) = (Vec3x8::splat(to_light), visible(k));
             let mut intensity = Vec3x8::splat(color);
             if let Some(f) = share(k) {
                 intensity = intensity.scale(f);
             }
-            sums = add(sums, Vec3x8::splat(to_light), intensity, visible(k));
+            sums = add(sums, to_light, intensity, active);
         }
         for &Point { position, color, attenuation, ref shape, index: k } in self.point_lights() {
             let v = Vec3x8::splat(position).sub(point);
@@ -496,6 +500,34 @@ mod tests {
                         "{label}"
                     );
                 }
+            }
+        }
+    }
+
+    /// Light k is hidden from a lane exactly where the planar mask has bit
+    /// `shadow_bits + k` set (no bit past 31: visible), and only when no
+    /// shadow-map share is given.
+    #[test]
+    fn planar_mask_bits_hide_the_lights_they_name() {
+        let lanes: [i32; 8] = [0, -1, 1, i32::MIN, 0x5555_5555, 0x2AAA_AAAA, 1 << 30, 0x7FFF_FFFF];
+        let mask = i32x8::<Baseline>::from(lanes);
+        let none: Option<fn(u32, Vec3x8, Vec3x8) -> f32x8> = None;
+        let share: Option<fn(u32, Vec3x8, Vec3x8) -> f32x8> = Some(|_, _, _| f32x8::ONE);
+        let at = (Vec3x8::default(), Vec3x8::default());
+        for first in [None, Some(0), Some(1), Some(5), Some(30), Some(31), Some(32), Some(u32::MAX - 2)] {
+            let mut m = PreparedMaterial::new(Material::default());
+            m.shadow_bits = first;
+            let (visible, _) = hidden_lights(&m, at, Some(mask), &none);
+            let (with_share, _) = hidden_lights(&m, at, Some(mask), &share);
+            let (without_mask, _) = hidden_lights(&m, at, None, &none);
+            for k in 0..40u32 {
+                let got = visible(k).to_array().map(|v| v.to_bits() != 0);
+                let want = lanes.map(|bits| {
+                    let bit = first.and_then(|f| f.checked_add(k)).filter(|&b| b < 32);
+                    bit.is_none_or(|b| bits & (1 << b) == 0)
+                });
+                assert_eq!(got, want, "first {first:?} light {k}");
+                assert!(with_share(k).all() && without_mask(k).all(), "first {first:?} light {k}");
             }
         }
     }

@@ -38,6 +38,7 @@ use core::arch::x86_64::*;
 use bytemuck::{Pod, Zeroable};
 
 mod level;
+mod math;
 
 pub(crate) use level::private;
 pub use level::{Baseline, Level};
@@ -257,12 +258,6 @@ impl<L: Level> f32x8<L> {
     #[inline(always)]
     pub fn move_mask(self) -> i32 {
         at_level!(_mm256_movemask_ps(self.m()), self.w.move_mask())
-    }
-
-    /// log₂ x, `wide`'s polynomial at every level (as [`Self::exp`]).
-    #[inline(always)]
-    pub fn log2(self) -> Self {
-        Self::from_wide(self.w.log2())
     }
 
     /// eˣ, `wide`'s polynomial at every level (its operations in the

@@ -417,8 +417,16 @@ impl TileTarget {
     /// of the textured plane's instructions and cost a fifth of the
     /// pipeline's build time (the sampler is the costliest code to
     /// compile).
+    ///
+    /// `MAPS` is false for the kernels whose material never has such maps
+    /// (flat and Gouraud): they read the base texture alone, without the
+    /// loop over the maps. Each kernel compiles one of the two bodies, so
+    /// the sampler stays one copy per kernel; the loop, which the compiler
+    /// keeps even where it runs once, with its loop-carried texels spilled
+    /// around it, cost the textured floor 24 instructions of its 539 per
+    /// block (callgrind).
     #[inline(always)]
-    pub(super) fn textured<const N: usize, S: Level>(
+    pub(super) fn textured<const N: usize, const MAPS: bool, S: Level>(
         &mut self,
         (edges, depth, planes): (&EdgeTable, &DepthPlane, &AttributePlanes<N>),
         (map, interp, lod, alpha): (&FrameTexture, Interp, Lod, AlphaTest),
@@ -450,6 +458,12 @@ impl TileTarget {
             |a, mask| {
                 let inv = interp.w(a[textured::Q]);
                 let (s, t) = (a[textured::S] * inv, a[textured::T] * inv);
+                if !MAPS {
+                    let lods = lod.lods(interp, s, t, inv);
+                    let [r, g, b, alpha] = map.texture.sample_x8(&map.sampler, s, t, lods);
+                    let texel = Vec3x8 { x: r, y: g, z: b };
+                    return (color(a, inv, mask, texel, MapTexels::NONE).clamp_to(ceiling), alpha);
+                }
                 // Each texel goes straight to its own local (no array indexed
                 // by the loop counter), so they stay in registers.
                 let [mut r, mut g, mut b, mut texel_alpha] = [f32x8::ZERO; 4];
@@ -487,7 +501,7 @@ impl TileTarget {
         let uses =
             (map, interp, Lod::new(lod, &p.shader.planes, map), AlphaTest::new(alpha, pass.blends(), map));
         let (ad, spec) = (Vec3x8::splat(p.shader.ambient_diffuse), Vec3x8::splat(p.shader.specular));
-        self.textured::<_, S>(
+        self.textured::<_, false, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
             None,
@@ -509,7 +523,7 @@ impl TileTarget {
         let map = &ctx.textures[p.shader.texture as usize];
         let uses =
             (map, interp, Lod::new(lod, &p.shader.planes, map), AlphaTest::new(alpha, pass.blends(), map));
-        self.textured::<_, S>(
+        self.textured::<_, false, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
             None,
@@ -535,7 +549,7 @@ impl TileTarget {
             (map, interp, Lod::new(lod, &p.shader.planes, map), AlphaTest::new(alpha, pass.blends(), map));
         let how = Lit::of(ctx, p.shader.material);
         let surface = surface_maps(ctx, p.shader.material, &p.shader.planes);
-        self.textured::<_, S>(
+        self.textured::<_, true, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
             surface.as_ref(),
@@ -563,7 +577,7 @@ impl TileTarget {
             (map, interp, Lod::new(lod, &p.shader.planes, map), AlphaTest::new(alpha, pass.blends(), map));
         let how = Lit::of(ctx, p.shader.material);
         let surface = surface_maps(ctx, p.shader.material, &p.shader.planes);
-        self.textured::<_, S>(
+        self.textured::<_, true, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
             surface.as_ref(),

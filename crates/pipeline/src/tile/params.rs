@@ -267,7 +267,8 @@ impl Lod {
     /// [`Interp::w`] factor.
     ///
     /// `shading::lod` for eight lanes: ½·log2 of the larger squared
-    /// footprint in texels, with `wide`'s vector log2 (one call instead of
+    /// footprint in texels, with `wide`'s vector log2 in the level's own
+    /// operations (`f32x8::log2`; one call instead of
     /// eight of libm's, which measured ~12 % of a textured frame). Zero or
     /// NaN footprints read level 0.
     #[inline(always)]

@@ -181,7 +181,7 @@ impl TileTarget {
         );
         let how = Lit::of(ctx, p.shader.material);
         let surface = surface_maps(ctx, p.shader.material, &p.shader.planes);
-        self.textured::<_, S>(
+        self.textured::<_, true, S>(
             (&p.edges, &p.depth, &p.shader.planes),
             uses,
             surface.as_ref(),

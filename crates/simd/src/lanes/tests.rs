@@ -34,6 +34,24 @@ fn lane() -> impl Strategy<Value = f32> {
     ]
 }
 
+/// Positive, normal and finite: the lanes `log2` computes itself.
+fn positive_lane() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        2 => f32::MIN_POSITIVE..f32::MAX,
+        2 => 1.0e-3f32..1.0e3,
+        // Both sides of `log2`'s √2/2 switch.
+        1 => proptest::sample::select(vec![
+            f32::MIN_POSITIVE,
+            1.0,
+            0.5,
+            2.0,
+            f32::MAX,
+            core::f32::consts::FRAC_1_SQRT_2,
+            f32::from_bits(core::f32::consts::FRAC_1_SQRT_2.to_bits() + 1),
+        ]),
+    ]
+}
+
 fn int_lane() -> impl Strategy<Value = i32> {
     prop_oneof![
         3 => any::<i32>(),
@@ -45,6 +63,8 @@ fn int_lane() -> impl Strategy<Value = i32> {
 /// Every operation's result as bits, at level `L`.
 struct Ops {
     a: [f32; 8],
+    /// Positive normal finite lanes (the usual inputs of `log2`).
+    p: [f32; 8],
     b: [f32; 8],
     i: [i32; 8],
     j: [i32; 8],
@@ -106,6 +126,8 @@ impl Vectorized for &Ops {
             bits(a.is_nan()),
             bits(a.is_finite()),
             num(a.sqrt()),
+            num(a.log2()),
+            num(f32x8::<L>::from(self.p).log2()),
             [m.move_mask() as u32, u32::from(m.any()), u32::from(m.all()), u32::from(m.none()), 0, 0, 0, 0],
             ib(a.fast_trunc_int()),
             ib(a.trunc_int()),
@@ -142,11 +164,12 @@ proptest! {
     fn v3_and_v4_lanes_equal_baseline_lanes(
         a in proptest::array::uniform8(lane()),
         b in proptest::array::uniform8(lane()),
+        p in proptest::array::uniform8(positive_lane()),
         i in proptest::array::uniform8(int_lane()),
         j in proptest::array::uniform8(int_lane()),
         shift in 0i32..40,
     ) {
-        let ops = Ops { a, b, i, j, shift };
+        let ops = Ops { a, p, b, i, j, shift };
         let base = (&ops).run::<super::Baseline>();
         let mut levels = vec![("best", vectorize(&ops))];
         #[cfg(target_arch = "x86_64")]
@@ -163,6 +186,49 @@ proptest! {
                 prop_assert_eq!(
                     x, y, "{}: operation {} differs (a = {:?}, b = {:?}, i = {:?}, j = {:?})", level, k, a, b, i, j
                 );
+            }
+        }
+    }
+}
+
+/// `log2` of the lanes, at level `L`.
+struct Log2([f32; 8]);
+
+impl Vectorized for &Log2 {
+    type Output = [u32; 8];
+
+    #[inline(always)]
+    fn run<L: Level>(self) -> [u32; 8] {
+        num(f32x8::<L>::from(self.0).log2())
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2048))]
+
+    /// `log2` computes `wide`'s polynomial with each level's operations:
+    /// the baseline's lanes must be `wide`'s own, not only equal to the
+    /// other levels'.
+    #[test]
+    fn log2_is_wides_at_every_level(
+        a in proptest::array::uniform8(lane()),
+        p in proptest::array::uniform8(positive_lane()),
+    ) {
+        for x in [a, p] {
+            let want = wide::f32x8::from(x).log2().to_array().map(|v| if v.is_nan() { f32::NAN.to_bits() } else { v.to_bits() });
+            let job = Log2(x);
+            let mut levels = vec![("baseline", (&job).run::<super::Baseline>()), ("best", vectorize(&job))];
+            #[cfg(target_arch = "x86_64")]
+            {
+                if let Some(v3) = crate::avx2::v3_token() {
+                    levels.push(("v3", v3.vectorize(&job)));
+                }
+                if let Some(v4) = crate::avx2::v4_token() {
+                    levels.push(("v4", v4.vectorize(&job)));
+                }
+            }
+            for (level, got) in levels {
+                prop_assert_eq!(got, want, "{}: log2 of {:?}", level, x);
             }
         }
     }
