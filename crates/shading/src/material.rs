@@ -48,6 +48,15 @@ pub struct Material {
     /// The reflection model: the basic one, or Cook–Torrance with kd as
     /// its base colour.
     pub model: Model,
+    /// Mirror reflection coefficient kr (RGB, in [0, 1]): the weight of the
+    /// reflected ray in the Whitted model (SPEC §12; MTL `Ks` with an
+    /// `illum` that turns reflection on). The rasterizer ignores it.
+    pub kr: Vec3,
+    /// Index of refraction η of the material's inside (> 0; 1 bends
+    /// nothing): the Whitted model refracts the transmitted ray (weight kt =
+    /// 1 − opacity) by it (MTL `Ni`, glTF `KHR_materials_ior`). The
+    /// rasterizer ignores it.
+    pub ior: f32,
 }
 
 impl Material {
@@ -60,6 +69,8 @@ impl Material {
         ns: 32.0,
         opacity: 1.0,
         model: Model::Basic,
+        kr: Vec3::ZERO,
+        ior: 1.0,
     };
 
     /// A material with ka = kd = `color`, the given specular and shininess,
@@ -73,6 +84,8 @@ impl Material {
             ns,
             opacity: 1.0,
             model: Model::Basic,
+            kr: Vec3::ZERO,
+            ior: 1.0,
         }
     }
 
@@ -123,7 +136,8 @@ impl Material {
     }
 
     /// The same material with every coefficient clamped to its valid range
-    /// and non-finite values replaced by 0 (shininess by 1).
+    /// and non-finite values replaced by 0 (shininess by 1, an index of
+    /// refraction that is not a finite number > 0 by 1).
     pub fn sanitized(&self) -> Material {
         let c = |v: Vec3| {
             let v = Vec3::select(v.is_nan_mask(), Vec3::ZERO, v);
@@ -135,7 +149,20 @@ impl Material {
             Model::Basic => Model::Basic,
             Model::CookTorrance(m) => Model::CookTorrance(m.sanitized()),
         };
-        Material { ke: c(self.ke), ka: c(self.ka), kd: c(self.kd), ks: c(self.ks), ns, opacity, model }
+        // An index of refraction must be a finite number > 0 (0, negative
+        // or NaN would turn Snell's law into nonsense): else 1.
+        let ior = if self.ior.is_finite() && self.ior > 0.0 { self.ior } else { 1.0 };
+        Material {
+            ke: c(self.ke),
+            ka: c(self.ka),
+            kd: c(self.kd),
+            ks: c(self.ks),
+            ns,
+            opacity,
+            model,
+            kr: c(self.kr),
+            ior,
+        }
     }
 }
 

@@ -80,14 +80,33 @@ impl LightingModel {
     /// surface) or a zero L + V leaves the specular term at 0.
     #[inline]
     pub fn shade_parts(&self, material: &Material, point: Vec3, normal: Vec3, eye: Vec3) -> LitParts {
+        self.shade_parts_seen(material, (point, normal, eye), |_, _| None)
+    }
+
+    /// [`Self::shade_parts`] with each light's intensity multiplied by
+    /// what `seen(k, to_light)` says reaches `point` from light k (the
+    /// fraction per channel: a ray tracer's shadow ray), `None` for all of
+    /// it (no multiplication, so `shade_parts`' results are these with
+    /// every light seen whole). It is asked only for lights in front of
+    /// the surface (N·L > 0) under the basic model.
+    #[inline]
+    pub fn shade_parts_seen(
+        &self,
+        material: &Material,
+        (point, normal, eye): (Vec3, Vec3, Vec3),
+        mut seen: impl FnMut(usize, Vec3) -> Option<Vec3>,
+    ) -> LitParts {
         let view = (eye - point).normalize_or_zero();
         if let Model::CookTorrance(m) = material.model {
             // SPEC §5.2, the lights in the scene's order.
             let nv = crate::pbr::clamp01(normal.dot(view));
             let (alpha2, (_, f0)) = (m.alpha2(), m.colors(material.kd));
             let mut sums = MicrofacetSums::default();
-            for light in &self.lights {
-                let Some((to_light, intensity)) = incident(light, point) else { continue };
+            for (k, light) in self.lights.iter().enumerate() {
+                let Some((to_light, mut intensity)) = incident(light, point) else { continue };
+                if let Some(f) = seen(k, to_light) {
+                    intensity *= f;
+                }
                 sums.add((&m, alpha2, f0), normal, view, nv, to_light, intensity);
             }
             let environment = match &self.environment {
@@ -103,11 +122,14 @@ impl LightingModel {
         let mut diffuse = Vec3::ZERO;
         let mut specular = Vec3::ZERO;
         let specular_on = material.has_specular();
-        for light in &self.lights {
-            let Some((to_light, intensity)) = incident(light, point) else { continue };
+        for (k, light) in self.lights.iter().enumerate() {
+            let Some((to_light, mut intensity)) = incident(light, point) else { continue };
             let n_dot_l = normal.dot(to_light);
             if n_dot_l <= 0.0 {
                 continue;
+            }
+            if let Some(f) = seen(k, to_light) {
+                intensity *= f;
             }
             diffuse += intensity * n_dot_l;
             if specular_on {

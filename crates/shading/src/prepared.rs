@@ -519,7 +519,7 @@ mod tests {
                 ],
                 environment: None,
             };
-            let m = Material { ke: Vec3::new(0.05, 0.0, 0.1), ka: Vec3::splat(0.2), kd: Vec3::new(0.9, 0.5, 0.1), ks: Vec3::splat(0.7), ns, opacity: 1.0, model: crate::material::Model::Basic };
+            let m = Material { ke: Vec3::new(0.05, 0.0, 0.1), ka: Vec3::splat(0.2), kd: Vec3::new(0.9, 0.5, 0.1), ks: Vec3::splat(0.7), ns, opacity: 1.0, model: crate::material::Model::Basic, ..Material::DEFAULT };
             let plain = model.shade_parts(&m, p, n, eye);
             let prepared = PreparedLights::new(&model, &Mat4::IDENTITY).shade_parts(&PreparedMaterial::new(m), p, n, eye);
             let err = (plain.ambient_diffuse - prepared.ambient_diffuse).abs().max_element()

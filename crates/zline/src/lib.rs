@@ -26,6 +26,7 @@ pub use zline_raster as raster;
 pub use zline_scene as scene;
 pub use zline_scenes as scenes;
 pub use zline_shading as shading;
+pub use zline_trace as trace;
 
 /// Whether `path` names a JPEG output (`.jpg` or `.jpeg`, any case), which
 /// cannot hold a transparent image.

@@ -205,17 +205,20 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Turntable { turntable, common } => {
             common.layers.refuse("turntable")?;
+            common.trace.refuse("turntable")?;
             let allow_outside = turntable.allow_paths_outside;
             return turntable::run(&turntable, &job(&common, allow_outside)?);
         }
         Command::Batch { batch, common } => {
             common.layers.refuse("batch")?;
+            common.trace.refuse("batch")?;
             let allow_outside = batch.allow_paths_outside;
             return batch::run(&batch, &job(&common, allow_outside)?);
         }
         #[cfg(feature = "view")]
         Command::View { view, common } => {
             common.layers.refuse("view")?;
+            common.trace.refuse("view")?;
             let allow_outside = view.allow_paths_outside;
             return view_command::run(&view, &job(&common, allow_outside)?);
         }
@@ -224,6 +227,10 @@ fn run(cli: Cli) -> Result<()> {
     // loading it: a bad output path or thread count fails at once.
     zline::check_output(&common.output).map_err(|e| anyhow!("{}: {e}", common.output.display()))?;
     common.layers.check(&common.output)?;
+    common.trace.options()?;
+    if common.trace.traces() {
+        common.layers.refuse("render --renderer raytrace")?;
+    }
     let threads = thread_count(common.threads)?;
     if let (Some((w, h)), Some(n)) = (common.size, common.ssaa) {
         // Both from the flags: no need to load the scene to refuse them.
@@ -247,6 +254,9 @@ fn run(cli: Cli) -> Result<()> {
     let pool = pool.build().context("cannot start the worker threads")?;
     let loaded = loading.elapsed();
     let options = RenderOptions { tile_size: common.tile_size };
+    if common.trace.traces() {
+        return ray_trace(&scene, &common, &pool, loaded);
+    }
     let start = Instant::now();
     let (image, stats, depth) = pool.install(|| common.layers.render(&scene, &options));
     let elapsed = start.elapsed();
@@ -291,6 +301,59 @@ fn run(cli: Cli) -> Result<()> {
                 stats.triangles_drawn
             );
         }
+    }
+    Ok(())
+}
+
+/// `render --renderer raytrace`: traces, writes the image and says what it
+/// cost.
+fn ray_trace(
+    scene: &Scene,
+    common: &Common,
+    pool: &rayon::ThreadPool,
+    loaded: std::time::Duration,
+) -> Result<()> {
+    let options = common.trace.options()?;
+    let (image, traced) = pool.install(|| cli::trace::render(scene, &options));
+    for warning in &traced.warnings {
+        eprintln!("warning: {warning}");
+    }
+    let saving = Instant::now();
+    zline::save_image(&image, &common.output)
+        .with_context(|| format!("{}: cannot write the image", common.output.display()))?;
+    let w = traced.work;
+    let pixels = (u64::from(image.width) * u64::from(image.height)).max(1);
+    let rays = w.primary.rays + w.secondary.rays + w.shadow.rays;
+    eprintln!(
+        "wrote {} ({}x{}, ray traced: {} camera, {} reflected or transmitted, {} shadow rays, {:.2} a pixel, tree depth {}, {:.2} ms + {:.2} ms to build the {})",
+        common.output.display(),
+        image.width,
+        image.height,
+        w.primary.rays,
+        w.secondary.rays,
+        w.shadow.rays,
+        rays as f64 / pixels as f64,
+        w.depth,
+        traced.trace.as_secs_f64() * 1e3,
+        traced.build.as_secs_f64() * 1e3,
+        options.accel.name()
+    );
+    if common.timings {
+        let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+        let per_ray = |c: zline::trace::accel::Counters| {
+            let n = c.rays.max(1) as f64;
+            format!("{:.1} nodes, {:.1} triangles", c.nodes as f64 / n, c.tests as f64 / n)
+        };
+        eprintln!(
+            "timings: load {:.1} ms, build {:.1} ms, trace {:.1} ms ({:.2} Mrays/s), PNG {:.1} ms; per camera ray {}, per shadow ray {}",
+            ms(loaded),
+            ms(traced.build),
+            ms(traced.trace),
+            rays as f64 / traced.trace.as_secs_f64().max(1e-9) / 1e6,
+            ms(saving.elapsed()),
+            per_ray(w.primary),
+            per_ray(w.shadow)
+        );
     }
     Ok(())
 }

@@ -72,7 +72,7 @@ pub(super) fn material_from_gltf(material: &gltf::Material) -> Material {
     let opacity = if material.alpha_mode() == gltf::material::AlphaMode::Blend { a } else { 1.0 };
     let ke = Vec3::from(material.emissive_factor()) * material.emissive_strength().unwrap_or(1.0);
     let model = Model::CookTorrance(Microfacet { metallic, roughness, distribution: Distribution::Ggx });
-    Material { ke, ka: base, kd: base, ks, ns, opacity, model }.sanitized()
+    Material { ke, ka: base, kd: base, ks, ns, opacity, model, kr: Vec3::ZERO, ior: 1.0 }.sanitized()
 }
 
 /// The same mesh with every triangle's winding reversed.

@@ -256,8 +256,20 @@ pub(super) fn material_from_mtl(m: &tobj::Material) -> Material {
         ns: m.shininess.unwrap_or(d.ns),
         opacity,
         model: pbr_model(m),
+        kr: mirror(m),
+        ior: m.optical_density.unwrap_or(d.ior),
     }
     .sanitized()
+}
+
+/// The mirror coefficient kr of the Whitted model: `Ks` for the `illum`
+/// modes with ray-traced reflection (3 reflection, 4 glass, 5 Fresnel
+/// reflection, 6 refraction, 7 Fresnel refraction), else 0.
+fn mirror(m: &tobj::Material) -> Vec3 {
+    match m.illumination_model {
+        Some(3..=7) => m.specular.map_or(Material::DEFAULT.ks, Vec3::from),
+        _ => Vec3::ZERO,
+    }
 }
 
 /// Cook–Torrance (GGX) when the material carries the PBR extension's

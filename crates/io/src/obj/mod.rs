@@ -299,6 +299,23 @@ mod tests {
         assert_eq!(mat.ke, Vec3::new(0.1, 1.0, 0.0), "Ke, sanitized");
     }
 
+    /// The ray tracer's coefficients (SPEC §12): `Ni` is the index of
+    /// refraction; `Ks` is the mirror coefficient under `illum` 3–7 only.
+    #[test]
+    fn illum_and_ni_give_the_mirror_and_the_index_of_refraction() {
+        let mut m = tobj::Material { specular: Some([0.5, 0.6, 0.7]), ..Default::default() };
+        assert_eq!((material_from_mtl(&m).kr, material_from_mtl(&m).ior), (Vec3::ZERO, 1.0));
+        for (illum, mirror) in [(2, false), (3, true), (4, true), (7, true), (8, false)] {
+            m.illumination_model = Some(illum);
+            let want = if mirror { Vec3::new(0.5, 0.6, 0.7) } else { Vec3::ZERO };
+            assert_eq!(material_from_mtl(&m).kr, want, "illum {illum}");
+        }
+        m.optical_density = Some(1.33);
+        assert_eq!(material_from_mtl(&m).ior, 1.33);
+        m.optical_density = Some(0.0);
+        assert_eq!(material_from_mtl(&m).ior, 1.0, "an index of refraction of 0 is replaced by 1");
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::test_runner::Config { cases: 512, ..Default::default() })]
 

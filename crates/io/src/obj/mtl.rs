@@ -109,6 +109,8 @@ pub(super) fn check_mtl_values(text: &str) -> Result<(String, Vec<LineNote>), Li
             "Ka" | "Kd" | "Ks" | "Ke" => (3, 0.0, 1.0),
             "Ns" => (1, 0.0, f64::from(f32::MAX)),
             "d" | "Tr" | "Pr" | "Pm" => (1, 0.0, 1.0),
+            // The index of refraction, in the scene files' range (SPEC §12).
+            "Ni" => (1, 0.01, 100.0),
             _ => {
                 out.push_str(line);
                 out.push('\n');

@@ -1,6 +1,7 @@
 //! An object's `[objects.material]` table: overrides of the coefficients
 //! of every mesh of its model (`color`, `ka`, `kd`, `ks`, `ke`, `ns`,
-//! `opacity`) and of its reflection model (SPEC §5.2): `model` ("basic" or
+//! `opacity`, and the ray tracer's `kr` and `ior`: SPEC §12) and of its
+//! reflection model (SPEC §5.2): `model` ("basic" or
 //! "cook-torrance"), `metallic` and `roughness` in [0, 1], `distribution`
 //! ("ggx" or "beckmann").
 //!
@@ -30,6 +31,8 @@ pub(super) struct MaterialDef {
     ke: Option<S<[f32; 3]>>,
     ns: Option<S<f32>>,
     opacity: Option<S<f32>>,
+    kr: Option<S<[f32; 3]>>,
+    ior: Option<S<f32>>,
     /// A string checked by hand, so that a bad one names its key.
     model: Option<S<String>>,
     metallic: Option<S<f32>>,
@@ -60,6 +63,7 @@ pub(super) fn material(check: &Checker, def: &MaterialDef, base: Material, key: 
         (&def.kd, "kd", &mut m.kd),
         (&def.ks, "ks", &mut m.ks),
         (&def.ke, "ke", &mut m.ke),
+        (&def.kr, "kr", &mut m.kr),
     ] {
         if let Some(v) = value {
             *field = check.vec3_in(v, &format!("{key}.{name}"), 0.0, 1.0)?;
@@ -67,6 +71,9 @@ pub(super) fn material(check: &Checker, def: &MaterialDef, base: Material, key: 
     }
     m.ns = check.optional(&def.ns, &format!("{key}.ns"), m.ns, 0.0, f32::MAX)?;
     m.opacity = check.optional(&def.opacity, &format!("{key}.opacity"), m.opacity, 0.0, 1.0)?;
+    // Between a hundredth and a hundred: outside, Snell's law bends every
+    // ray to the normal or back (no known material is near either end).
+    m.ior = check.optional(&def.ior, &format!("{key}.ior"), m.ior, 0.01, 100.0)?;
     m.model = model(check, def, base.model, &key)?;
     Ok(m)
 }

@@ -155,3 +155,20 @@ fn bad_model_keys_name_the_key_and_the_value() {
         &["line 6, column 13: objects[1].material.roughness: must be in [0, 1], got 2"],
     );
 }
+
+/// The ray tracer's keys (SPEC §12): `kr` and `ior`, defaults 0 and 1,
+/// errors naming the key and the value.
+#[test]
+fn mirror_and_refraction_keys() {
+    let m = cube_with("plain_rt.toml", "").objects[0].material();
+    assert_eq!((m.kr, m.ior), (Vec3::ZERO, 1.0));
+    let m = cube_with("glass.toml", "kr = [0.1, 0.2, 0.3]\nior = 1.5\nopacity = 0.1").objects[0].material();
+    assert_eq!((m.kr, m.ior, m.opacity), (Vec3::new(0.1, 0.2, 0.3), 1.5, 0.1));
+    let bad = |name: &str, line: &str, parts: &[&str]| {
+        check_scene_error(name, &format!("{OBJECT}[objects.material]\n{line}\n"), parts)
+    };
+    bad("ior0.toml", "ior = 0", &["objects[0].material.ior", "got 0"]);
+    bad("iorneg.toml", "ior = -1.5", &["objects[0].material.ior", "got -1.5"]);
+    bad("iornan.toml", "ior = nan", &["objects[0].material.ior", "finite"]);
+    bad("kr.toml", "kr = [1.5, 0, 0]", &["objects[0].material.kr"]);
+}

@@ -18,6 +18,7 @@ fn material(ke: Vec3, opacity: f32) -> Material {
         ns: 1.0,
         opacity,
         model: Default::default(),
+        ..Material::DEFAULT
     }
 }
 

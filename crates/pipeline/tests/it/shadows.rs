@@ -27,6 +27,7 @@ fn receiver_material() -> Material {
         ns: 1.0,
         opacity: 1.0,
         model: Default::default(),
+        ..Material::DEFAULT
     }
 }
 

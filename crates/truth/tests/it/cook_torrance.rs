@@ -45,6 +45,7 @@ fn cook_torrance(kd: Vec3, ke: Vec3, metallic: f32, roughness: f32, distribution
         ns: 3.0,
         opacity: 1.0,
         model: Model::CookTorrance(Microfacet { metallic, roughness, distribution }),
+        ..Material::DEFAULT
     }
 }
 

@@ -29,6 +29,7 @@ const MATERIAL: Material = Material {
     ns: 12.0,
     opacity: 1.0,
     model: zline_shading::Model::Basic,
+    ..Material::DEFAULT
 };
 
 /// The lit colour with the ambient+diffuse part multiplied by `tint`.
@@ -89,6 +90,7 @@ fn emission_only_material_shows_ke_in_every_mode() {
         ns: 1.0,
         opacity: 1.0,
         model: zline_shading::Model::Basic,
+        ..Material::DEFAULT
     };
     let plain = (*square(0.0, 0.0, 1.0, -2.0, material)).clone();
     let mut textured = plain.clone();

@@ -42,11 +42,21 @@ fn cook_torrance(kd: Vec3, metallic: f32, roughness: f32, distribution: Distribu
         ns: 3.0,
         opacity: 1.0,
         model: Model::CookTorrance(Microfacet { metallic, roughness, distribution }),
+        ..Material::DEFAULT
     }
 }
 
 fn basic(ka: Vec3, kd: Vec3) -> Material {
-    Material { ka, kd, ks: Vec3::splat(0.3), ns: 20.0, opacity: 1.0, ke: Vec3::ZERO, model: Model::Basic }
+    Material {
+        ka,
+        kd,
+        ks: Vec3::splat(0.3),
+        ns: 20.0,
+        opacity: 1.0,
+        ke: Vec3::ZERO,
+        model: Model::Basic,
+        ..Material::DEFAULT
+    }
 }
 
 /// The materials of the spheres, left to right, top to bottom: GGX

@@ -19,6 +19,7 @@ const MATERIAL: Material = Material {
     ns: 12.0,
     opacity: 1.0,
     model: zline_shading::Model::Basic,
+    ..Material::DEFAULT
 };
 
 /// SPEC §5 for the one point light, eye at the origin, clamped.
@@ -343,6 +344,7 @@ fn white_texture_leaves_gouraud_unchanged_even_when_clipped() {
         opacity: 1.0,
         ke: Vec3::ZERO,
         model: zline_shading::Model::Basic,
+        ..Material::DEFAULT
     };
     let plain = mesh(positions, normals, vec![[0, 1, 2]], material);
     let mut textured = (*plain).clone();

@@ -33,6 +33,7 @@ const FLOOR: Material = Material {
     ns: 1.0,
     opacity: 1.0,
     model: zline_shading::Model::Basic,
+    ..Material::DEFAULT
 };
 
 const AMBIENT: Vec3 = Vec3::new(0.25, 0.25, 0.25);

@@ -52,6 +52,7 @@ pub(crate) fn emissive(color: Vec3, opacity: f32) -> Material {
         opacity,
         ke: Vec3::ZERO,
         model: zline_shading::Model::Basic,
+        ..Material::DEFAULT
     }
 }
 

@@ -105,6 +105,7 @@ pub(crate) fn material() -> impl Strategy<Value = Material> {
             opacity: 1.0,
             ke: ke * 0.3,
             model: zline_shading::Model::Basic,
+            ..Material::DEFAULT
         },
     )
 }

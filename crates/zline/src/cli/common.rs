@@ -166,4 +166,6 @@ pub(crate) struct Common {
     pub(crate) visibility: super::visibility::VisibilityArgs,
     #[command(flatten)]
     pub(crate) layers: super::layers::LayerArgs,
+    #[command(flatten)]
+    pub(crate) trace: super::trace::TraceArgs,
 }

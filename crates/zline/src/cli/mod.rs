@@ -6,4 +6,5 @@ pub(crate) mod common;
 pub(crate) mod layers;
 pub(crate) mod load;
 pub(crate) mod parse;
+pub(crate) mod trace;
 pub(crate) mod visibility;

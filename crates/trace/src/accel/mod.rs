@@ -1,0 +1,134 @@
+//! Acceleration structures: which triangles a ray meets, without testing
+//! them all. Every structure answers exactly as brute force does
+//! ([`brute::Brute`], the oracle): the same nearest hit by [`Hit::nearer_than`]'s
+//! tie rule, and the same set of hits along a segment.
+//!
+//! | structure | build | traversal |
+//! |---|---|---|
+//! | [`bvh::Bvh`] | binned surface-area heuristic (pbrt-v4's) | nearer child first, a fixed stack |
+//! | [`brute::Brute`] | none | every triangle |
+
+use glam::Vec3;
+
+use crate::ray::{Hit, Ray, Sheared};
+
+pub mod brute;
+pub mod bvh;
+
+/// Which structure a render uses (`--accel`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum AccelKind {
+    /// The SAH bounding-volume hierarchy (the default).
+    #[default]
+    Bvh,
+    /// Every triangle for every ray (the oracle).
+    None,
+}
+
+impl AccelKind {
+    /// The name the command line uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            AccelKind::Bvh => "bvh",
+            AccelKind::None => "none",
+        }
+    }
+}
+
+/// Work counted during traversal, per ray kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Rays traced.
+    pub rays: u64,
+    /// Nodes visited (boxes tested).
+    pub nodes: u64,
+    /// Ray–triangle tests.
+    pub tests: u64,
+}
+
+impl std::ops::Add for Counters {
+    type Output = Counters;
+
+    /// The sum of two counts.
+    fn add(self, o: Counters) -> Counters {
+        Counters { rays: self.rays + o.rays, nodes: self.nodes + o.nodes, tests: self.tests + o.tests }
+    }
+}
+
+/// A structure over a triangle list.
+pub trait Accelerator: Send + Sync {
+    /// The nearest hit of `ray` among `triangles` (the list the structure
+    /// was built over), by the tie rule of [`Hit::nearer_than`].
+    fn closest(&self, triangles: &[[Vec3; 3]], ray: &Ray, count: &mut Counters) -> Option<Hit>;
+
+    /// Calls `visit` with every hit of `ray` (0 < t < t_max), in no
+    /// particular order, until it returns false; returns false when it
+    /// did.
+    fn each_hit(
+        &self,
+        triangles: &[[Vec3; 3]],
+        ray: &Ray,
+        count: &mut Counters,
+        visit: &mut dyn FnMut(Hit) -> bool,
+    ) -> bool;
+}
+
+/// An axis-aligned box (empty: min > max).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    /// The low corner.
+    pub min: Vec3,
+    /// The high corner.
+    pub max: Vec3,
+}
+
+impl Bounds {
+    /// The empty box.
+    pub const EMPTY: Bounds = Bounds { min: Vec3::INFINITY, max: Vec3::NEG_INFINITY };
+
+    /// The box of a triangle.
+    pub fn of(t: &[Vec3; 3]) -> Bounds {
+        Bounds { min: t[0].min(t[1]).min(t[2]), max: t[0].max(t[1]).max(t[2]) }
+    }
+
+    /// The box holding both.
+    pub fn union(self, o: Bounds) -> Bounds {
+        Bounds { min: self.min.min(o.min), max: self.max.max(o.max) }
+    }
+
+    /// The box grown to hold `p`.
+    pub fn grow(self, p: Vec3) -> Bounds {
+        Bounds { min: self.min.min(p), max: self.max.max(p) }
+    }
+
+    /// The surface area (0 for the empty box).
+    pub fn area(&self) -> f32 {
+        let d = (self.max - self.min).max(Vec3::ZERO);
+        2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
+    }
+
+    /// The centre.
+    pub fn centroid(&self) -> Vec3 {
+        0.5 * (self.min + self.max)
+    }
+}
+
+/// Every triangle tested against `ray`: the reference the structures must
+/// equal (also the leaf loop of a structure).
+#[inline]
+pub(crate) fn nearest_in(
+    triangles: &[[Vec3; 3]],
+    indices: impl Iterator<Item = u32>,
+    ray: &Sheared,
+    best: &mut Option<Hit>,
+    count: &mut Counters,
+) {
+    for i in indices {
+        count.tests += 1;
+        if let Some(hit) = ray.intersect(&triangles[i as usize], i) {
+            if best.is_none_or(|b| hit.nearer_than(&b)) {
+                *best = Some(hit);
+            }
+        }
+    }
+}

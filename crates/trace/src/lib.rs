@@ -1,0 +1,180 @@
+//! zline-trace: the ray tracer of the course's first global illumination
+//! model, Whitted's (SPEC §12), on the same scene model and lighting models
+//! as the rasterizer (`zline-shading`), and independent of the rasterizing
+//! pipeline.
+//!
+//! - [`ray`]: rays, hits and the watertight ray–triangle test, with the
+//!   error bounds that place secondary rays off their surface.
+//! - [`accel`]: the acceleration structures (a SAH bounding-volume
+//!   hierarchy; brute force as the oracle), each answering as brute force.
+//! - [`optics`]: reflection, and refraction by the course's formula.
+//! - [`world`]: the scene's triangles in world space and the camera's rays.
+//! - [`whitted`]: the ray tree, walked with an explicit stack.
+//!
+//! [`render`] draws a scene; the image is linear RGB, one colour a pixel,
+//! the same for any number of threads.
+
+use std::time::{Duration, Instant};
+
+use glam::Vec3;
+use rayon::prelude::*;
+use zline_scene::Scene;
+use zline_shading::LightingModel;
+
+pub mod accel;
+pub mod optics;
+pub mod ray;
+pub mod whitted;
+pub mod world;
+
+use accel::{brute::Brute, bvh::Bvh, AccelKind, Accelerator};
+use whitted::{ShadowRays, Tracer, Work};
+use world::{Camera, World};
+
+/// The deepest tree [`render`] traces: a larger depth limit is clamped to
+/// it with a warning (with kr = 1 mirrors facing each other, each level
+/// costs a ray per pixel; [`whitted::RAY_BUDGET`] bounds the rest).
+pub const MAX_DEPTH: u32 = 64;
+
+/// The largest supersampling factor (n × n rays a pixel).
+pub const MAX_SAMPLES: u32 = 16;
+
+/// How [`render`] traces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TraceOptions {
+    /// The tree's depth limit: 1 traces the camera rays only (the local
+    /// model with shadow rays).
+    pub max_depth: u32,
+    /// Branches whose weight falls below this (largest channel) are cut.
+    pub min_weight: f32,
+    /// How shadow rays pass transparent occluders.
+    pub shadows: ShadowRays,
+    /// The acceleration structure.
+    pub accel: AccelKind,
+    /// n: n × n camera rays a pixel, on a regular grid, averaged.
+    pub samples: u32,
+}
+
+impl Default for TraceOptions {
+    fn default() -> Self {
+        TraceOptions {
+            max_depth: 8,
+            min_weight: 1.0 / 512.0,
+            shadows: ShadowRays::Filtered,
+            accel: AccelKind::Bvh,
+            samples: 1,
+        }
+    }
+}
+
+impl TraceOptions {
+    /// The options with every value in range, and a warning for each one
+    /// that was not.
+    pub fn checked(&self) -> (TraceOptions, Vec<String>) {
+        let mut o = *self;
+        let mut warnings = Vec::new();
+        if o.max_depth == 0 || o.max_depth > MAX_DEPTH {
+            let to = o.max_depth.clamp(1, MAX_DEPTH);
+            warnings.push(format!("a ray-tracing depth of {} is out of range: {to} is used", o.max_depth));
+            o.max_depth = to;
+        }
+        if !(o.min_weight >= 0.0 && o.min_weight.is_finite()) {
+            warnings.push(format!("a ray weight cutoff of {} is not a number ≥ 0: 0 is used", o.min_weight));
+            o.min_weight = 0.0;
+        }
+        if o.samples == 0 || o.samples > MAX_SAMPLES {
+            let to = o.samples.clamp(1, MAX_SAMPLES);
+            warnings.push(format!("{} rays a pixel per axis is out of range: {to} is used", o.samples));
+            o.samples = to;
+        }
+        (o, warnings)
+    }
+}
+
+/// A ray-traced image and what it cost.
+#[derive(Clone, Debug, Default)]
+pub struct Traced {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Linear RGB, row by row from the top; each pixel's tree sum, not
+    /// clamped.
+    pub pixels: Vec<Vec3>,
+    /// Rays by kind, nodes, tests.
+    pub work: Work,
+    /// Building the acceleration structure.
+    pub build: Duration,
+    /// Tracing.
+    pub trace: Duration,
+    /// The warnings of [`TraceOptions::checked`] and of the scene.
+    pub warnings: Vec<String>,
+}
+
+/// Ray-traces `scene` with `options` (checked first: see
+/// [`TraceOptions::checked`]), in parallel over rows on the current rayon
+/// pool; the image does not depend on the thread count.
+pub fn render(scene: &Scene, options: &TraceOptions) -> Traced {
+    let (options, mut warnings) = options.checked();
+    let world = World::new(scene);
+    let started = Instant::now();
+    let accel: Box<dyn Accelerator> = match options.accel {
+        AccelKind::Bvh => Box::new(Bvh::build(&world.triangles)),
+        AccelKind::None => Box::new(Brute),
+    };
+    let build = started.elapsed();
+    let camera = Camera::new(scene);
+    let lights = LightingModel {
+        ambient: scene.ambient,
+        lights: scene.lights.clone(),
+        environment: scene.environment.clone(),
+    };
+    if scene.environment.is_some() {
+        warnings.push(
+            "the ray tracer lights with the environment map but draws the background colour behind the scene"
+                .into(),
+        );
+    }
+    let tracer = Tracer {
+        world: &world,
+        accel: accel.as_ref(),
+        lights: &lights,
+        camera: &camera,
+        fog: scene.fog,
+        background: scene.background,
+        max_depth: options.max_depth,
+        min_weight: options.min_weight,
+        shadows: options.shadows,
+    };
+    let (width, height) = camera.size();
+    let started = Instant::now();
+    let n = options.samples;
+    let mut pixels = vec![Vec3::ZERO; width as usize * height as usize];
+    let work = pixels
+        .par_chunks_mut(width as usize)
+        .enumerate()
+        .map(|(y, row)| {
+            let (mut work, mut stack) = (Work::default(), Vec::new());
+            for (x, pixel) in row.iter_mut().enumerate() {
+                let mut sum = Vec3::ZERO;
+                for j in 0..n {
+                    for i in 0..n {
+                        let sx = x as f64 + (f64::from(i) + 0.5) / f64::from(n);
+                        let sy = y as f64 + (f64::from(j) + 0.5) / f64::from(n);
+                        sum += tracer.trace(camera.ray(sx, sy), &mut work, &mut stack);
+                    }
+                }
+                *pixel = sum / (n * n) as f32;
+            }
+            work
+        })
+        .reduce(Work::default, |a, b| a + b);
+    if work.budget_cut > 0 {
+        warnings.push(format!(
+            "{} ray trees reached the budget of {} rays and were cut",
+            work.budget_cut,
+            whitted::RAY_BUDGET
+        ));
+    }
+    Traced { width, height, pixels, work, build, trace: started.elapsed(), warnings }
+}

@@ -1,0 +1,52 @@
+//! `--renderer raytrace`: the ray tracer from the command line.
+
+use crate::{check_clean_error, check_png, repo, zline};
+
+#[test]
+fn the_demo_ray_traces_the_same_for_any_thread_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let (one, two) = (dir.path().join("one.png"), dir.path().join("two.png"));
+    let run = |png: &std::path::Path, threads: &str| {
+        zline(&[
+            "demo",
+            "-o",
+            png.to_str().unwrap(),
+            "--size",
+            "160x90",
+            "--renderer",
+            "raytrace",
+            "--threads",
+            threads,
+        ])
+    };
+    let (a, b) = (run(&one, "1"), run(&two, "2"));
+    let img = check_png(&a, &one, (160, 90));
+    check_png(&b, &two, (160, 90));
+    let said = String::from_utf8_lossy(&a.stderr);
+    assert!(said.contains("ray traced") && said.contains("shadow rays"), "{said}");
+    assert_eq!(std::fs::read(&one).unwrap(), std::fs::read(&two).unwrap(), "PNG bytes differ");
+    let distinct: std::collections::HashSet<_> = img.pixels().collect();
+    assert!(distinct.len() > 100, "the ray-traced demo looks empty ({} colours)", distinct.len());
+}
+
+#[test]
+fn ray_tracing_flags_are_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("out.png");
+    let out = png.to_str().unwrap();
+    check_clean_error(&zline(&["demo", "-o", out, "--ray-depth", "3"]), &["--renderer raytrace"]);
+    let model = repo().join("assets/obj/suzanne/suzanne.obj");
+    check_clean_error(
+        &zline(&["turntable", model.to_str().unwrap(), "-o", out, "--renderer", "raytrace"]),
+        &["rasterizes only"],
+    );
+    check_clean_error(
+        &zline(&["demo", "-o", out, "--renderer", "raytrace", "--depth-image", "d.png"]),
+        &["raytrace"],
+    );
+    // A depth of a billion is clamped with a warning, and the image is written.
+    let deep =
+        zline(&["demo", "-o", out, "--size", "32x18", "--renderer", "raytrace", "--ray-depth", "1000000000"]);
+    check_png(&deep, &png, (32, 18));
+    assert!(String::from_utf8_lossy(&deep.stderr).contains("warning: a ray-tracing depth of 1000000000"));
+}
