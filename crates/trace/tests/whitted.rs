@@ -239,8 +239,9 @@ fn shadow_rays_pass_kt_of_each_transparent_occluder() {
         square((-0.5, 0.5), (-0.5, 0.5), 1.0, true, pane),
     ];
     let s = scene(objects, vec![light]);
+    // The ray starts beyond the pane (z = 0.5 < 1) and meets only the wall;
+    // the wall's shadow ray to the light crosses the pane.
     let ray = Ray::new(Vec3::new(0.0, 0.0, 0.5), Vec3::NEG_Z);
-    // The camera ray passes the pane? It starts in front of it (z = 0.5 < 1).
     close(trace(&s, ray, 1, ShadowRays::Filtered).0, Vec3::splat(0.6));
     close(trace(&s, ray, 1, ShadowRays::Opaque).0, Vec3::ZERO);
 }
