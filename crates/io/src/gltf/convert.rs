@@ -69,10 +69,15 @@ pub(super) fn material_from_gltf(material: &gltf::Material) -> Material {
     let roughness = pbr.roughness_factor().clamp(0.0, 1.0);
     let ks = Vec3::splat(0.04).lerp(base, metallic) * (1.0 - roughness);
     let ns = (2.0 / roughness.powi(4) - 2.0).clamp(1.0, MAX_GLTF_SHININESS);
-    let opacity = if material.alpha_mode() == gltf::material::AlphaMode::Blend { a } else { 1.0 };
+    let alpha = if material.alpha_mode() == gltf::material::AlphaMode::Blend { a } else { 1.0 };
+    let transmission = material.transmission().map_or(0.0, |t| t.transmission_factor().clamp(0.0, 1.0));
+    let opacity = alpha * (1.0 - transmission);
+    // KHR_materials_ior's default; `sanitized` replaces one that is not a
+    // finite number > 0 (the extension allows 0, meaning infinity) by 1.
+    let ior = material.ior().unwrap_or(1.5);
     let ke = Vec3::from(material.emissive_factor()) * material.emissive_strength().unwrap_or(1.0);
     let model = Model::CookTorrance(Microfacet { metallic, roughness, distribution: Distribution::Ggx });
-    Material { ke, ka: base, kd: base, ks, ns, opacity, model, kr: Vec3::ZERO, ior: 1.0 }.sanitized()
+    Material { ke, ka: base, kd: base, ks, ns, opacity, model, kr: Vec3::ZERO, ior }.sanitized()
 }
 
 /// The same mesh with every triangle's winding reversed.

@@ -55,7 +55,11 @@
 //!   exponent.
 //!
 //! And for both:
-//! - opacity = baseColorFactor.a for alphaMode BLEND, 1 otherwise. MASK
+//! - opacity = baseColorFactor.a for alphaMode BLEND, 1 otherwise, times
+//!   1 − KHR_materials_transmission's transmissionFactor (the ray tracer's
+//!   kt = 1 − d, SPEC §12; the rasterizer blends such a surface; the
+//!   transmissionTexture is not read), and the index of refraction
+//!   KHR_materials_ior's ior (default 1.5, the extension's). MASK
 //!   with a base colour texture discards samples whose alpha
 //!   baseColorFactor.a × texel alpha is below alphaCutoff (default 0.5;
 //!   stored as a cutoff on the texel alpha, alphaCutoff / factor.a, in
@@ -158,7 +162,12 @@ use maps::{SurfaceMap, TextureSource};
 use resources::{decode_data_uri, read_buffers, uri_target, UriTarget};
 
 /// Extensions the loader reads (others are warned about).
-const SUPPORTED_EXTENSIONS: &[&str] = &["KHR_lights_punctual", "KHR_materials_emissive_strength"];
+const SUPPORTED_EXTENSIONS: &[&str] = &[
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_ior",
+    "KHR_materials_transmission",
+];
 
 /// What a glTF file holds, in zline's model (see the module doc).
 #[derive(Clone, Debug, PartialEq)]

@@ -561,3 +561,30 @@ fn the_other_material_maps_are_read_and_a_lone_map_gets_a_white_base_texture() {
         other => panic!("glTF materials are Cook–Torrance, got {other:?}"),
     }
 }
+
+/// KHR_materials_ior and KHR_materials_transmission (SPEC §12): the index
+/// of refraction (default 1.5), and kt = transmissionFactor as 1 − d.
+#[test]
+fn ior_and_transmission_reach_the_material() {
+    let path = quad_gltf(
+        "glass",
+        r#""extensionsUsed": ["KHR_materials_ior", "KHR_materials_transmission"],
+        "materials": [
+            {"extensions": {"KHR_materials_ior": {"ior": 1.33},
+                            "KHR_materials_transmission": {"transmissionFactor": 0.75}}},
+            {"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.5]}, "alphaMode": "BLEND"}
+        ],
+        "nodes": [{"mesh": 0}, {"mesh": 1}], "scenes": [{"nodes": [0, 1]}]"#,
+    );
+    edit(
+        &path,
+        r#""meshes": ["#,
+        r#""meshes": [{"name": "plain", "primitives": [{"attributes": {"POSITION": 0}, "indices": 2, "material": 1}]}, "#,
+    );
+    edit(&path, r#""nodes": [{"mesh": 0}, {"mesh": 1}]"#, r#""nodes": [{"mesh": 1}, {"mesh": 0}]"#);
+    let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let (glass, plain) = (scene.objects[0].material(), scene.objects[1].material());
+    assert_eq!((glass.ior, glass.opacity), (1.33, 0.25));
+    assert_eq!((plain.ior, plain.opacity), (1.5, 0.5), "the extension's default index; alpha blending alone");
+}
