@@ -215,8 +215,11 @@ impl Tracer<'_> {
                 let mut opaque = false;
                 self.accel.each_hit(&self.world.triangles, &ray, count, &mut |hit| {
                     let kt = 1.0 - self.opacity(hit.triangle);
+                    // An opaque occluder ends the ray before anything is kept.
                     opaque = kt <= 0.0;
-                    hits.push((hit, kt));
+                    if !opaque {
+                        hits.push((hit, kt));
+                    }
                     !opaque
                 });
                 if opaque {

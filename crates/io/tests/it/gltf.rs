@@ -374,22 +374,15 @@ fn vertex_color_test_reads_color_0_as_rgb() {
 
 #[test]
 fn emissive_factor_times_strength_becomes_ke() {
-    let path = quad_gltf(
+    let path = two_material_quads(
         "emissive",
         r#""extensionsUsed": ["KHR_materials_emissive_strength"],
         "materials": [
             {"emissiveFactor": [0.25, 0.5, 0.125],
              "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 3}}},
             {"emissiveFactor": [0.25, 0.5, 0.125]}
-        ],
-        "nodes": [{"mesh": 0}, {"mesh": 1}], "scenes": [{"nodes": [0, 1]}]"#,
+        ],"#,
     );
-    edit(
-        &path,
-        r#""meshes": ["#,
-        r#""meshes": [{"name": "plain", "primitives": [{"attributes": {"POSITION": 0}, "indices": 2, "material": 1}]}, "#,
-    );
-    edit(&path, r#""nodes": [{"mesh": 0}, {"mesh": 1}]"#, r#""nodes": [{"mesh": 1}, {"mesh": 0}]"#);
     let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
     assert!(warnings.is_empty(), "{warnings:?}");
     // × 3 gives (0.75, 1.5, 0.375); ke is clamped to [0, 1] like every coefficient.
@@ -397,6 +390,23 @@ fn emissive_factor_times_strength_becomes_ke() {
     assert_eq!(scene.objects[1].material().ke, Vec3::new(0.25, 0.5, 0.125), "no strength: the factor");
     let plain = load_gltf(&repo("assets/gltf/Box/glTF-Binary/Box.glb")).unwrap();
     assert_eq!(plain.objects[0].material().ke, Vec3::ZERO, "no emissiveFactor: no emission");
+}
+
+/// Two quads, the first object with `materials` (the JSON of
+/// `extensionsUsed` and two materials, ending in a comma) material 0, the
+/// second material 1.
+fn two_material_quads(name: &str, materials: &str) -> PathBuf {
+    let path = quad_gltf(
+        name,
+        &format!(r#"{materials} "nodes": [{{"mesh": 0}}, {{"mesh": 1}}], "scenes": [{{"nodes": [0, 1]}}]"#),
+    );
+    edit(
+        &path,
+        r#""meshes": ["#,
+        r#""meshes": [{"name": "plain", "primitives": [{"attributes": {"POSITION": 0}, "indices": 2, "material": 1}]}, "#,
+    );
+    edit(&path, r#""nodes": [{"mesh": 0}, {"mesh": 1}]"#, r#""nodes": [{"mesh": 1}, {"mesh": 0}]"#);
+    path
 }
 
 /// The quad with a base colour texture whose image is `uri`.
@@ -566,22 +576,15 @@ fn the_other_material_maps_are_read_and_a_lone_map_gets_a_white_base_texture() {
 /// of refraction (default 1.5), and kt = transmissionFactor as 1 − d.
 #[test]
 fn ior_and_transmission_reach_the_material() {
-    let path = quad_gltf(
+    let path = two_material_quads(
         "glass",
         r#""extensionsUsed": ["KHR_materials_ior", "KHR_materials_transmission"],
         "materials": [
             {"extensions": {"KHR_materials_ior": {"ior": 1.33},
                             "KHR_materials_transmission": {"transmissionFactor": 0.75}}},
             {"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.5]}, "alphaMode": "BLEND"}
-        ],
-        "nodes": [{"mesh": 0}, {"mesh": 1}], "scenes": [{"nodes": [0, 1]}]"#,
+        ],"#,
     );
-    edit(
-        &path,
-        r#""meshes": ["#,
-        r#""meshes": [{"name": "plain", "primitives": [{"attributes": {"POSITION": 0}, "indices": 2, "material": 1}]}, "#,
-    );
-    edit(&path, r#""nodes": [{"mesh": 0}, {"mesh": 1}]"#, r#""nodes": [{"mesh": 1}, {"mesh": 0}]"#);
     let (scene, warnings) = load_gltf_with_warnings(&path).unwrap();
     assert!(warnings.is_empty(), "{warnings:?}");
     let (glass, plain) = (scene.objects[0].material(), scene.objects[1].material());

@@ -171,16 +171,7 @@ proptest! {
     ) {
         let ops = Ops { a, p, b, i, j, shift };
         let base = (&ops).run::<super::Baseline>();
-        let mut levels = vec![("best", vectorize(&ops))];
-        #[cfg(target_arch = "x86_64")]
-        {
-            if let Some(v3) = crate::avx2::v3_token() {
-                levels.push(("v3", v3.vectorize(&ops)));
-            }
-            if let Some(v4) = crate::avx2::v4_token() {
-                levels.push(("v4", v4.vectorize(&ops)));
-            }
-        }
+        let levels = every_level(&ops);
         for (level, got) in &levels {
             for (k, (x, y)) in base.iter().zip(got).enumerate() {
                 prop_assert_eq!(
@@ -189,6 +180,22 @@ proptest! {
             }
         }
     }
+}
+
+/// `job` at the best level and at each level above the baseline that the
+/// CPU has, with the level's name.
+fn every_level<J: Vectorized + Copy>(job: J) -> Vec<(&'static str, J::Output)> {
+    let mut levels = vec![("best", vectorize(job))];
+    #[cfg(target_arch = "x86_64")]
+    {
+        if let Some(v3) = crate::avx2::v3_token() {
+            levels.push(("v3", v3.vectorize(job)));
+        }
+        if let Some(v4) = crate::avx2::v4_token() {
+            levels.push(("v4", v4.vectorize(job)));
+        }
+    }
+    levels
 }
 
 /// `log2` of the lanes, at level `L`.
@@ -215,18 +222,10 @@ proptest! {
         p in proptest::array::uniform8(positive_lane()),
     ) {
         for x in [a, p] {
-            let want = wide::f32x8::from(x).log2().to_array().map(|v| if v.is_nan() { f32::NAN.to_bits() } else { v.to_bits() });
+            let want = num(f32x8::<super::Baseline>::from_wide(wide::f32x8::from(x).log2()));
             let job = Log2(x);
-            let mut levels = vec![("baseline", (&job).run::<super::Baseline>()), ("best", vectorize(&job))];
-            #[cfg(target_arch = "x86_64")]
-            {
-                if let Some(v3) = crate::avx2::v3_token() {
-                    levels.push(("v3", v3.vectorize(&job)));
-                }
-                if let Some(v4) = crate::avx2::v4_token() {
-                    levels.push(("v4", v4.vectorize(&job)));
-                }
-            }
+            let mut levels = every_level(&job);
+            levels.push(("baseline", (&job).run::<super::Baseline>()));
             for (level, got) in levels {
                 prop_assert_eq!(got, want, "{}: log2 of {:?}", level, x);
             }
