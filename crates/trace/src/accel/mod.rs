@@ -14,6 +14,8 @@ use crate::ray::{Hit, Ray, Sheared};
 
 pub mod brute;
 pub mod bvh;
+#[cfg(test)]
+pub(crate) mod testkit;
 
 /// Which structure a render uses (`--accel`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
