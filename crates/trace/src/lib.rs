@@ -10,6 +10,7 @@
 //! - [`optics`]: reflection, and refraction by the course's formula.
 //! - [`world`]: the scene's triangles in world space and the camera's rays.
 //! - [`whitted`]: the ray tree, walked with an explicit stack.
+//! - [`antialias`]: regular and adaptive supersampling.
 //!
 //! [`render`] draws a scene; the image is linear RGB, one colour a pixel,
 //! the same for any number of threads.
@@ -22,12 +23,14 @@ use zline_scene::Scene;
 use zline_shading::LightingModel;
 
 pub mod accel;
+pub mod antialias;
 pub mod optics;
 pub mod ray;
 pub mod whitted;
 pub mod world;
 
 use accel::{brute::Brute, bvh::Bvh, AccelKind, Accelerator};
+use antialias::{Adaptive, Sampler, MAX_ADAPTIVE_DEPTH};
 use whitted::{ShadowRays, Tracer, Work};
 use world::{Camera, World};
 
@@ -53,6 +56,8 @@ pub struct TraceOptions {
     pub accel: AccelKind,
     /// n: n × n camera rays a pixel, on a regular grid, averaged.
     pub samples: u32,
+    /// Adaptive supersampling instead of the regular grid.
+    pub adaptive: Option<Adaptive>,
 }
 
 impl Default for TraceOptions {
@@ -63,6 +68,7 @@ impl Default for TraceOptions {
             shadows: ShadowRays::Filtered,
             accel: AccelKind::Bvh,
             samples: 1,
+            adaptive: None,
         }
     }
 }
@@ -86,6 +92,27 @@ impl TraceOptions {
             let to = o.samples.clamp(1, MAX_SAMPLES);
             warnings.push(format!("{} rays a pixel per axis is out of range: {to} is used", o.samples));
             o.samples = to;
+        }
+        if let Some(a) = &mut o.adaptive {
+            if a.depth > MAX_ADAPTIVE_DEPTH {
+                warnings.push(format!(
+                    "an adaptive supersampling depth of {} is out of range: {MAX_ADAPTIVE_DEPTH} is used",
+                    a.depth
+                ));
+                a.depth = MAX_ADAPTIVE_DEPTH;
+            }
+            if a.threshold.is_nan() || a.threshold < 0.0 {
+                let to = Adaptive::default().threshold;
+                warnings.push(format!(
+                    "an adaptive threshold of {} is not a number ≥ 0: {to} is used",
+                    a.threshold
+                ));
+                a.threshold = to;
+            }
+            if o.samples > 1 {
+                warnings.push(format!("adaptive supersampling replaces the regular {0}×{0} grid", o.samples));
+                o.samples = 1;
+            }
         }
         (o, warnings)
     }
@@ -148,27 +175,54 @@ pub fn render(scene: &Scene, options: &TraceOptions) -> Traced {
     };
     let (width, height) = camera.size();
     let started = Instant::now();
-    let n = options.samples;
     let mut pixels = vec![Vec3::ZERO; width as usize * height as usize];
-    let work = pixels
-        .par_chunks_mut(width as usize)
-        .enumerate()
-        .map(|(y, row)| {
-            let (mut work, mut stack) = (Work::default(), Vec::new());
-            for (x, pixel) in row.iter_mut().enumerate() {
-                let mut sum = Vec3::ZERO;
-                for j in 0..n {
-                    for i in 0..n {
-                        let sx = x as f64 + (f64::from(i) + 0.5) / f64::from(n);
-                        let sy = y as f64 + (f64::from(j) + 0.5) / f64::from(n);
-                        sum += tracer.trace(camera.ray(sx, sy), &mut work, &mut stack);
-                    }
+    let sampler = || Sampler {
+        tracer: &tracer,
+        camera: &camera,
+        tone: scene.settings.tone_mapping,
+        work: Work::default(),
+        stack: Vec::new(),
+    };
+    let work = if let Some(adaptive) = options.adaptive {
+        // The pixel corners first, each traced once for the image.
+        let mut corners = vec![Vec::new(); height as usize + 1];
+        let corner_work = corners
+            .par_iter_mut()
+            .enumerate()
+            .map(|(y, row)| {
+                let mut s = sampler();
+                *row = s.corner_row(y as u32, width);
+                s.work
+            })
+            .reduce(Work::default, |a, b| a + b);
+        let corners = &corners;
+        let pixel_work = pixels
+            .par_chunks_mut(width as usize)
+            .enumerate()
+            .map(|(y, row)| {
+                let mut s = sampler();
+                let (above, below) = (&corners[y], &corners[y + 1]);
+                for (x, pixel) in row.iter_mut().enumerate() {
+                    let c = [above[x], above[x + 1], below[x], below[x + 1]];
+                    *pixel = s.adaptive(x as u32, y as u32, c, adaptive);
                 }
-                *pixel = sum / (n * n) as f32;
-            }
-            work
-        })
-        .reduce(Work::default, |a, b| a + b);
+                s.work
+            })
+            .reduce(Work::default, |a, b| a + b);
+        corner_work + pixel_work
+    } else {
+        pixels
+            .par_chunks_mut(width as usize)
+            .enumerate()
+            .map(|(y, row)| {
+                let mut s = sampler();
+                for (x, pixel) in row.iter_mut().enumerate() {
+                    *pixel = s.uniform(x as u32, y as u32, options.samples);
+                }
+                s.work
+            })
+            .reduce(Work::default, |a, b| a + b)
+    };
     if work.budget_cut > 0 {
         warnings.push(format!(
             "{} ray trees reached the budget of {} rays and were cut",

@@ -14,6 +14,8 @@ use crate::ray::{Hit, Ray, Sheared};
 
 pub mod brute;
 pub mod bvh;
+pub mod grid;
+pub mod kdtree;
 #[cfg(test)]
 pub(crate) mod testkit;
 

@@ -5,6 +5,7 @@ use clap::{Args, ValueEnum};
 use zline::pipeline::image::{quantize_rgba, Image};
 use zline::scene::Scene;
 use zline::trace::accel::AccelKind;
+use zline::trace::antialias::Adaptive;
 use zline::trace::whitted::ShadowRays;
 use zline::trace::{TraceOptions, Traced};
 
@@ -58,6 +59,19 @@ pub(crate) struct TraceArgs {
     /// Ray tracing: N×N camera rays a pixel on a regular grid, averaged.
     #[arg(long, value_name = "N")]
     pub(crate) rays_per_axis: Option<u32>,
+    /// Ray tracing: the course's adaptive supersampling (pixel corners and
+    /// centre, squares cut where they differ).
+    #[arg(long)]
+    pub(crate) adaptive_aa: bool,
+    /// Ray tracing: adaptive supersampling cutting a pixel at most N times
+    /// (0 to 4; default 3). Implies --adaptive-aa.
+    #[arg(long, value_name = "N")]
+    pub(crate) aa_depth: Option<u32>,
+    /// Ray tracing: adaptive supersampling cuts a square whose samples
+    /// differ by more than T in a display channel (0 to 1; default 1/16).
+    /// Implies --adaptive-aa.
+    #[arg(long, value_name = "T")]
+    pub(crate) aa_threshold: Option<f32>,
 }
 
 impl TraceArgs {
@@ -80,12 +94,26 @@ impl TraceArgs {
             || self.min_weight.is_some()
             || self.accel.is_some()
             || self.shadow_rays.is_some()
-            || self.rays_per_axis.is_some();
+            || self.rays_per_axis.is_some()
+            || self.adaptive_aa
+            || self.aa_depth.is_some()
+            || self.aa_threshold.is_some();
         if given && !self.traces() {
             bail!(
-                "--depth, --min-weight, --accel, --shadow-rays and --rays-per-axis need --renderer raytrace"
+                "--ray-depth, --min-weight, --accel, --shadow-rays, --rays-per-axis, --adaptive-aa, --aa-depth and --aa-threshold need --renderer raytrace"
             );
         }
+        let adaptive_aa = self.adaptive_aa || self.aa_depth.is_some() || self.aa_threshold.is_some();
+        if self.rays_per_axis.is_some_and(|n| n > 1) && adaptive_aa {
+            bail!("--rays-per-axis and adaptive supersampling are two ways to anti-alias: give one");
+        }
+        let adaptive = adaptive_aa.then(|| {
+            let d = Adaptive::default();
+            Adaptive {
+                depth: self.aa_depth.unwrap_or(d.depth),
+                threshold: self.aa_threshold.unwrap_or(d.threshold),
+            }
+        });
         let d = TraceOptions::default();
         Ok(TraceOptions {
             max_depth: self.ray_depth.unwrap_or(d.max_depth),
@@ -99,6 +127,7 @@ impl TraceArgs {
                 Some(ShadowChoice::Opaque) => ShadowRays::Opaque,
             },
             samples: self.rays_per_axis.unwrap_or(d.samples),
+            adaptive,
         })
     }
 }

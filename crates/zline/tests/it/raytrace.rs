@@ -49,4 +49,32 @@ fn ray_tracing_flags_are_checked() {
         zline(&["demo", "-o", out, "--size", "32x18", "--renderer", "raytrace", "--ray-depth", "1000000000"]);
     check_png(&deep, &png, (32, 18));
     assert!(String::from_utf8_lossy(&deep.stderr).contains("warning: a ray-tracing depth of 1000000000"));
+    check_clean_error(
+        &zline(&["demo", "-o", out, "--renderer", "raytrace", "--rays-per-axis", "3", "--adaptive-aa"]),
+        &["two ways to anti-alias"],
+    );
+    check_clean_error(&zline(&["demo", "-o", out, "--aa-depth", "2"]), &["--renderer raytrace"]);
+}
+
+/// Adaptive supersampling traces the corners and centres, more where the
+/// image has edges, and never more than its depth allows.
+#[test]
+fn adaptive_supersampling_from_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("out.png");
+    let out = png.to_str().unwrap();
+    let run = zline(&["demo", "-o", out, "--size", "64x36", "--renderer", "raytrace", "--aa-depth", "2"]);
+    check_png(&run, &png, (64, 36));
+    let said = String::from_utf8_lossy(&run.stderr);
+    let camera: u64 = said
+        .split(" camera")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no camera ray count in {said}"));
+    let corners_and_centres = 65 * 37 + 64 * 36;
+    // Two cuts: the centre, 4 midpoints, and per quarter its centre and
+    // 4 midpoints.
+    let most = 65 * 37 + 64 * 36 * (1 + 4 + 4 * 5);
+    assert!(camera > corners_and_centres && camera <= most, "{camera} camera rays: {said}");
 }

@@ -1,0 +1,1 @@
+//! The kd-tree (being written).
