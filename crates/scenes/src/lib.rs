@@ -4,7 +4,8 @@
 //! Modules: `demo` (the demo scene: the three shading modes side by side,
 //! texture, transparency and fog), `room` (the course's realistic room: a
 //! globe on a table under a pendant lamp, textured floor and walls, planar
-//! shadows on the floor) and [`hard_cases`](mod@hard_cases) (scenes that stress
+//! shadows on the floor), `whitted` (the classic ray-tracing scene: a
+//! checkerboard floor, a mirror sphere and a glass sphere) and [`hard_cases`](mod@hard_cases) (scenes that stress
 //! numerical stability, each with the outcome a correct render shows).
 //! [`terrain`] makes a height field into a landscape scene, its grid
 //! simplified to a screen-space error bound.
@@ -13,7 +14,9 @@ mod demo;
 pub mod hard_cases;
 mod room;
 pub mod terrain;
+mod whitted;
 
 pub use demo::demo_scene;
 pub use hard_cases::{hard_cases, HardCase};
 pub use room::{room_scene, ROOM_HALF_WIDTH, ROOM_HEIGHT};
+pub use whitted::{whitted_scene, WHITTED_GLASS_IOR};

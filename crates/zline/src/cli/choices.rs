@@ -13,6 +13,9 @@ pub(crate) enum BuiltIn {
     Demo,
     /// The room lit by a lamp, with planar shadows on the floor.
     Room,
+    /// Whitted's scene: a checkerboard floor, a mirror sphere and a glass
+    /// sphere (made for --renderer raytrace).
+    Whitted,
 }
 
 impl BuiltIn {
@@ -20,6 +23,7 @@ impl BuiltIn {
         match self {
             BuiltIn::Demo => zline::scenes::demo_scene(),
             BuiltIn::Room => zline::scenes::room_scene(),
+            BuiltIn::Whitted => zline::scenes::whitted_scene(),
         }
     }
 
@@ -27,6 +31,7 @@ impl BuiltIn {
         match self {
             BuiltIn::Demo => "demo",
             BuiltIn::Room => "room",
+            BuiltIn::Whitted => "whitted",
         }
     }
 }

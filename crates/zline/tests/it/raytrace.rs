@@ -78,3 +78,36 @@ fn adaptive_supersampling_from_the_command_line() {
     let most = 65 * 37 + 64 * 36 * (1 + 4 + 4 * 5);
     assert!(camera > corners_and_centres && camera <= most, "{camera} camera rays: {said}");
 }
+
+/// Whitted's scene: the ray tracer shows the floor in the mirror sphere,
+/// where the rasterizer draws its dark plastic.
+#[test]
+fn the_mirror_of_the_whitted_scene_reflects_the_floor() {
+    let dir = tempfile::tempdir().unwrap();
+    let (traced, raster) = (dir.path().join("traced.png"), dir.path().join("raster.png"));
+    let size = (160, 120);
+    let run = |png: &std::path::Path, extra: &[&str]| {
+        let mut args = vec!["demo", "--scene", "whitted", "-o", png.to_str().unwrap(), "--size", "160x120"];
+        args.extend_from_slice(extra);
+        check_png(&zline(&args), png, size)
+    };
+    let (t, r) = (run(&traced, &["--renderer", "raytrace"]), run(&raster, &[]));
+    // The mirror's lower half, projected: below its centre by 0.6 radius.
+    let scene = zline::scenes::whitted_scene();
+    let m = &scene.objects[1];
+    let centre = m.world_from_object.transform_point3(glam::Vec3::ZERO);
+    let below = m.world_from_object.transform_point3(glam::Vec3::new(0.0, -0.6, 0.0));
+    let aspect = size.0 as f32 / size.1 as f32;
+    let clip_from_world = scene.camera.clip_from_eye(aspect) * scene.camera.eye_from_world();
+    let pixel = |p: glam::Vec3| {
+        let nc = clip_from_world.project_point3(p);
+        (((nc.x + 1.0) * 0.5 * size.0 as f32) as u32, ((1.0 - nc.y) * 0.5 * size.1 as f32) as u32)
+    };
+    let (x, y) = pixel(below);
+    let (cx, _) = pixel(centre);
+    assert!(x.abs_diff(cx) <= 1);
+    let warm = |p: &image::Rgb<u8>| p[0] > 120 && i32::from(p[0]) - i32::from(p[2]) > 80;
+    let count = |img: &image::RgbImage| (0..5).filter(|d| warm(img.get_pixel(x + d - 2, y))).count();
+    assert_eq!(count(&r), 0, "the rasterized mirror is dark plastic");
+    assert!(count(&t) >= 3, "the traced mirror shows the red and yellow floor: {:?}", t.get_pixel(x, y));
+}
