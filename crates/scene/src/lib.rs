@@ -12,7 +12,8 @@
 //! read and build), `primitives` (procedural
 //! meshes), `area` and `area_auto` (area lights and the adaptive choice
 //! of their samples), `occluders` (f64 ray tests against triangles in a
-//! bounding-volume hierarchy: light visibility). The built-in scenes are in zline-scenes.
+//! bounding-volume hierarchy: light visibility), [`trace_options`] (the
+//! ray tracer's settings). The built-in scenes are in zline-scenes.
 
 mod area;
 mod area_auto;
@@ -25,6 +26,7 @@ mod normal_map;
 mod occluders;
 mod primitives;
 mod shadow;
+pub mod trace_options;
 mod visibility;
 
 pub use area::{AreaLight, AreaShape};

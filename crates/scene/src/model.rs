@@ -307,6 +307,11 @@ pub struct RenderSettings {
     /// Exposure and tone mapping before quantization (SPEC §10); the
     /// default, no operator at exposure 1, is the plain clamp.
     pub tone_mapping: zline_shading::ToneMapping,
+    /// Which renderer draws the image (`render` and `demo`; turntables,
+    /// batches and the viewer rasterize).
+    pub renderer: crate::trace_options::Renderer,
+    /// How the ray tracer traces, when it draws.
+    pub trace: crate::trace_options::TraceOptions,
 }
 
 /// Where untextured Gouraud shading clamps the lit colour to [0, 1] (SPEC
@@ -405,6 +410,8 @@ impl Default for RenderSettings {
             wireframe: crate::visibility::Wireframe::default(),
             transparent_background: false,
             tone_mapping: zline_shading::ToneMapping::default(),
+            renderer: crate::trace_options::Renderer::Raster,
+            trace: crate::trace_options::TraceOptions::DEFAULT,
         }
     }
 }

@@ -22,25 +22,7 @@ use zline_shading::ToneMapping;
 use crate::whitted::{Tracer, Work};
 use crate::world::Camera;
 
-/// The most subdivision levels [`Adaptive::depth`] may ask for: 4 cuts a
-/// pixel down to 16 × 16 squares.
-pub const MAX_ADAPTIVE_DEPTH: u32 = 4;
-
-/// The course's adaptive supersampling.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Adaptive {
-    /// Subdivision levels at most (0: corners and centre only).
-    pub depth: u32,
-    /// A square is cut when its five samples spread by more than this, in
-    /// any channel of the tone-mapped display value (0 to 1).
-    pub threshold: f32,
-}
-
-impl Default for Adaptive {
-    fn default() -> Self {
-        Adaptive { depth: 3, threshold: 1.0 / 16.0 }
-    }
-}
+pub use zline_scene::trace_options::{Adaptive, MAX_ADAPTIVE_DEPTH};
 
 /// A traced point: the linear colour and its display value.
 #[derive(Clone, Copy)]

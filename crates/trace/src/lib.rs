@@ -29,94 +29,12 @@ pub mod ray;
 pub mod whitted;
 pub mod world;
 
+pub use zline_scene::trace_options::{TraceOptions, MAX_DEPTH, MAX_SAMPLES};
+
 use accel::{brute::Brute, bvh::Bvh, AccelKind, Accelerator};
-use antialias::{Adaptive, Sampler, MAX_ADAPTIVE_DEPTH};
-use whitted::{ShadowRays, Tracer, Work};
+use antialias::Sampler;
+use whitted::{Tracer, Work};
 use world::{Camera, World};
-
-/// The deepest tree [`render`] traces: a larger depth limit is clamped to
-/// it with a warning (with kr = 1 mirrors facing each other, each level
-/// costs a ray per pixel; [`whitted::RAY_BUDGET`] bounds the rest).
-pub const MAX_DEPTH: u32 = 64;
-
-/// The largest supersampling factor (n × n rays a pixel).
-pub const MAX_SAMPLES: u32 = 16;
-
-/// How [`render`] traces.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TraceOptions {
-    /// The tree's depth limit: 1 traces the camera rays only (the local
-    /// model with shadow rays).
-    pub max_depth: u32,
-    /// Branches whose weight falls below this (largest channel) are cut.
-    pub min_weight: f32,
-    /// How shadow rays pass transparent occluders.
-    pub shadows: ShadowRays,
-    /// The acceleration structure.
-    pub accel: AccelKind,
-    /// n: n × n camera rays a pixel, on a regular grid, averaged.
-    pub samples: u32,
-    /// Adaptive supersampling instead of the regular grid.
-    pub adaptive: Option<Adaptive>,
-}
-
-impl Default for TraceOptions {
-    fn default() -> Self {
-        TraceOptions {
-            max_depth: 8,
-            min_weight: 1.0 / 512.0,
-            shadows: ShadowRays::Filtered,
-            accel: AccelKind::Bvh,
-            samples: 1,
-            adaptive: None,
-        }
-    }
-}
-
-impl TraceOptions {
-    /// The options with every value in range, and a warning for each one
-    /// that was not.
-    pub fn checked(&self) -> (TraceOptions, Vec<String>) {
-        let mut o = *self;
-        let mut warnings = Vec::new();
-        if o.max_depth == 0 || o.max_depth > MAX_DEPTH {
-            let to = o.max_depth.clamp(1, MAX_DEPTH);
-            warnings.push(format!("a ray-tracing depth of {} is out of range: {to} is used", o.max_depth));
-            o.max_depth = to;
-        }
-        if !(o.min_weight >= 0.0 && o.min_weight.is_finite()) {
-            warnings.push(format!("a ray weight cutoff of {} is not a number ≥ 0: 0 is used", o.min_weight));
-            o.min_weight = 0.0;
-        }
-        if o.samples == 0 || o.samples > MAX_SAMPLES {
-            let to = o.samples.clamp(1, MAX_SAMPLES);
-            warnings.push(format!("{} rays a pixel per axis is out of range: {to} is used", o.samples));
-            o.samples = to;
-        }
-        if let Some(a) = &mut o.adaptive {
-            if a.depth > MAX_ADAPTIVE_DEPTH {
-                warnings.push(format!(
-                    "an adaptive supersampling depth of {} is out of range: {MAX_ADAPTIVE_DEPTH} is used",
-                    a.depth
-                ));
-                a.depth = MAX_ADAPTIVE_DEPTH;
-            }
-            if a.threshold.is_nan() || a.threshold < 0.0 {
-                let to = Adaptive::default().threshold;
-                warnings.push(format!(
-                    "an adaptive threshold of {} is not a number ≥ 0: {to} is used",
-                    a.threshold
-                ));
-                a.threshold = to;
-            }
-            if o.samples > 1 {
-                warnings.push(format!("adaptive supersampling replaces the regular {0}×{0} grid", o.samples));
-                o.samples = 1;
-            }
-        }
-        (o, warnings)
-    }
-}
 
 /// A ray-traced image and what it cost.
 #[derive(Clone, Debug, Default)]

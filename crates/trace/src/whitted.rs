@@ -19,16 +19,7 @@ use crate::optics::{reflect, refract};
 use crate::ray::{offset_origin, Hit, Ray};
 use crate::world::{Camera, World};
 
-/// Shadow rays through transparent occluders.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum ShadowRays {
-    /// Each occluder passes its kt = 1 − d of the light (the product over
-    /// the occluders on the segment; no refraction of the shadow ray).
-    #[default]
-    Filtered,
-    /// Any occluder stops the light.
-    Opaque,
-}
+pub use zline_scene::trace_options::ShadowRays;
 
 /// Rays per primary ray at most (the tree's nodes): the bound on a
 /// pixel's work whatever the depth limit and the weights (a kr + kt above

@@ -227,8 +227,8 @@ fn run(cli: Cli) -> Result<()> {
     // loading it: a bad output path or thread count fails at once.
     zline::check_output(&common.output).map_err(|e| anyhow!("{}: {e}", common.output.display()))?;
     common.layers.check(&common.output)?;
-    common.trace.options()?;
-    if common.trace.traces() {
+    common.trace.check()?;
+    if common.trace.asks_to_trace() {
         common.layers.refuse("render --renderer raytrace")?;
     }
     let threads = thread_count(common.threads)?;
@@ -254,7 +254,8 @@ fn run(cli: Cli) -> Result<()> {
     let pool = pool.build().context("cannot start the worker threads")?;
     let loaded = loading.elapsed();
     let options = RenderOptions { tile_size: common.tile_size };
-    if common.trace.traces() {
+    if common.trace.traces(&scene)? {
+        common.layers.refuse("the ray tracer")?;
         return ray_trace(&scene, &common, &pool, loaded);
     }
     let start = Instant::now();
@@ -313,7 +314,7 @@ fn ray_trace(
     pool: &rayon::ThreadPool,
     loaded: std::time::Duration,
 ) -> Result<()> {
-    let options = common.trace.options()?;
+    let options = common.trace.options(scene.settings.trace);
     let (image, traced) = pool.install(|| cli::trace::render(scene, &options));
     for warning in &traced.warnings {
         eprintln!("warning: {warning}");

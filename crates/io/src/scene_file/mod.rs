@@ -38,6 +38,7 @@ mod checks;
 mod lights;
 mod material;
 mod models;
+mod raytrace;
 mod render;
 mod view;
 mod visibility;
@@ -81,6 +82,17 @@ use view::{CameraDef, EnvironmentDef, FogDef};
 /// transparent_background = false    # true: RGBA output, alpha 0 where nothing is drawn, alpha = coverage
 /// tonemap = "none"                  # none | khr-pbr-neutral | aces (SPEC §10; the last two end in sRGB)
 /// exposure = 1.0                    # multiplies the colour before the tone mapping, ≥ 0
+/// renderer = "raster"               # raster (default) | raytrace: Whitted ray tracing (SPEC §12)
+///
+/// [raytrace]                        # the ray tracer's settings (used when it draws)
+/// depth = 8                         # the ray tree's depth limit, 1..=64; default 8
+/// min_weight = 0.002                # branches lighter than this are cut, in [0, 1]; default 1/512
+/// shadow_rays = "filtered"          # filtered (default: kt of transparent surfaces passes) | opaque
+/// accel = "bvh"                     # bvh (default) | none (brute force)
+/// rays_per_axis = 1                 # n×n camera rays a pixel on a regular grid, 1..=16; default 1
+/// adaptive = false                  # true: the course's adaptive supersampling instead
+/// adaptive_depth = 3                # cuts of a pixel at most, 0..=4 (implies adaptive)
+/// adaptive_threshold = 0.0625       # display-value difference that cuts a square, in [0, 1]
 ///
 /// [camera]                          # omitted: the scene is framed
 /// eye = [0, 1, 5]                   # required
@@ -213,6 +225,7 @@ struct SceneFile {
     background: Option<S<[f32; 3]>>,
     ambient: Option<S<[f32; 3]>>,
     render: Option<RenderDef>,
+    raytrace: Option<raytrace::RayTraceDef>,
     camera: Option<S<CameraDef>>,
     lights: Option<Vec<S<LightDef>>>,
     fog: Option<S<FogDef>>,
@@ -274,7 +287,8 @@ struct Builder<'a> {
 impl Builder<'_> {
     fn scene(mut self, file: SceneFile) -> Result<Scene> {
         let mut shadows = shadows(&self.check, file.render.as_ref())?;
-        let settings = settings(&self.check, file.render)?;
+        let mut settings = settings(&self.check, file.render)?;
+        settings.trace = raytrace::options(&self.check, file.raytrace)?;
         let background = match &file.background {
             Some(c) => self.check.vec3_in(c, "background", 0.0, 1.0)?,
             None => DEFAULT_BACKGROUND,

@@ -8,6 +8,7 @@
 use serde::Deserialize;
 use zline_shading::{Filter, ToneMap};
 
+use zline_scene::trace_options::Renderer;
 use zline_scene::{
     DepthMode, GouraudClamp, Interpolation, LightingSides, RenderSettings, ShadowMode, Shadows,
     MAX_ADAPTIVE_TOLERANCE, MAX_IMAGE_SIDE, MAX_SHADOW_MAP_SIZE, MAX_SSAA,
@@ -15,6 +16,7 @@ use zline_scene::{
 use zline_shading::ShadingMode;
 
 use super::checks::{Checker, Result, S};
+use super::raytrace::RendererDef;
 use super::visibility::{VisibilityDef, VisibilityName, WireframeName};
 
 #[derive(Deserialize)]
@@ -42,6 +44,7 @@ pub(super) struct RenderDef {
     transparent_background: Option<bool>,
     tonemap: Option<ToneMapDef>,
     exposure: Option<S<f32>>,
+    renderer: Option<RendererDef>,
 }
 
 /// `[render] tonemap`.
@@ -235,6 +238,12 @@ pub(super) fn settings(check: &Checker, render: Option<RenderDef>) -> Result<Ren
     }
     settings.tone_mapping.exposure =
         check.optional(&render.exposure, "render.exposure", 1.0, 0.0, f32::MAX)?;
+    if let Some(r) = render.renderer {
+        settings.renderer = match r {
+            RendererDef::Raster => Renderer::Raster,
+            RendererDef::Raytrace => Renderer::RayTrace,
+        };
+    }
     Ok(settings)
 }
 

@@ -12,6 +12,7 @@ mod obj_textures;
 mod safety;
 mod scene_file;
 mod scene_materials;
+mod scene_raytrace;
 mod scene_shadows;
 
 use std::path::{Path, PathBuf};

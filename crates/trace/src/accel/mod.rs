@@ -19,25 +19,7 @@ pub mod kdtree;
 #[cfg(test)]
 pub(crate) mod testkit;
 
-/// Which structure a render uses (`--accel`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum AccelKind {
-    /// The SAH bounding-volume hierarchy (the default).
-    #[default]
-    Bvh,
-    /// Every triangle for every ray (the oracle).
-    None,
-}
-
-impl AccelKind {
-    /// The name the command line uses.
-    pub fn name(self) -> &'static str {
-        match self {
-            AccelKind::Bvh => "bvh",
-            AccelKind::None => "none",
-        }
-    }
-}
+pub use zline_scene::trace_options::AccelKind;
 
 /// Work counted during traversal, per ray kind.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

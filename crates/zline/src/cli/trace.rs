@@ -3,6 +3,7 @@
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use zline::pipeline::image::{quantize_rgba, Image};
+use zline::scene::trace_options::Renderer;
 use zline::scene::Scene;
 use zline::trace::accel::AccelKind;
 use zline::trace::antialias::Adaptive;
@@ -42,8 +43,9 @@ pub(crate) struct TraceArgs {
     /// The renderer: the z-buffer pipeline, or Whitted ray tracing
     /// (reflection kr, refraction by the index of refraction,
     /// shadow rays; docs/SPEC.md §12).
-    #[arg(long, value_enum, default_value_t = RendererChoice::Raster)]
-    pub(crate) renderer: RendererChoice,
+    /// Default: the scene file's `renderer`, else raster.
+    #[arg(long, value_enum)]
+    pub(crate) renderer: Option<RendererChoice>,
     /// Ray tracing: the ray tree's depth limit (1: camera rays only).
     #[arg(long, value_name = "N")]
     pub(crate) ray_depth: Option<u32>,
@@ -75,60 +77,91 @@ pub(crate) struct TraceArgs {
 }
 
 impl TraceArgs {
-    /// True when the ray tracer draws.
-    pub(crate) fn traces(&self) -> bool {
-        self.renderer == RendererChoice::Raytrace
-    }
-
-    /// Refuses the ray tracer for `command`, which only rasterizes.
-    pub(crate) fn refuse(&self, command: &str) -> Result<()> {
-        if self.traces() {
-            bail!("{command} rasterizes only: --renderer raytrace works with render and demo");
-        }
-        self.options().map(|_| ())
-    }
-
-    /// The options, refusing ray-tracing flags given to the rasterizer.
-    pub(crate) fn options(&self) -> Result<TraceOptions> {
-        let given = self.ray_depth.is_some()
+    /// True when a ray-tracing flag was given.
+    fn given(&self) -> bool {
+        self.ray_depth.is_some()
             || self.min_weight.is_some()
             || self.accel.is_some()
             || self.shadow_rays.is_some()
             || self.rays_per_axis.is_some()
-            || self.adaptive_aa
-            || self.aa_depth.is_some()
-            || self.aa_threshold.is_some();
-        if given && !self.traces() {
-            bail!(
-                "--ray-depth, --min-weight, --accel, --shadow-rays, --rays-per-axis, --adaptive-aa, --aa-depth and --aa-threshold need --renderer raytrace"
-            );
+            || self.adaptive_requested()
+    }
+
+    fn adaptive_requested(&self) -> bool {
+        self.adaptive_aa || self.aa_depth.is_some() || self.aa_threshold.is_some()
+    }
+
+    /// True when `--renderer raytrace` was given.
+    pub(crate) fn asks_to_trace(&self) -> bool {
+        self.renderer == Some(RendererChoice::Raytrace)
+    }
+
+    /// Refuses the ray tracer for `command`, which only rasterizes.
+    pub(crate) fn refuse(&self, command: &str) -> Result<()> {
+        if self.asks_to_trace() || self.given() {
+            bail!("{command} rasterizes only: --renderer raytrace and its flags work with render and demo");
         }
-        let adaptive_aa = self.adaptive_aa || self.aa_depth.is_some() || self.aa_threshold.is_some();
-        if self.rays_per_axis.is_some_and(|n| n > 1) && adaptive_aa {
+        Ok(())
+    }
+
+    /// What can be refused before the scene is loaded.
+    pub(crate) fn check(&self) -> Result<()> {
+        if self.given() && self.renderer == Some(RendererChoice::Raster) {
+            bail!("{}", Self::NEED);
+        }
+        if self.rays_per_axis.is_some_and(|n| n > 1) && self.adaptive_requested() {
             bail!("--rays-per-axis and adaptive supersampling are two ways to anti-alias: give one");
         }
-        let adaptive = adaptive_aa.then(|| {
-            let d = Adaptive::default();
-            Adaptive {
-                depth: self.aa_depth.unwrap_or(d.depth),
-                threshold: self.aa_threshold.unwrap_or(d.threshold),
-            }
-        });
-        let d = TraceOptions::default();
-        Ok(TraceOptions {
-            max_depth: self.ray_depth.unwrap_or(d.max_depth),
-            min_weight: self.min_weight.unwrap_or(d.min_weight),
-            accel: match self.accel {
-                Some(AccelChoice::Bvh) | None => AccelKind::Bvh,
-                Some(AccelChoice::None) => AccelKind::None,
-            },
-            shadows: match self.shadow_rays {
-                Some(ShadowChoice::Filtered) | None => ShadowRays::Filtered,
-                Some(ShadowChoice::Opaque) => ShadowRays::Opaque,
-            },
-            samples: self.rays_per_axis.unwrap_or(d.samples),
-            adaptive,
-        })
+        Ok(())
+    }
+
+    const NEED: &str = "--ray-depth, --min-weight, --accel, --shadow-rays, --rays-per-axis, --adaptive-aa, --aa-depth and --aa-threshold need --renderer raytrace (or renderer = \"raytrace\" in the scene file)";
+
+    /// True when the ray tracer draws `scene`: `--renderer`, else the
+    /// scene's own choice; ray-tracing flags for a rasterized scene are
+    /// refused.
+    pub(crate) fn traces(&self, scene: &Scene) -> Result<bool> {
+        let traces = match self.renderer {
+            Some(r) => r == RendererChoice::Raytrace,
+            None => scene.settings.renderer == Renderer::RayTrace,
+        };
+        if self.given() && !traces {
+            bail!("{}", Self::NEED);
+        }
+        Ok(traces)
+    }
+
+    /// The scene's ray-tracing options with the flags given on top.
+    pub(crate) fn options(&self, base: TraceOptions) -> TraceOptions {
+        let mut o = base;
+        if let Some(d) = self.ray_depth {
+            o.max_depth = d;
+        }
+        if let Some(w) = self.min_weight {
+            o.min_weight = w;
+        }
+        if let Some(a) = self.accel {
+            o.accel = match a {
+                AccelChoice::Bvh => AccelKind::Bvh,
+                AccelChoice::None => AccelKind::None,
+            };
+        }
+        if let Some(s) = self.shadow_rays {
+            o.shadows = match s {
+                ShadowChoice::Filtered => ShadowRays::Filtered,
+                ShadowChoice::Opaque => ShadowRays::Opaque,
+            };
+        }
+        if let Some(n) = self.rays_per_axis {
+            (o.samples, o.adaptive) = (n, None);
+        }
+        if self.adaptive_requested() {
+            let d = o.adaptive.unwrap_or_default();
+            let depth = self.aa_depth.unwrap_or(d.depth);
+            let threshold = self.aa_threshold.unwrap_or(d.threshold);
+            (o.samples, o.adaptive) = (1, Some(Adaptive { depth, threshold }));
+        }
+        o
     }
 }
 

@@ -111,3 +111,37 @@ fn the_mirror_of_the_whitted_scene_reflects_the_floor() {
     assert_eq!(count(&r), 0, "the rasterized mirror is dark plastic");
     assert!(count(&t) >= 3, "the traced mirror shows the red and yellow floor: {:?}", t.get_pixel(x, y));
 }
+
+/// A scene file's `renderer = "raytrace"` and `[raytrace]` table pick the
+/// ray tracer and its settings; `--renderer raster` wins over the file,
+/// and ray-tracing flags on a rasterized scene file are refused.
+#[test]
+fn a_scene_file_asks_for_the_ray_tracer() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, head: &str| {
+        let path = dir.path().join(name);
+        let text = format!("{head}\n[[objects]]\nprimitive = \"sphere\"\n[objects.material]\nkr = [0.5, 0.5, 0.5]\n");
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let traced = write("traced.toml", "[render]\nrenderer = \"raytrace\"\n[raytrace]\ndepth = 1");
+    let raster = write("raster.toml", "");
+    let png = dir.path().join("out.png");
+    let out = png.to_str().unwrap();
+    let run = |scene: &std::path::Path, extra: &[&str]| {
+        let mut args = vec!["render", scene.to_str().unwrap(), "-o", out, "--size", "24x16"];
+        args.extend_from_slice(extra);
+        zline(&args)
+    };
+    let t = run(&traced, &[]);
+    check_png(&t, &png, (24, 16));
+    let said = String::from_utf8_lossy(&t.stderr);
+    assert!(said.contains("ray traced") && said.contains("0 reflected"), "depth 1 from the file: {said}");
+    let deeper = run(&traced, &["--ray-depth", "2"]);
+    check_png(&deeper, &png, (24, 16));
+    assert!(!String::from_utf8_lossy(&deeper.stderr).contains(" 0 reflected"), "the flag wins");
+    let r = run(&traced, &["--renderer", "raster"]);
+    check_png(&r, &png, (24, 16));
+    assert!(!String::from_utf8_lossy(&r.stderr).contains("ray traced"));
+    check_clean_error(&run(&raster, &["--ray-depth", "2"]), &["need --renderer raytrace", "scene file"]);
+}
