@@ -22,6 +22,8 @@ mod report_models;
 mod report_shadows;
 mod terrain;
 mod timing;
+mod trace_aa;
+mod trace_report;
 mod versus;
 mod view_screenshot;
 
@@ -203,6 +205,25 @@ enum Task {
         #[arg(long)]
         verbose: bool,
     },
+    /// The ray tracer measured: its acceleration structures side by side
+    /// (build, size, rays per second, nodes and triangles per ray, equal
+    /// hits; a million random rays against brute force), and adaptive
+    /// against regular supersampling at equal error.
+    TraceReport {
+        /// The shared asset folder holding obj/teapot/teapot.obj (a sphere
+        /// stands in when missing).
+        #[arg(long, default_value = "../shared/assets")]
+        assets: PathBuf,
+        /// Frame width of the camera rays, in pixels.
+        #[arg(long, default_value_t = 640)]
+        width: u32,
+        /// Only the acceleration structures.
+        #[arg(long, conflicts_with = "antialias")]
+        accel: bool,
+        /// Only the anti-aliasing.
+        #[arg(long)]
+        antialias: bool,
+    },
     /// A real screenshot of `zline view`: the viewer on a private Xvfb
     /// (started here; skipped with a message when Xvfb is not installed),
     /// the picture read from the X server's framebuffer and checked
@@ -249,6 +270,12 @@ fn main() -> Result<()> {
             })
         }
         Task::Modules { verbose } => modules::run(verbose),
+        Task::TraceReport { assets, width, accel, antialias } => trace_report::run(&trace_report::Args {
+            assets: &assets,
+            width,
+            accel: accel || !antialias,
+            antialias: antialias || !accel,
+        }),
         Task::RayBatch { shards, size } => ray_batch::run(shards, &size),
         Task::ViewScreenshot { out, size, model, flags } => view_screenshot::run(&out, &model, size, &flags),
         Task::TerrainAsset { out } => terrain::write_assets(&out),

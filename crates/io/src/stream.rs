@@ -123,8 +123,8 @@ pub enum LoadedInput {
     Model(Vec<Mesh>),
     /// A glTF or GLB scene.
     Gltf(GltfScene),
-    /// A scene file's scene.
-    Scene(Scene),
+    /// A scene file's scene (boxed: a scene is large beside a mesh list).
+    Scene(Box<Scene>),
 }
 
 /// Reads all of `reader` (at most
@@ -183,7 +183,7 @@ pub fn load_bytes(
                 );
                 return Err(SceneError::File { path: name.to_path_buf(), message });
             }
-            (LoadedInput::Scene(crate::scene_file::parse_scene(name, &text, options)?), vec![])
+            (LoadedInput::Scene(Box::new(crate::scene_file::parse_scene(name, &text, options)?)), vec![])
         }
     })
 }

@@ -39,6 +39,10 @@ pub enum AccelKind {
     /// The SAH bounding-volume hierarchy (the default).
     #[default]
     Bvh,
+    /// The SAH kd-tree (pbrt-v3's), traversed front to back.
+    Kd,
+    /// The uniform grid, stepped cell to cell (3D-DDA).
+    Grid,
     /// Every triangle for every ray (the oracle).
     None,
 }
@@ -48,6 +52,8 @@ impl AccelKind {
     pub fn name(self) -> &'static str {
         match self {
             AccelKind::Bvh => "bvh",
+            AccelKind::Kd => "kd",
+            AccelKind::Grid => "grid",
             AccelKind::None => "none",
         }
     }

@@ -6,7 +6,8 @@
 //! - [`ray`]: rays, hits and the watertight ray–triangle test, with the
 //!   error bounds that place secondary rays off their surface.
 //! - [`accel`]: the acceleration structures (a SAH bounding-volume
-//!   hierarchy; brute force as the oracle), each answering as brute force.
+//!   hierarchy, a kd-tree, a uniform grid; brute force as the oracle), each
+//!   answering as brute force.
 //! - [`optics`]: reflection, and refraction by the course's formula.
 //! - [`world`]: the scene's triangles in world space and the camera's rays.
 //! - [`whitted`]: the ray tree, walked with an explicit stack.
@@ -31,7 +32,7 @@ pub mod world;
 
 pub use zline_scene::trace_options::{TraceOptions, MAX_DEPTH, MAX_SAMPLES};
 
-use accel::{brute::Brute, bvh::Bvh, AccelKind, Accelerator};
+use accel::{brute::Brute, bvh::Bvh, grid::Grid, kdtree::KdTree, AccelKind, Accelerator};
 use antialias::Sampler;
 use whitted::{Tracer, Work};
 use world::{Camera, World};
@@ -65,6 +66,8 @@ pub fn render(scene: &Scene, options: &TraceOptions) -> Traced {
     let started = Instant::now();
     let accel: Box<dyn Accelerator> = match options.accel {
         AccelKind::Bvh => Box::new(Bvh::build(&world.triangles)),
+        AccelKind::Kd => Box::new(KdTree::build(&world.triangles)),
+        AccelKind::Grid => Box::new(Grid::build(&world.triangles)),
         AccelKind::None => Box::new(Brute),
     };
     let build = started.elapsed();

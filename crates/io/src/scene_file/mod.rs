@@ -88,7 +88,7 @@ use view::{CameraDef, EnvironmentDef, FogDef};
 /// depth = 8                         # the ray tree's depth limit, 1..=64; default 8
 /// min_weight = 0.002                # branches lighter than this are cut, in [0, 1]; default 1/512
 /// shadow_rays = "filtered"          # filtered (default: kt of transparent surfaces passes) | opaque
-/// accel = "bvh"                     # bvh (default) | none (brute force)
+/// accel = "bvh"                     # bvh (default) | kd | grid | none (brute force)
 /// rays_per_axis = 1                 # n×n camera rays a pixel on a regular grid, 1..=16; default 1
 /// adaptive = false                  # true: the course's adaptive supersampling instead
 /// adaptive_depth = 3                # cuts of a pixel at most, 0..=4 (implies adaptive)
@@ -190,7 +190,7 @@ use view::{CameraDef, EnvironmentDef, FogDef};
 /// used (the CLI's `--shadows` can turn them on).
 ///
 /// Near and far, when not given, hug the bounding sphere of the scene seen
-/// from the eye (near = max(d − 1.1·r, far·10⁻⁴)), as [`framing_camera`]
+/// from the eye (near = max(d − 1.1·r, far·10⁻⁴)), as [`framing_camera`](crate::framing_camera)
 /// does.
 pub fn load_scene(path: &Path) -> Result<Scene, SceneError> {
     load_scene_with_options(path, LoadOptions::default())

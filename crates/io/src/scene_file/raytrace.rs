@@ -36,6 +36,8 @@ enum ShadowRaysDef {
 #[serde(rename_all = "lowercase")]
 enum AccelDef {
     Bvh,
+    Kd,
+    Grid,
     None,
 }
 
@@ -73,6 +75,8 @@ pub(super) fn options(check: &Checker, def: Option<RayTraceDef>) -> Result<Trace
     if let Some(a) = def.accel {
         o.accel = match a {
             AccelDef::Bvh => AccelKind::Bvh,
+            AccelDef::Kd => AccelKind::Kd,
+            AccelDef::Grid => AccelKind::Grid,
             AccelDef::None => AccelKind::None,
         };
     }

@@ -40,7 +40,11 @@ fn the_renderer_and_the_ray_tracers_options_are_read_as_written() {
 #[test]
 fn bad_ray_tracing_settings_name_their_key() {
     let rt = |body: &str| format!("[raytrace]\n{body}\n{OBJECT}");
-    check_scene_error("d0.toml", &rt("depth = 0"), &["line 2, column 9: raytrace.depth: must be in 1..=64, got 0"]);
+    check_scene_error(
+        "d0.toml",
+        &rt("depth = 0"),
+        &["line 2, column 9: raytrace.depth: must be in 1..=64, got 0"],
+    );
     check_scene_error("dbig.toml", &rt("depth = 1000000000"), &["raytrace.depth", "1..=64", "1000000000"]);
     check_scene_error("w.toml", &rt("min_weight = -1"), &["raytrace.min_weight", "[0, 1]"]);
     check_scene_error("wnan.toml", &rt("min_weight = nan"), &["raytrace.min_weight", "finite"]);

@@ -34,7 +34,7 @@
 //! on), so two triangles meeting at a box face can come out in the other
 //! order. The box test here is done instead in the triangle test's own
 //! sheared space, with its own operations on the box corners: the sheared
-//! coordinate v[kx] − o[kx] + s_x·(v[kz] − o[kz]) is monotone in every
+//! coordinate `v[kx] − o[kx] + s_x·(v[kz] − o[kz])` is monotone in every
 //! corner coordinate (each rounded operation is), so the corners' values
 //! bound those of every vertex in the box, and a triangle can be hit only
 //! when the origin lies in its sheared xy bounds. A hit's computed t is a

@@ -6,6 +6,8 @@
 //! | structure | build | traversal |
 //! |---|---|---|
 //! | [`bvh::Bvh`] | binned surface-area heuristic (pbrt-v4's) | nearer child first, a fixed stack |
+//! | [`kdtree::KdTree`] | surface-area heuristic over box edges (pbrt-v3's) | front to back, a fixed stack |
+//! | [`grid::Grid`] | cells ∝ the triangle count, capped | cell to cell by the 3D-DDA (Amanatides–Woo) |
 //! | [`brute::Brute`] | none | every triangle |
 
 use glam::Vec3;

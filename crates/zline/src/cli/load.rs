@@ -63,7 +63,7 @@ pub(crate) fn load(input: &Path, options: LoadOptions) -> Result<Loaded> {
             Loaded { scene, format: name, own_lights, own_camera, warnings }
         }
         LoadedInput::Scene(scene) => {
-            Loaded { scene, format: name, own_lights: true, own_camera: true, warnings }
+            Loaded { scene: *scene, format: name, own_lights: true, own_camera: true, warnings }
         }
     })
 }
@@ -87,7 +87,7 @@ fn load_file(
         InputFormat::Stl => (LoadedInput::Model(zline::io::load_stl(input)?), vec![]),
         InputFormat::Ply => (LoadedInput::Model(zline::io::load_ply(input)?), vec![]),
         InputFormat::Scene => {
-            (LoadedInput::Scene(zline::io::load_scene_with_options(input, options)?), vec![])
+            (LoadedInput::Scene(Box::new(zline::io::load_scene_with_options(input, options)?)), vec![])
         }
     })
 }

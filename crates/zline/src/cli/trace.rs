@@ -25,6 +25,10 @@ pub(crate) enum RendererChoice {
 pub(crate) enum AccelChoice {
     /// The SAH bounding-volume hierarchy.
     Bvh,
+    /// The SAH kd-tree, traversed front to back.
+    Kd,
+    /// The uniform grid, stepped cell to cell (3D-DDA).
+    Grid,
     /// Every triangle for every ray (the oracle).
     None,
 }
@@ -143,6 +147,8 @@ impl TraceArgs {
         if let Some(a) = self.accel {
             o.accel = match a {
                 AccelChoice::Bvh => AccelKind::Bvh,
+                AccelChoice::Kd => AccelKind::Kd,
+                AccelChoice::Grid => AccelKind::Grid,
                 AccelChoice::None => AccelKind::None,
             };
         }

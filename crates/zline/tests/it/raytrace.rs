@@ -120,7 +120,9 @@ fn a_scene_file_asks_for_the_ray_tracer() {
     let dir = tempfile::tempdir().unwrap();
     let write = |name: &str, head: &str| {
         let path = dir.path().join(name);
-        let text = format!("{head}\n[[objects]]\nprimitive = \"sphere\"\n[objects.material]\nkr = [0.5, 0.5, 0.5]\n");
+        let text = format!(
+            "{head}\n[[objects]]\nprimitive = \"sphere\"\n[objects.material]\nkr = [0.5, 0.5, 0.5]\n"
+        );
         std::fs::write(&path, text).unwrap();
         path
     };
@@ -144,4 +146,32 @@ fn a_scene_file_asks_for_the_ray_tracer() {
     check_png(&r, &png, (24, 16));
     assert!(!String::from_utf8_lossy(&r.stderr).contains("ray traced"));
     check_clean_error(&run(&raster, &["--ray-depth", "2"]), &["need --renderer raytrace", "scene file"]);
+}
+
+/// Every acceleration structure gives the same image, byte for byte.
+#[test]
+fn every_structure_draws_the_same_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let bytes: Vec<Vec<u8>> = ["bvh", "kd", "grid", "none"]
+        .iter()
+        .map(|accel| {
+            let png = dir.path().join(format!("{accel}.png"));
+            let args = [
+                "demo",
+                "-o",
+                png.to_str().unwrap(),
+                "--size",
+                "96x54",
+                "--renderer",
+                "raytrace",
+                "--accel",
+                accel,
+            ];
+            check_png(&zline(&args), &png, (96, 54));
+            std::fs::read(&png).unwrap()
+        })
+        .collect();
+    for (accel, b) in ["kd", "grid", "none"].iter().zip(&bytes[1..]) {
+        assert!(*b == bytes[0], "--accel {accel} draws another image than the BVH");
+    }
 }
