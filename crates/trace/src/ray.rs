@@ -152,16 +152,11 @@ impl Sheared {
             Vec3::new(v.x + s.x * v.z, v.y + s.y * v.z, v.z)
         };
         let (p0, p1, p2) = (moved(p[0]), moved(p[1]), moved(p[2]));
-        let mut e0 = difference_of_products(p1.x, p2.y, p1.y, p2.x);
-        let mut e1 = difference_of_products(p2.x, p0.y, p2.y, p0.x);
-        let mut e2 = difference_of_products(p0.x, p1.y, p0.y, p1.x);
-        if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
-            let f =
-                |a: Vec3, b: Vec3| (f64::from(a.x) * f64::from(b.y) - f64::from(a.y) * f64::from(b.x)) as f32;
-            e0 = f(p1, p2);
-            e1 = f(p2, p0);
-            e2 = f(p0, p1);
-        }
+        // Computed in f64 from the start: pbrt's fallback for an edge
+        // function of 0 (a ray through an edge or a vertex) is the rule.
+        let e0 = difference_of_products(p1.x, p2.y, p1.y, p2.x);
+        let e1 = difference_of_products(p2.x, p0.y, p2.y, p0.x);
+        let e2 = difference_of_products(p0.x, p1.y, p0.y, p1.x);
         if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
             return None;
         }
@@ -197,14 +192,17 @@ impl Sheared {
     }
 }
 
-/// a·b − c·d with the error of one rounding (Kahan's algorithm with a fused
-/// multiply–add; `mul_add` is exact in software where there is no FMA).
+/// a·b − c·d rounded once to f64 and then to f32: the products of two f32
+/// are exact in f64 (48 significant bits), so the result is within half
+/// an f32 unit of the exact value plus 2⁻⁵³ relative, and
+/// `difference_of_products(a, b, c, d) == −difference_of_products(c, d, a, b)`
+/// exactly (rounding is symmetric), which keeps a shared edge's two edge
+/// functions of opposite sign: the test stays watertight. (pbrt-v4 uses
+/// Kahan's algorithm with fused multiply–adds; without FMA in the
+/// baseline instruction set those are library calls.)
 #[inline]
 fn difference_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
-    let cd = c * d;
-    let err = (-c).mul_add(d, cd);
-    let dop = a.mul_add(b, -cd);
-    dop + err
+    (f64::from(a) * f64::from(b) - f64::from(c) * f64::from(d)) as f32
 }
 
 #[cfg(test)]

@@ -356,15 +356,21 @@ impl Frame {
 
     /// `None` when no triangle inside `node`'s box can be hit, else a lower
     /// bound on the t of its hits. Comparisons with NaN never cull.
-    #[inline]
+    #[inline(always)]
     fn lower_bound(&self, node: &Node) -> Option<f32> {
         let [kx, ky, kz] = self.axes;
         let (o, s) = (&self.origin, self.shear);
         let (z0, z1) = (node.min[kz] - o[kz], node.max[kz] - o[kz]);
         // The sheared coordinate's range over the box: v − o plus the shear
-        // term, the latter least at the kz face its sign picks.
+        // term, the latter least at the kz face its sign picks (z0 ≤ z1 and
+        // rounding is monotone, so the smaller product is that face's; the
+        // box's coordinates are finite).
+        let span = |s: f32| {
+            let (a, b) = (s * z0, s * z1);
+            (a.min(b), a.max(b))
+        };
         let sheared = |k: usize, s: f32| {
-            let (lo, hi) = if s >= 0.0 { (s * z0, s * z1) } else { (s * z1, s * z0) };
+            let (lo, hi) = span(s);
             ((node.min[k] - o[k]) + lo, (node.max[k] - o[k]) + hi)
         };
         let (x0, x1) = sheared(kx, s.x);
@@ -372,7 +378,7 @@ impl Frame {
         if x0 > 0.0 || x1 < 0.0 || y0 > 0.0 || y1 < 0.0 {
             return None;
         }
-        let (lo, hi) = if s.z >= 0.0 { (s.z * z0, s.z * z1) } else { (s.z * z1, s.z * z0) };
+        let (lo, hi) = span(s.z);
         // All vertices at z ≤ 0: the test's t_scaled ≤ 0, no hit.
         if hi <= 0.0 {
             return None;
