@@ -43,6 +43,20 @@
 //! states the rule in full; without receivers the image is the one
 //! without shadows, bit for bit.
 //!
+//! The ray tracer's model (SPEC §12, `zline-trace`) has its own truth:
+//! [`trace_truth`] and [`WhittedTruth`] (module `whitted`, with its f64
+//! ray–triangle test and hierarchy in `whitted_hit`) walk the Whitted
+//! tree in f64 — camera rays unprojected through the truth's matrices,
+//! the nearest hit among all triangles, the truth's lighting, texture
+//! and fog at each hit with the viewer at the ray's origin, filtered or
+//! opaque shadow rays, reflection and refraction by the course's formula,
+//! the depth limit, the weight cutoff and the ray budget — and can record
+//! each pixel's tree, from which [`TracedTruth::away_from_silhouettes`]
+//! masks the pixels a sub-pixel move of an edge cannot reach. Its module
+//! doc states every rule and the differences to expect from the fast
+//! tracer; `zline-trace` is a dev-dependency only, for the comparison
+//! tests.
+//!
 //! With [`TruthOptions::diagnostics`] the image carries, per pixel, how far
 //! it is from an edge or a depth intersection and how fast its colour
 //! changes under a 1/256-pixel move ([`Diagnostics`]): what a comparison
@@ -102,6 +116,8 @@ mod shadow;
 pub mod split_sum;
 mod texture;
 mod tile;
+mod whitted;
+mod whitted_hit;
 
 use rayon::prelude::*;
 use zline_scene::Scene;
@@ -110,6 +126,9 @@ pub use image::{quantize, Diagnostics, TruthImage};
 pub use metrics::ErrorStats;
 pub use sample::SampleShading;
 pub use split_sum::SplitSum;
+pub use whitted::{
+    LightPath, RayKind, TracedTruth, TreeNode, WhittedTruth, RAY_BUDGET, SAME_CROSSING, SHADOW_SEGMENT_END,
+};
 
 /// What to compute besides the image.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -155,6 +174,15 @@ pub fn render_truth_shaded(
     let mut frame = frame::Frame::new(scene, options.split_sum);
     frame.shader = Some(frame::Shader(shader));
     render_frame(frame, options)
+}
+
+/// Ray-traces `scene` by the Whitted model (SPEC §12) in f64 with
+/// `options` (checked first), with the current rayon thread pool: linear
+/// RGB per pixel, the mean of its n × n samples' tree sums, not clamped.
+/// Adaptive supersampling is not modelled (see [`WhittedTruth`]); the
+/// image does not depend on the thread count.
+pub fn trace_truth(scene: &Scene, options: &zline_scene::trace_options::TraceOptions) -> TruthImage {
+    WhittedTruth::new(scene, options).render(false).image
 }
 
 fn render_frame(frame: frame::Frame<'_>, options: &TruthOptions) -> TruthImage {

@@ -163,19 +163,37 @@ impl Bvh {
         &self,
         ray: &Frame,
         count: &mut Counters,
-        mut prune: impl FnMut(f32) -> bool,
-        mut leaf: impl FnMut(&[u32], &mut Counters) -> bool,
+        prune: impl FnMut(f32) -> bool,
+        leaf: impl FnMut(&[u32], &mut Counters) -> bool,
     ) -> bool {
         if self.nodes.is_empty() {
             return true;
         }
+        // One loop per dominant axis, so that the box test reads the
+        // node's coordinates at fixed places.
+        match ray.axes[2] {
+            0 => self.walk::<0>(ray, count, prune, leaf),
+            1 => self.walk::<1>(ray, count, prune, leaf),
+            _ => self.walk::<2>(ray, count, prune, leaf),
+        }
+    }
+
+    /// [`Self::traverse`] for rays whose dominant axis is `KZ`.
+    #[inline(always)]
+    fn walk<const KZ: usize>(
+        &self,
+        ray: &Frame,
+        count: &mut Counters,
+        mut prune: impl FnMut(f32) -> bool,
+        mut leaf: impl FnMut(&[u32], &mut Counters) -> bool,
+    ) -> bool {
         let mut stack = [0u32; STACK];
         let mut len = 0;
         let mut at = 0;
         loop {
             let node = &self.nodes[at];
             count.nodes += 1;
-            let visit = ray.lower_bound(node).is_some_and(|lower| !prune(lower));
+            let visit = ray.lower_bound::<KZ>(node).is_some_and(|lower| !prune(lower));
             if visit && node.count > 0 {
                 let first = node.offset as usize;
                 if !leaf(&self.indices[first..first + usize::from(node.count)], count) {
@@ -356,9 +374,10 @@ impl Frame {
 
     /// `None` when no triangle inside `node`'s box can be hit, else a lower
     /// bound on the t of its hits. Comparisons with NaN never cull.
+    /// `KZ` is the ray's dominant axis, `self.axes[2]`.
     #[inline(always)]
-    fn lower_bound(&self, node: &Node) -> Option<f32> {
-        let [kx, ky, kz] = self.axes;
+    fn lower_bound<const KZ: usize>(&self, node: &Node) -> Option<f32> {
+        let (kz, kx, ky) = (KZ, (KZ + 1) % 3, (KZ + 2) % 3);
         let (o, s) = (&self.origin, self.shear);
         let (z0, z1) = (node.min[kz] - o[kz], node.max[kz] - o[kz]);
         // The sheared coordinate's range over the box: v − o plus the shear
