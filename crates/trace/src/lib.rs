@@ -77,12 +77,6 @@ pub fn render(scene: &Scene, options: &TraceOptions) -> Traced {
         lights: scene.lights.clone(),
         environment: scene.environment.clone(),
     };
-    if scene.environment.is_some() {
-        warnings.push(
-            "the ray tracer lights with the environment map but draws the background colour behind the scene"
-                .into(),
-        );
-    }
     let tracer = Tracer {
         world: &world,
         accel: accel.as_ref(),
@@ -90,6 +84,7 @@ pub fn render(scene: &Scene, options: &TraceOptions) -> Traced {
         camera: &camera,
         fog: scene.fog,
         background: scene.background,
+        sky: scene.environment.as_ref().filter(|e| e.background),
         max_depth: options.max_depth,
         min_weight: options.min_weight,
         shadows: options.shadows,

@@ -76,6 +76,8 @@ pub struct Tracer<'a> {
     pub fog: Option<Fog>,
     /// The colour of rays that hit nothing.
     pub background: Vec3,
+    /// The environment, when it is drawn as the background (SPEC §5.3).
+    pub sky: Option<&'a zline_shading::Environment>,
     /// Nodes deeper than this are not traced (1: the local model only).
     pub max_depth: u32,
     /// Branches whose weight (largest channel) is below this are cut.
@@ -85,6 +87,15 @@ pub struct Tracer<'a> {
 }
 
 impl Tracer<'_> {
+    /// What a ray that hits nothing sees: the environment drawn as the
+    /// background (its radiance along the ray), else the background colour.
+    fn missed(&self, ray: &Ray) -> Vec3 {
+        match self.sky {
+            Some(sky) => sky.background_radiance(ray.dir.normalize_or_zero()),
+            None => self.background,
+        }
+    }
+
     /// The colour seen along the camera ray `ray`.
     pub fn trace(&self, ray: Ray, work: &mut Work, stack: &mut Vec<(Ray, Vec3, u32)>) -> Vec3 {
         let mut color = Vec3::ZERO;
@@ -95,7 +106,7 @@ impl Tracer<'_> {
             rays += 1;
             let count = if depth == 1 { &mut work.primary } else { &mut work.secondary };
             let Some(hit) = self.accel.closest(&self.world.triangles, &ray, count) else {
-                color += weight * self.background;
+                color += weight * self.missed(&ray);
                 continue;
             };
             work.depth = work.depth.max(depth);

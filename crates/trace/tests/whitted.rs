@@ -66,6 +66,7 @@ fn trace(scene: &Scene, ray: Ray, depth: u32, shadows: ShadowRays) -> (Vec3, Wor
         camera: &camera,
         fog: scene.fog,
         background: scene.background,
+        sky: scene.environment.as_ref().filter(|e| e.background),
         max_depth: depth,
         min_weight: 0.0,
         shadows,
@@ -292,4 +293,29 @@ fn threads_do_not_change_the_image() {
     let (one, three) = (run(1), run(3));
     assert_eq!(one.pixels, three.pixels);
     assert_eq!(one.work, three.work);
+}
+
+/// A ray that hits nothing sees the environment when the scene draws it
+/// as its background, in reflections too; else the background colour.
+#[test]
+fn misses_see_the_drawn_environment() {
+    use zline_shading::{Environment, EnvironmentLight, Panorama};
+    let mirror = Material { kr: Vec3::ONE, ..black() };
+    let mut s = scene(vec![square((-1.0, 1.0), (-1.0, 1.0), -2.0, true, mirror)], vec![]);
+    s.ambient = Vec3::ZERO;
+    let mut env = Environment::new(Arc::new(EnvironmentLight::new(Panorama::sky(64, 32))));
+    env.intensity = 0.5;
+    let up = Ray::new(Vec3::ZERO, Vec3::new(0.2, 1.0, 0.1));
+    let at_mirror = Ray::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0));
+    s.environment = Some(env.clone());
+    let (drawn, _) = trace(&s, up, 4, ShadowRays::Filtered);
+    assert_eq!(drawn, s.background, "the environment is not drawn unless asked");
+    env.background = true;
+    s.environment = Some(env.clone());
+    let (drawn, _) = trace(&s, up, 4, ShadowRays::Filtered);
+    assert_eq!(drawn, env.background_radiance(up.dir.normalize()));
+    // The mirror sends the ray straight back: the sky behind the camera.
+    let (seen, _) = trace(&s, at_mirror, 4, ShadowRays::Filtered);
+    let back = env.background_radiance(Vec3::Z);
+    assert!((seen - back).abs().max_element() < 1e-5, "{seen} against {back}");
 }

@@ -13,3 +13,4 @@ mod support;
 mod surface_maps;
 mod threads;
 mod versus_fast;
+mod whitted;
