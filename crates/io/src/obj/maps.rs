@@ -247,7 +247,7 @@ pub(super) fn material_from_mtl(m: &tobj::Material) -> Material {
     let d = Material::DEFAULT;
     let kd = m.diffuse.map_or(d.kd, Vec3::from);
     let tr = m.unknown_param.get("Tr").and_then(|v| v.split_whitespace().next()?.parse::<f32>().ok());
-    let opacity = m.dissolve.or(tr.map(|t| 1.0 - t)).unwrap_or(1.0);
+    let opacity = m.dissolve.or(tr.map(|t| 1.0 - t)).or_else(|| filter(m).map(|t| 1.0 - t)).unwrap_or(1.0);
     Material {
         ke: m.emissive.map_or(d.ke, Vec3::from),
         ka: m.ambient.map_or(kd, Vec3::from),
@@ -270,6 +270,21 @@ fn mirror(m: &tobj::Material) -> Vec3 {
         Some(3..=7) => m.specular.map_or(Material::DEFAULT.ks, Vec3::from),
         _ => Vec3::ZERO,
     }
+}
+
+/// The share of light `Tf` (the transmission filter) passes under the
+/// `illum` modes with refraction (4 glass, 6 refraction, 7 Fresnel
+/// refraction): its largest channel, in [0, 1], so that d = 1 − it when
+/// the material gives neither `d` nor `Tr`. `Tf r`, `Tf r g b`; the
+/// `xyz` and `spectral` forms are not read.
+fn filter(m: &tobj::Material) -> Option<f32> {
+    if !matches!(m.illumination_model, Some(4 | 6 | 7)) {
+        return None;
+    }
+    let values: Vec<f32> =
+        m.unknown_param.get("Tf")?.split_whitespace().map_while(|v| v.parse::<f32>().ok()).take(3).collect();
+    let largest = values.into_iter().fold(f32::NAN, f32::max);
+    (largest.is_finite()).then(|| largest.clamp(0.0, 1.0))
 }
 
 /// Cook–Torrance (GGX) when the material carries the PBR extension's

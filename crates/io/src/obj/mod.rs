@@ -316,6 +316,28 @@ mod tests {
         assert_eq!(material_from_mtl(&m).ior, 1.0, "an index of refraction of 0 is replaced by 1");
     }
 
+    /// `Tf` gives d = 1 − its largest channel under the refracting `illum`
+    /// modes, when neither `d` nor `Tr` is given.
+    #[test]
+    fn the_transmission_filter_gives_the_opacity_of_glass() {
+        let mut m = tobj::Material::default();
+        m.unknown_param.insert("Tf".into(), "0.2 0.9 0.5".into());
+        for (illum, opacity) in [(None, 1.0), (Some(2), 1.0), (Some(4), 0.1), (Some(6), 0.1), (Some(7), 0.1)]
+        {
+            m.illumination_model = illum;
+            assert!((material_from_mtl(&m).opacity - opacity).abs() < 1e-6, "illum {illum:?}");
+        }
+        m.unknown_param.insert("Tf".into(), "0.7".into());
+        assert!((material_from_mtl(&m).opacity - 0.3).abs() < 1e-6, "one value: grey");
+        m.unknown_param.insert("Tf".into(), "spectral glass.rfl".into());
+        assert_eq!(material_from_mtl(&m).opacity, 1.0, "the spectral form is not read");
+        m.unknown_param.insert("Tf".into(), "3 nan".into());
+        assert_eq!(material_from_mtl(&m).opacity, 0.0, "clamped to [0, 1], NaN ignored");
+        m.unknown_param.insert("Tf".into(), "0.2 0.9 0.5".into());
+        m.dissolve = Some(0.6);
+        assert_eq!(material_from_mtl(&m).opacity, 0.6, "d wins");
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::test_runner::Config { cases: 512, ..Default::default() })]
 
