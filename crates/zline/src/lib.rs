@@ -28,6 +28,21 @@ pub use zline_scenes as scenes;
 pub use zline_shading as shading;
 pub use zline_trace as trace;
 
+/// Ray-traces `scene` (`zline-trace`) and turns the linear colours into
+/// the image the rasterizer would write: the scene's tone mapping, then 8
+/// bits as SPEC §10 quantizes.
+pub fn ray_traced_image(
+    scene: &scene::Scene,
+    options: &scene::trace_options::TraceOptions,
+) -> (pipeline::Image, trace::Traced) {
+    let traced = trace::render(scene, options);
+    let tone = scene.settings.tone_mapping;
+    let pixels =
+        traced.pixels.iter().map(|&c| pipeline::image::quantize_rgba(tone.apply(c).extend(1.0))).collect();
+    let image = pipeline::Image { width: traced.width, height: traced.height, pixels, transparent: false };
+    (image, traced)
+}
+
 /// Whether `path` names a JPEG output (`.jpg` or `.jpeg`, any case), which
 /// cannot hold a transparent image.
 pub fn is_jpeg(path: &Path) -> bool {

@@ -218,9 +218,9 @@ fn run(cli: Cli) -> Result<()> {
         #[cfg(feature = "view")]
         Command::View { view, common } => {
             common.layers.refuse("view")?;
-            common.trace.refuse("view")?;
+            common.trace.check()?;
             let allow_outside = view.allow_paths_outside;
-            return view_command::run(&view, &job(&common, allow_outside)?);
+            return view_command::run(&view, &job(&common, allow_outside)?, &common.trace);
         }
     };
     // Everything that can be checked without the scene is checked before
@@ -315,7 +315,7 @@ fn ray_trace(
     loaded: std::time::Duration,
 ) -> Result<()> {
     let options = common.trace.options(scene.settings.trace);
-    let (image, traced) = pool.install(|| cli::trace::render(scene, &options));
+    let (image, traced) = pool.install(|| zline::ray_traced_image(scene, &options));
     for warning in &traced.warnings {
         eprintln!("warning: {warning}");
     }

@@ -31,7 +31,9 @@ Keys:
   Esc, Q    quit
 While the camera moves, frames are drawn at a lower resolution to keep
 about 30 frames a second; the full frame follows 150 ms after the input
-stops. Nothing is drawn while nothing changes.";
+stops. Nothing is drawn while nothing changes. With --renderer raytrace
+(or a scene file's renderer = \"raytrace\") the picture refines
+progressively when still: 1/8, 1/4, 1/2 of the resolution, then full.";
 
 /// `zline view`'s own options (the look flags are `render`'s).
 #[derive(Args)]
@@ -69,7 +71,7 @@ pub(crate) fn timings_arg(arg: clap::Arg) -> clap::Arg {
 
 /// Loads the input as `render` does and opens the window (or writes the
 /// first frame).
-pub(crate) fn run(args: &ViewArgs, job: &Job<'_>) -> Result<()> {
+pub(crate) fn run(args: &ViewArgs, job: &Job<'_>, trace: &crate::cli::trace::TraceArgs) -> Result<()> {
     match &args.save_first_frame {
         Some(path) => zline::check_output(path).map_err(|e| anyhow!("{}: {e}", path.display()))?,
         // A folder that takes no file only matters when S is pressed: a
@@ -84,11 +86,18 @@ pub(crate) fn run(args: &ViewArgs, job: &Job<'_>) -> Result<()> {
     }
     let (mut scene, framed) = (job.load)(&args.input)?;
     (job.aim)(&mut scene, framed, 0.0);
+    let traced = trace.traces(&scene)?.then(|| trace.options(scene.settings.trace));
     let mut state = ViewerState::new(scene);
+    if traced.is_some() {
+        state.refine_progressively();
+    }
     if let Some(path) = &args.save_first_frame {
         let scene = state.scene(&state.full_request());
         let options = job.options;
-        let (image, _) = job.pool.install(|| zline::pipeline::render(&scene, &options));
+        let image = match &traced {
+            Some(t) => job.pool.install(|| zline::ray_traced_image(&scene, t)).0,
+            None => job.pool.install(|| zline::pipeline::render(&scene, &options)).0,
+        };
         zline::save_image(&image, path)
             .with_context(|| format!("{}: cannot write the image", path.display()))?;
         eprintln!("wrote {} ({}x{})", path.display(), image.width, image.height);
@@ -104,6 +113,7 @@ pub(crate) fn run(args: &ViewArgs, job: &Job<'_>) -> Result<()> {
         exit_after_frames: args.exit_after_frames,
         render: job.options,
         timings: job.timings,
+        trace: traced,
     };
     zline::viewer::window::run(&mut state, &options, &job.pool)
 }

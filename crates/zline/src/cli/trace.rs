@@ -2,13 +2,12 @@
 
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
-use zline::pipeline::image::{quantize_rgba, Image};
 use zline::scene::trace_options::Renderer;
 use zline::scene::Scene;
 use zline::trace::accel::AccelKind;
 use zline::trace::antialias::Adaptive;
 use zline::trace::whitted::ShadowRays;
-use zline::trace::{TraceOptions, Traced};
+use zline::trace::TraceOptions;
 
 /// Which renderer draws the image.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -169,14 +168,4 @@ impl TraceArgs {
         }
         o
     }
-}
-
-/// Ray-traces `scene` and turns the linear colours into the image the
-/// rasterizer would write (the scene's tone mapping, then 8 bits).
-pub(crate) fn render(scene: &Scene, options: &TraceOptions) -> (Image, Traced) {
-    let traced = zline::trace::render(scene, options);
-    let tone = scene.settings.tone_mapping;
-    let pixels = traced.pixels.iter().map(|&c| quantize_rgba(tone.apply(c).extend(1.0))).collect();
-    let image = Image { width: traced.width, height: traced.height, pixels, transparent: false };
-    (image, traced)
 }

@@ -24,6 +24,11 @@
 //!   [`FRAME_BUDGET`] at the cost per sample measured on the last frames;
 //!   the window scales them up nearest-neighbour. When the input stops, the
 //!   full frame follows (full resolution, the chosen supersampling).
+//! - **Progressive refinement** ([`ViewerState::refine_progressively`],
+//!   for the ray tracer, whose full frame takes seconds): when the input
+//!   stops, the block halves frame by frame from the preview's (at least
+//!   [`MAX_BLOCK`] for a new view) down to the full frame, so a coarse
+//!   picture comes at once and sharpens.
 
 use std::sync::Arc;
 use std::time::Duration;
@@ -176,6 +181,8 @@ pub struct ViewerState {
     costs: Vec<f64>,
     screenshot: bool,
     quit: bool,
+    /// Halve the block frame by frame when still (module doc).
+    progressive: bool,
 }
 
 impl ViewerState {
@@ -206,6 +213,7 @@ impl ViewerState {
             costs: Vec::new(),
             screenshot: false,
             quit: false,
+            progressive: false,
             home: scene,
         }
     }
@@ -254,10 +262,22 @@ impl ViewerState {
         }
     }
 
+    /// Refine the picture progressively when the input stops (module doc).
+    pub fn refine_progressively(&mut self) {
+        self.progressive = true;
+    }
+
     /// The frame due now, if any: nothing changed and the full frame shown
     /// gives `None`.
     pub fn frame_to_render(&self) -> Option<FrameRequest> {
         let moving = self.moving();
+        if self.progressive && !moving {
+            return match self.shown {
+                Some(shown) if shown.version == self.version && shown.full => None,
+                Some(shown) if shown.version == self.version => Some(self.finer(shown.block / 2)),
+                _ => Some(self.finer(self.preview_request().block.max(MAX_BLOCK))),
+            };
+        }
         let wanted = if moving { self.preview_request() } else { self.full_request() };
         match self.shown {
             Some(shown) if shown.version == self.version && (shown.full || moving) => None,
@@ -362,6 +382,15 @@ impl ViewerState {
             ssaa,
             full,
             version: self.version,
+        }
+    }
+
+    /// A refinement step at `block` (the full frame at 1).
+    fn finer(&self, block: u32) -> FrameRequest {
+        if block <= 1 {
+            self.full_request()
+        } else {
+            self.request(block, 1, false)
         }
     }
 

@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 use anyhow::{anyhow, Context, Result};
 use minifb::{InputCallback, Key, MouseButton, MouseMode, ScaleMode, UseGPU, Window, WindowOptions};
 use zline_pipeline::{Image, RenderOptions, Renderer};
-use zline_scene::ShadingMode;
+use zline_scene::{Scene, ShadingMode};
 
 use super::overlay::{draw_text, upscale};
 use super::state::{Action, Button, Event, FrameRequest, ViewerState};
@@ -38,6 +38,9 @@ pub struct ViewOptions {
     /// Print a line per frame drawn to stderr (`--timings`): its size,
     /// whether it is a preview, and its time.
     pub timings: bool,
+    /// Ray-trace the frames with these options instead of rasterizing
+    /// them (the state should then refine progressively).
+    pub trace: Option<zline_scene::trace_options::TraceOptions>,
 }
 
 /// The keys and what they do, as `zline view --help` lists them.
@@ -145,7 +148,7 @@ impl Frames {
     ) -> Duration {
         let scene = state.scene(request);
         let t = Instant::now();
-        pool.install(|| self.renderer.render_into(&scene, &options.render, &mut self.image));
+        draw(&scene, options, pool, &mut self.renderer, &mut self.image);
         t.elapsed()
     }
 
@@ -259,6 +262,23 @@ fn input(window: &Window, state: &mut ViewerState, mouse: &mut Option<(f32, f32)
     }
 }
 
+/// Draws `scene` into `image`: rasterized, or ray-traced when the options
+/// say so.
+fn draw(
+    scene: &Scene,
+    options: &ViewOptions,
+    pool: &rayon::ThreadPool,
+    renderer: &mut Renderer,
+    image: &mut Image,
+) {
+    match &options.trace {
+        Some(trace) => *image = pool.install(|| crate::ray_traced_image(scene, trace)).0,
+        None => {
+            pool.install(|| renderer.render_into(scene, &options.render, image));
+        }
+    }
+}
+
 /// Renders the full frame of the current view and writes it to the first
 /// free numbered name.
 fn screenshot(
@@ -270,7 +290,7 @@ fn screenshot(
     let path = numbered(&options.screenshot);
     let scene = state.scene(&state.full_request());
     let mut image = Image::empty();
-    pool.install(|| renderer.render_into(&scene, &options.render, &mut image));
+    draw(&scene, options, pool, renderer, &mut image);
     crate::save_image(&image, &path)
         .with_context(|| format!("{}: cannot write the screenshot", path.display()))?;
     Ok(path)

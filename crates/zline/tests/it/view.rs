@@ -223,6 +223,29 @@ fn a_resized_window_draws_at_its_new_size() {
     assert_eq!((scene.settings.width, scene.settings.height), (300, 200));
 }
 
+/// The ray tracer's viewer refines progressively: when still, the block
+/// halves frame by frame down to the full frame; a move starts again from
+/// the preview.
+#[test]
+fn progressive_refinement_halves_the_block_down_to_the_full_frame() {
+    let mut state = ViewerState::new(cube_scene());
+    state.refine_progressively();
+    let steps: Vec<(u32, bool)> =
+        (0..4).map(|_| draw(&mut state, Duration::from_millis(5))).map(|r| (r.block, r.full)).collect();
+    assert_eq!(steps, [(8, false), (4, false), (2, false), (1, true)]);
+    assert_eq!(state.frame_to_render(), None, "the full frame is shown");
+    // Slow frames: a move gives a coarse preview, then the refinement
+    // continues from it once the input is still.
+    state.handle(Event::FrameRendered(state.full_request(), Duration::from_secs(10)));
+    state.handle(drag(Button::Left, 5.0, 0.0));
+    let preview = draw(&mut state, Duration::from_millis(30));
+    assert_eq!((preview.block, preview.full), (8, false));
+    state.handle(Event::Tick(REFINE_AFTER));
+    let rest: Vec<u32> = (0..3).map(|_| draw(&mut state, Duration::from_millis(30)).block).collect();
+    assert_eq!(rest, [4, 2, 1]);
+    assert_eq!(state.frame_to_render(), None);
+}
+
 /// `zline view --save-first-frame` against `zline render`, same flags.
 #[test]
 fn the_first_frame_is_the_image_render_draws() {
@@ -259,6 +282,37 @@ fn the_first_frame_is_the_image_render_draws() {
     }
 }
 
+/// The same with the ray tracer, chosen by the flag or by a scene file.
+#[test]
+fn the_first_traced_frame_is_the_image_render_draws() {
+    let dir = tempfile::tempdir().unwrap();
+    let spot = repo().join("assets/obj/spot/spot.obj");
+    let scene = dir.path().join("traced.toml");
+    let text = format!(
+        "[render]\nrenderer = \"raytrace\"\n[raytrace]\ndepth = 2\n[[objects]]\nmodel = {:?}\n",
+        spot.to_str().unwrap()
+    );
+    std::fs::write(&scene, text).unwrap();
+    let cases: [(&std::path::Path, &[&str]); 2] =
+        [(&spot, &["--renderer", "raytrace", "--size", "96x72"]), (&scene, &["--size", "80x60"])];
+    for (input, flags) in cases {
+        let (rendered, viewed) = (dir.path().join("render.png"), dir.path().join("view.png"));
+        let input = input.to_str().unwrap();
+        let mut render = vec!["render", input, "-o", rendered.to_str().unwrap(), "--allow-paths-outside"];
+        render.extend_from_slice(flags);
+        let mut view =
+            vec!["view", input, "--save-first-frame", viewed.to_str().unwrap(), "--allow-paths-outside"];
+        view.extend_from_slice(flags);
+        for args in [&render, &view] {
+            let out = zline(args);
+            assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        }
+        let said = String::from_utf8_lossy(&zline(&render).stderr).into_owned();
+        assert!(said.contains("ray traced"), "{said}");
+        assert_eq!(std::fs::read(&rendered).unwrap(), std::fs::read(&viewed).unwrap(), "{flags:?}");
+    }
+}
+
 #[test]
 fn without_a_display_view_says_so() {
     let spot = repo().join("assets/obj/spot/spot.obj");
@@ -280,21 +334,26 @@ fn under_xvfb_the_window_shows_the_frame() {
         return;
     };
     let spot = repo().join("assets/obj/spot/spot.obj");
-    let args: Vec<std::ffi::OsString> = vec![spot.into(), "--size".into(), "320x240".into()];
-    let capture = zline::viewer::capture::under_xvfb(
-        &xvfb,
-        std::path::Path::new(env!("CARGO_BIN_EXE_zline")),
-        &args,
-        (320, 240),
-        40,
-    )
-    .unwrap();
-    assert_eq!((capture.screen.width, capture.screen.height), (320, 240));
-    let distinct: std::collections::HashSet<u32> = capture.screen.pixels.iter().copied().collect();
-    assert!(distinct.len() > 100, "the screen is blank or flat: {} colours", distinct.len());
-    // The text band over 320x240 is 2·4 + 2·10 rows of the width (12 %);
-    // the rest is the frame exactly.
-    assert!(capture.matching > 0.8, "only {:.1} % of the screen is the frame", 100.0 * capture.matching);
+    // Rasterized, and ray-traced (refined to the full frame in 4 frames).
+    for extra in [&[][..], &["--renderer", "raytrace"][..]] {
+        let mut args: Vec<std::ffi::OsString> = vec![spot.clone().into(), "--size".into(), "320x240".into()];
+        args.extend(extra.iter().map(Into::into));
+        let capture = zline::viewer::capture::under_xvfb(
+            &xvfb,
+            std::path::Path::new(env!("CARGO_BIN_EXE_zline")),
+            &args,
+            (320, 240),
+            40,
+        )
+        .unwrap();
+        assert_eq!((capture.screen.width, capture.screen.height), (320, 240));
+        let distinct: std::collections::HashSet<u32> = capture.screen.pixels.iter().copied().collect();
+        assert!(distinct.len() > 100, "{extra:?}: the screen is blank or flat: {} colours", distinct.len());
+        // The text band over 320x240 is 2·4 + 2·10 rows of the width (12 %);
+        // the rest is the frame exactly.
+        let share = 100.0 * capture.matching;
+        assert!(capture.matching > 0.8, "{extra:?}: only {share:.1} % of the screen is the frame");
+    }
 }
 
 #[test]
