@@ -307,8 +307,8 @@ pub struct RenderSettings {
     /// Exposure and tone mapping before quantization (SPEC §10); the
     /// default, no operator at exposure 1, is the plain clamp.
     pub tone_mapping: zline_shading::ToneMapping,
-    /// Which renderer draws the image (`render` and `demo`; turntables,
-    /// batches and the viewer rasterize).
+    /// Which renderer draws the image (`render`, `demo` and `view`;
+    /// turntables and batches rasterize).
     pub renderer: crate::trace_options::Renderer,
     /// How the ray tracer traces, when it draws.
     pub trace: crate::trace_options::TraceOptions,
