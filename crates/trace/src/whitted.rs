@@ -109,6 +109,20 @@ impl Tracer<'_> {
                 color += weight * self.missed(&ray);
                 continue;
             };
+            if self.alpha(hit.triangle, hit.b) == Alpha::CutOut {
+                // No surface here: the same ray goes on past it, at the
+                // same depth and weight.
+                if rays + stack.len() as u32 >= RAY_BUDGET {
+                    work.budget_cut += 1;
+                    continue;
+                }
+                let corners = &self.world.triangles[hit.triangle as usize];
+                let (p, error) = hit.point_error(corners);
+                let ng = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+                let origin = offset_origin(p, error, ng.normalize_or_zero(), ray.dir);
+                stack.push((Ray { origin, dir: ray.dir, t_max: ray.t_max - hit.t }, weight, depth));
+                continue;
+            }
             work.depth = work.depth.max(depth);
             let node = self.shade(&ray, &hit, work);
             color += weight * node.local;
@@ -167,7 +181,7 @@ impl Tracer<'_> {
             let radial = fog.coordinate == FogCoordinate::Radial;
             local = fog.apply(local, self.camera.fog_distance(p, radial));
         }
-        let opacity = m.opacity;
+        let opacity = self.opacity(hit.triangle, hit.b);
         let spawn = |w: Vec3| Ray::new(offset_origin(p, error, ng, w), w);
         let r = reflect(v, n);
         let mirror = (m.kr.max_element() > 0.0).then(|| (spawn(r), m.kr));
@@ -206,9 +220,9 @@ impl Tracer<'_> {
         match self.shadows {
             ShadowRays::Opaque => {
                 let mut blocked = false;
-                self.accel.each_hit(&self.world.triangles, &ray, count, &mut |_| {
-                    blocked = true;
-                    false
+                self.accel.each_hit(&self.world.triangles, &ray, count, &mut |hit| {
+                    blocked = self.alpha(hit.triangle, hit.b) != Alpha::CutOut;
+                    !blocked
                 });
                 blocked.then_some(Vec3::ZERO)
             }
@@ -216,7 +230,7 @@ impl Tracer<'_> {
                 let mut hits = Vec::new();
                 let mut opaque = false;
                 self.accel.each_hit(&self.world.triangles, &ray, count, &mut |hit| {
-                    let kt = 1.0 - self.opacity(hit.triangle);
+                    let kt = 1.0 - self.opacity(hit.triangle, hit.b);
                     // An opaque occluder ends the ray before anything is kept.
                     opaque = kt <= 0.0;
                     if !opaque {
@@ -252,10 +266,47 @@ impl Tracer<'_> {
         }
     }
 
-    fn opacity(&self, triangle: u32) -> f32 {
+    /// The opacity d at barycentrics `b` of `triangle`: the material's,
+    /// times the texture's alpha where the map blends, 0 where a cut-out
+    /// map removes the surface.
+    fn opacity(&self, triangle: u32, b: [f32; 3]) -> f32 {
         let surface = self.world.attributes[triangle as usize].surface;
-        self.world.surfaces[surface as usize].material.opacity
+        let d = self.world.surfaces[surface as usize].material.opacity;
+        match self.alpha(triangle, b) {
+            Alpha::Opaque => d,
+            Alpha::Blend(a) => d * a,
+            Alpha::CutOut => 0.0,
+        }
     }
+
+    /// What the diffuse map's alpha does at barycentrics `b` of `triangle`
+    /// (SPEC §7 and §9, read at level 0 as the colour is).
+    fn alpha(&self, triangle: u32, b: [f32; 3]) -> Alpha {
+        let attributes = &self.world.attributes[triangle as usize];
+        let surface = &self.world.surfaces[attributes.surface as usize];
+        let Some(map) = surface.texture.as_ref().filter(|m| m.alpha_blend || m.alpha_cutoff.is_some()) else {
+            return Alpha::Opaque;
+        };
+        let [u0, u1, u2] = attributes.uvs;
+        let uv = b[0] * u0 + b[1] * u1 + b[2] * u2;
+        let a = map.texture.sample(&map.sampler, uv.x, uv.y, 0.0).w;
+        match map.alpha_cutoff {
+            Some(cutoff) if a < cutoff => Alpha::CutOut,
+            Some(_) => Alpha::Opaque,
+            None => Alpha::Blend(a),
+        }
+    }
+}
+
+/// A texture's alpha at a hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Alpha {
+    /// No alpha, or a mask's alpha at or above its cutoff.
+    Opaque,
+    /// A blending map's alpha: it multiplies the opacity.
+    Blend(f32),
+    /// A mask's alpha below its cutoff: no surface.
+    CutOut,
 }
 
 /// A node of the ray tree: its local colour (times d) and its children

@@ -319,3 +319,81 @@ fn misses_see_the_drawn_environment() {
     let back = env.background_radiance(Vec3::Z);
     assert!((seen - back).abs().max_element() < 1e-5, "{seen} against {back}");
 }
+
+/// `square` with texture coordinates over [0, 1]² and a 2 × 2 diffuse map
+/// whose left column has alpha 0 and right column alpha 1, read with the
+/// nearest texel.
+fn alpha_square(material: Material, cutoff: Option<f32>, blend: bool) -> Object {
+    use zline_shading::{Filter, Sampler, Texture};
+    let mut o = square((-1.0, 1.0), (-1.0, 1.0), -2.0, true, material);
+    let rgba = [[255, 255, 255, 0], [255, 255, 255, 255], [255, 255, 255, 0], [255, 255, 255, 255]].concat();
+    let texture = Texture::from_rgba8(2, 2, &rgba).unwrap();
+    let uvs = vec![
+        glam::Vec2::new(0.0, 0.0),
+        glam::Vec2::new(1.0, 0.0),
+        glam::Vec2::new(1.0, 1.0),
+        glam::Vec2::new(0.0, 1.0),
+    ];
+    let mesh = (*o.mesh).clone().with_uvs(uvs).unwrap().with_diffuse_map(zline_scene::TextureMap {
+        texture: Arc::new(texture),
+        sampler: Sampler { filter: Filter::Nearest, ..Sampler::default() },
+        alpha_blend: blend,
+        alpha_cutoff: cutoff,
+    });
+    o.mesh = Arc::new(mesh);
+    o
+}
+
+/// A cut-out texel removes the surface: the ray goes on to the wall behind
+/// (the same ray, not a deeper one), and shadow rays pass there in both
+/// shadow modes; where alpha is above the cutoff the square is opaque.
+#[test]
+fn cut_out_texels_let_rays_and_shadows_through() {
+    let wall = Vec3::new(0.8, 0.2, 0.4);
+    let card = Material { ka: Vec3::new(0.1, 0.5, 0.9), ..black() };
+    let s = scene(
+        vec![alpha_square(card, Some(0.5), false), square((-9.0, 9.0), (-9.0, 9.0), -6.0, true, glow(wall))],
+        vec![],
+    );
+    let left = Ray::new(Vec3::ZERO, Vec3::new(-0.25, 0.0, -1.0));
+    let right = Ray::new(Vec3::ZERO, Vec3::new(0.25, 0.0, -1.0));
+    for shadows in [ShadowRays::Filtered, ShadowRays::Opaque] {
+        let (c, work) = trace(&s, left, 1, shadows);
+        close(c, wall);
+        assert_eq!((work.primary.rays, work.depth), (2, 1), "one camera ray continued, depth 1");
+        close(trace(&s, right, 1, shadows).0, card.ka);
+    }
+    // A light in front of the card lights the floor behind it through the
+    // cut-out half only: rays from between the card and the floor look at
+    // floor points whose shadow rays cross the card at x = ∓0.25.
+    let floor = Material { kd: Vec3::ONE, ..black() };
+    let position = Vec3::new(0.0, 0.0, -1.0);
+    let light = Light::Point { position, color: Vec3::ONE, attenuation: Default::default() };
+    let mut s = scene(
+        vec![alpha_square(card, Some(0.5), false), square((-9.0, 9.0), (-9.0, 9.0), -3.0, true, floor)],
+        vec![light],
+    );
+    s.ambient = Vec3::ZERO;
+    let lit = (position - Vec3::new(-0.5, 0.0, -3.0)).normalize().z;
+    for shadows in [ShadowRays::Filtered, ShadowRays::Opaque] {
+        let through = trace(&s, Ray::new(Vec3::new(-0.5, 0.0, -2.5), Vec3::NEG_Z), 1, shadows).0;
+        let blocked = trace(&s, Ray::new(Vec3::new(0.5, 0.0, -2.5), Vec3::NEG_Z), 1, shadows).0;
+        close(through, Vec3::splat(lit));
+        close(blocked, Vec3::ZERO);
+    }
+}
+
+/// A blending map's alpha multiplies the opacity: kt = 1 − d·alpha.
+#[test]
+fn a_blending_alpha_multiplies_the_opacity() {
+    let wall = Vec3::new(0.8, 0.2, 0.4);
+    let pane = Material { ka: Vec3::new(0.2, 0.6, 1.0), opacity: 0.5, ..black() };
+    let s = scene(
+        vec![alpha_square(pane, None, true), square((-9.0, 9.0), (-9.0, 9.0), -6.0, true, glow(wall))],
+        vec![],
+    );
+    let left = trace(&s, Ray::new(Vec3::ZERO, Vec3::new(-0.25, 0.0, -1.0)), 2, ShadowRays::Filtered).0;
+    let right = trace(&s, Ray::new(Vec3::ZERO, Vec3::new(0.25, 0.0, -1.0)), 2, ShadowRays::Filtered).0;
+    close(left, wall);
+    close(right, 0.5 * pane.ka + 0.5 * wall);
+}
