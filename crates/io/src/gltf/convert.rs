@@ -77,7 +77,10 @@ pub(super) fn material_from_gltf(material: &gltf::Material) -> Material {
     let ior = material.ior().unwrap_or(1.5);
     let ke = Vec3::from(material.emissive_factor()) * material.emissive_strength().unwrap_or(1.0);
     let model = Model::CookTorrance(Microfacet { metallic, roughness, distribution: Distribution::Ggx });
-    Material { ke, ka: base, kd: base, ks, ns, opacity, model, kr: Vec3::ZERO, ior }.sanitized()
+    // The ray tracer's mirror coefficient: a metal reflects its colour,
+    // the more the smoother (the factors only, not the maps).
+    let kr = base * metallic * (1.0 - roughness).powi(2);
+    Material { ke, ka: base, kd: base, ks, ns, opacity, model, kr, ior }.sanitized()
 }
 
 /// The same mesh with every triangle's winding reversed.
@@ -129,10 +132,12 @@ mod tests {
         assert_eq!((m[0].kd, m[0].ka), (Vec3::new(0.5, 0.25, 1.0), Vec3::new(0.5, 0.25, 1.0)));
         assert_eq!(m[0].ks, Vec3::new(0.25, 0.125, 0.5), "metal: its own colour, halved by roughness 0.5");
         assert_eq!((m[0].ns, m[0].opacity), (30.0, 0.4), "2/0.5⁴ − 2 = 30; BLEND keeps alpha");
+        assert_eq!(m[0].kr, Vec3::new(0.125, 0.0625, 0.25), "metal: its colour times (1 − 0.5)²");
         assert_eq!(m[1].ks, Vec3::splat(0.04), "smooth dielectric");
+        assert_eq!(m[1].kr, Vec3::ZERO, "no mirror: not metallic");
         assert_eq!((m[1].ns, m[1].opacity), (MAX_GLTF_SHININESS, 1.0), "MASK draws opaque");
         // The glTF default material: white, metallic 1, roughness 1.
-        assert_eq!((m[2].kd, m[2].ks, m[2].ns), (Vec3::ONE, Vec3::ZERO, 1.0));
+        assert_eq!((m[2].kd, m[2].ks, m[2].ns, m[2].kr), (Vec3::ONE, Vec3::ZERO, 1.0, Vec3::ZERO));
     }
 
     #[test]

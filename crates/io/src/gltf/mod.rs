@@ -59,7 +59,9 @@
 //!   1 − KHR_materials_transmission's transmissionFactor (the ray tracer's
 //!   kt = 1 − d, SPEC §12; the rasterizer blends such a surface; the
 //!   transmissionTexture is not read), and the index of refraction
-//!   KHR_materials_ior's ior (default 1.5, the extension's). MASK
+//!   KHR_materials_ior's ior (default 1.5, the extension's); the ray
+//!   tracer's mirror coefficient kr = baseColor × metallic × (1 −
+//!   roughness)² (factors, not maps: smooth metals mirror). MASK
 //!   with a base colour texture discards samples whose alpha
 //!   baseColorFactor.a × texel alpha is below alphaCutoff (default 0.5;
 //!   stored as a cutoff on the texel alpha, alphaCutoff / factor.a, in
