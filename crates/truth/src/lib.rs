@@ -45,12 +45,15 @@
 //!
 //! The ray tracer's model (SPEC §12, `zline-trace`) has its own truth:
 //! [`trace_truth`] and [`WhittedTruth`] (module `whitted`, with its f64
-//! ray–triangle test and hierarchy in `whitted_hit`) walk the Whitted
+//! ray–triangle test and hierarchy in `whitted_hit`, the world and its
+//! shadow rays in `whitted_world`, what it records in `whitted_record`)
+//! walk the Whitted
 //! tree in f64 — camera rays unprojected through the truth's matrices,
 //! the nearest hit among all triangles, the truth's lighting, texture
-//! and fog at each hit with the viewer at the ray's origin, filtered or
-//! opaque shadow rays, reflection and refraction by the course's formula,
-//! the depth limit, the weight cutoff and the ray budget — and can record
+//! and fog at each hit with the viewer at the ray's origin, texture
+//! alpha, filtered or opaque shadow rays, reflection and refraction by the
+//! course's formula, the depth limit, the weight cutoff, the ray budget
+//! and what a ray that misses sees — and can record
 //! each pixel's tree, from which [`TracedTruth::away_from_silhouettes`]
 //! masks the pixels a sub-pixel move of an edge cannot reach. Its module
 //! doc states every rule and the differences to expect from the fast
@@ -118,6 +121,8 @@ mod texture;
 mod tile;
 mod whitted;
 mod whitted_hit;
+mod whitted_record;
+mod whitted_world;
 
 use rayon::prelude::*;
 use zline_scene::Scene;
