@@ -12,7 +12,7 @@
 //! falls below the cutoff, or when the pixel's ray budget is spent.
 
 use glam::Vec3;
-use zline_shading::{Fog, FogCoordinate, Light, LightingModel};
+use zline_shading::{Fog, FogCoordinate, Light, LightingModel, Material, Model};
 
 use crate::accel::{Accelerator, Counters};
 use crate::optics::{reflect, refract};
@@ -102,6 +102,7 @@ impl Tracer<'_> {
         stack.clear();
         stack.push((ray, Vec3::ONE, 1));
         let mut rays = 0;
+        let mut cut = false;
         while let Some((ray, weight, depth)) = stack.pop() {
             rays += 1;
             let count = if depth == 1 { &mut work.primary } else { &mut work.secondary };
@@ -113,7 +114,7 @@ impl Tracer<'_> {
                 // No surface here: the same ray goes on past it, at the
                 // same depth and weight.
                 if rays + stack.len() as u32 >= RAY_BUDGET {
-                    work.budget_cut += 1;
+                    cut = true;
                     continue;
                 }
                 let corners = &self.world.triangles[hit.triangle as usize];
@@ -135,12 +136,13 @@ impl Tracer<'_> {
                     continue;
                 }
                 if rays + stack.len() as u32 >= RAY_BUDGET {
-                    work.budget_cut += 1;
+                    cut = true;
                     break;
                 }
                 stack.push((child, w, depth + 1));
             }
         }
+        work.budget_cut += u64::from(cut);
         color
     }
 
@@ -164,17 +166,23 @@ impl Tracer<'_> {
         if n.dot(ng) <= 0.0 {
             n = ng;
         }
-        let parts = self.lights.shade_parts_seen(m, (p, n, p + v), |k, to_light| {
-            self.shadow(p, error, ng, &self.lights.lights[k], to_light, &mut work.shadow)
-        });
         let texel = surface.texture.as_ref().map(|t| {
             let [u0, u1, u2] = attributes.uvs;
             let uv = b0 * u0 + b1 * u1 + b2 * u2;
             t.texture.sample(&t.sampler, uv.x, uv.y, 0.0).truncate()
         });
-        let lit = match texel {
-            Some(texel) => texel * parts.ambient_diffuse + parts.specular,
-            None => parts.ambient_diffuse + parts.specular,
+        // Cook–Torrance: the texel multiplies the base colour, so also the
+        // metal's F0 (SPEC §5.2); the basic model: ambient + diffuse (§7).
+        let base = match (texel, m.model) {
+            (Some(texel), Model::CookTorrance(_)) => Material { ka: m.ka * texel, kd: m.kd * texel, ..*m },
+            _ => *m,
+        };
+        let parts = self.lights.shade_parts_seen(&base, (p, n, p + v), |k, to_light| {
+            self.shadow(p, error, ng, &self.lights.lights[k], to_light, &mut work.shadow)
+        });
+        let lit = match (texel, m.model) {
+            (Some(texel), Model::Basic) => texel * parts.ambient_diffuse + parts.specular,
+            _ => parts.ambient_diffuse + parts.specular,
         };
         let mut local = lit.clamp(Vec3::ZERO, Vec3::ONE);
         if let Some(fog) = &self.fog {
@@ -230,6 +238,9 @@ impl Tracer<'_> {
                 let mut hits = Vec::new();
                 let mut opaque = false;
                 self.accel.each_hit(&self.world.triangles, &ray, count, &mut |hit| {
+                    if self.alpha(hit.triangle, hit.b) == Alpha::CutOut {
+                        return true; // no surface: not a crossing
+                    }
                     let kt = 1.0 - self.opacity(hit.triangle, hit.b);
                     // An opaque occluder ends the ray before anything is kept.
                     opaque = kt <= 0.0;

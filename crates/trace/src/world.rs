@@ -70,7 +70,13 @@ impl World {
             let textured = mesh.diffuse_map.is_some() && mesh.uvs.len() == mesh.positions.len();
             world.surfaces.push(Surface {
                 material: object.material().sanitized(),
-                texture: mesh.diffuse_map.clone().filter(|_| textured),
+                texture: mesh.diffuse_map.clone().filter(|_| textured).map(|mut map| {
+                    // `--filter` replaces every texture's own (SPEC §7).
+                    if let Some(filter) = scene.settings.texture_filter {
+                        map.sampler.filter = filter;
+                    }
+                    map
+                }),
                 flat: object.shading.unwrap_or(scene.settings.shading) == ShadingMode::Flat,
             });
             for tri in &mesh.triangles {
