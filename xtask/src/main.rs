@@ -24,6 +24,7 @@ mod terrain;
 mod timing;
 mod trace_aa;
 mod trace_report;
+mod trace_truth;
 mod versus;
 mod view_screenshot;
 
@@ -207,8 +208,9 @@ enum Task {
     },
     /// The ray tracer measured: its acceleration structures side by side
     /// (build, size, rays per second, nodes and triangles per ray, equal
-    /// hits; a million random rays against brute force), and adaptive
-    /// against regular supersampling at equal error.
+    /// hits; a million random rays against brute force), adaptive against
+    /// regular supersampling at equal error, and its error against the
+    /// f64 truth beside the rasterizer's.
     TraceReport {
         /// The shared asset folder holding obj/teapot/teapot.obj (a sphere
         /// stands in when missing).
@@ -217,12 +219,15 @@ enum Task {
         /// Frame width of the camera rays, in pixels.
         #[arg(long, default_value_t = 640)]
         width: u32,
-        /// Only the acceleration structures.
-        #[arg(long, conflicts_with = "antialias")]
+        /// The acceleration structures (with none of the three: all).
+        #[arg(long)]
         accel: bool,
-        /// Only the anti-aliasing.
+        /// The anti-aliasing.
         #[arg(long)]
         antialias: bool,
+        /// The error against the f64 truth (at most 320 pixels wide).
+        #[arg(long)]
+        truth: bool,
     },
     /// A real screenshot of `zline view`: the viewer on a private Xvfb
     /// (started here; skipped with a message when Xvfb is not installed),
@@ -270,12 +275,16 @@ fn main() -> Result<()> {
             })
         }
         Task::Modules { verbose } => modules::run(verbose),
-        Task::TraceReport { assets, width, accel, antialias } => trace_report::run(&trace_report::Args {
-            assets: &assets,
-            width,
-            accel: accel || !antialias,
-            antialias: antialias || !accel,
-        }),
+        Task::TraceReport { assets, width, accel, antialias, truth } => {
+            let all = !(accel || antialias || truth);
+            trace_report::run(&trace_report::Args {
+                assets: &assets,
+                width,
+                accel: accel || all,
+                antialias: antialias || all,
+                truth: truth || all,
+            })
+        }
         Task::RayBatch { shards, size } => ray_batch::run(shards, &size),
         Task::ViewScreenshot { out, size, model, flags } => view_screenshot::run(&out, &model, size, &flags),
         Task::TerrainAsset { out } => terrain::write_assets(&out),

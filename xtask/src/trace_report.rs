@@ -1,8 +1,8 @@
 //! `cargo xtask trace-report`: the ray tracer's acceleration structures
 //! side by side (build time, size, rays per second, nodes and triangles
 //! per ray, hits equal to the BVH's on every ray and to brute force on a
-//! million random rays), and its anti-aliasing against a 16 × 16 reference
-//! (`trace_aa`).
+//! million random rays), its anti-aliasing against a 16 × 16 reference
+//! (`trace_aa`), and its error against the f64 truth (`trace_truth`).
 
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -33,6 +33,7 @@ pub(crate) struct Args<'a> {
     pub(crate) width: u32,
     pub(crate) accel: bool,
     pub(crate) antialias: bool,
+    pub(crate) truth: bool,
 }
 
 pub(crate) fn run(args: &Args) -> Result<()> {
@@ -41,6 +42,9 @@ pub(crate) fn run(args: &Args) -> Result<()> {
     }
     if args.antialias {
         crate::trace_aa::run()?;
+    }
+    if args.truth {
+        crate::trace_truth::run(args.width.min(320))?;
     }
     Ok(())
 }
