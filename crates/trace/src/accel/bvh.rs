@@ -46,7 +46,7 @@
 //! gap left is underflow (edge functions or t products below 2⁻¹²⁶, i.e.
 //! triangles some 10⁻¹⁹ across), where the triangle test's own signs fail.
 
-use glam::Vec3;
+use glam::{BVec4A, Vec3, Vec4};
 
 use super::{nearest_in, Accelerator, Bounds, Counters};
 use crate::ray::{gamma, Hit, Ray, Sheared};
@@ -58,6 +58,8 @@ const DEPTH_LIMIT: usize = 62;
 /// The traversal stack's size (≥ the interior levels, [`DEPTH_LIMIT`]).
 const STACK: usize = 64;
 const BUCKETS: usize = 12;
+/// The lanes of the box test that take the low end of the shear's span.
+const LOW_HIGH: BVec4A = BVec4A::new(true, false, true, false);
 
 /// A bounding-volume hierarchy over a triangle list (see the module doc).
 #[derive(Clone, Debug, Default)]
@@ -73,8 +75,9 @@ pub struct Bvh {
 /// first child is the next node).
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    min: [f32; 3],
-    max: [f32; 3],
+    /// The box, axis by axis: (min x, max x, min y, max y, min z, max z),
+    /// so that the box test reads two axes' four values from one place.
+    bounds: [f32; 6],
     offset: u32,
     count: u16,
     axis: u8,
@@ -118,8 +121,7 @@ impl Bvh {
         let bounds = prims.iter().fold(Bounds::EMPTY, |b, p| b.union(p.bounds));
         let at = self.nodes.len();
         let node = |offset: usize, count: usize, axis: usize| Node {
-            min: bounds.min.to_array(),
-            max: bounds.max.to_array(),
+            bounds: [bounds.min.x, bounds.max.x, bounds.min.y, bounds.max.y, bounds.min.z, bounds.max.z],
             offset: offset as u32,
             count: count as u16,
             axis: axis as u8,
@@ -149,7 +151,10 @@ impl Bvh {
     /// tests). A single leaf costs its count; 0 for the empty tree. Every
     /// ratio is taken as 1 when the root's area is 0 or not finite.
     pub fn sah_cost(&self) -> f32 {
-        let area = |n: &Node| Bounds { min: n.min.into(), max: n.max.into() }.area();
+        let area = |n: &Node| {
+            let b = n.bounds;
+            Bounds { min: Vec3::new(b[0], b[2], b[4]), max: Vec3::new(b[1], b[3], b[5]) }.area()
+        };
         let root = self.nodes.first().map_or(0.0, area);
         let ratio = |n: &Node| if root > 0.0 && root.is_finite() { area(n) / root } else { 1.0 };
         self.nodes.iter().map(|n| ratio(n) * if n.count > 0 { f32::from(n.count) } else { 1.0 }).sum()
@@ -353,6 +358,10 @@ struct Frame {
     t_limit: f32,
     /// 1 − γ(9): a box's least sheared z times this is at most any hit's t.
     shrink: f32,
+    /// (o[kx], o[kx], o[ky], o[ky]): the box test's four lanes.
+    origin_xy: Vec4,
+    /// (s_x, s_x, s_y, s_y).
+    shear_xy: Vec4,
 }
 
 impl Frame {
@@ -369,6 +378,8 @@ impl Frame {
             negative: [d.x < 0.0, d.y < 0.0, d.z < 0.0],
             t_limit: ray.t_max * (1.0 + gamma(4)),
             shrink: 1.0 - gamma(9),
+            origin_xy: Vec4::new(ray.origin[kx], ray.origin[kx], ray.origin[ky], ray.origin[ky]),
+            shear_xy: Vec4::new(shear.x, shear.x, shear.y, shear.y),
         }
     }
 
@@ -379,24 +390,26 @@ impl Frame {
     fn lower_bound<const KZ: usize>(&self, node: &Node) -> Option<f32> {
         let (kz, kx, ky) = (KZ, (KZ + 1) % 3, (KZ + 2) % 3);
         let (o, s) = (&self.origin, self.shear);
-        let (z0, z1) = (node.min[kz] - o[kz], node.max[kz] - o[kz]);
+        let (z0, z1) = (node.bounds[2 * kz] - o[kz], node.bounds[2 * kz + 1] - o[kz]);
         // The sheared coordinate's range over the box: v − o plus the shear
         // term, the latter least at the kz face its sign picks (z0 ≤ z1 and
         // rounding is monotone, so the smaller product is that face's; the
         // box's coordinates are finite).
+        // x and y in four lanes, (low x, high x, low y, high y), each lane
+        // the scalar operations of the one-axis form below (a NaN, which
+        // only overflowing coordinates give, never culls).
+        let b = &node.bounds;
+        let b = Vec4::new(b[2 * kx], b[2 * kx + 1], b[2 * ky], b[2 * ky + 1]);
+        let (a, c) = (self.shear_xy * z0, self.shear_xy * z1);
+        let range = (b - self.origin_xy) + Vec4::select(LOW_HIGH, a.min(c), a.max(c));
+        // Culled when low x > 0, high x < 0, low y > 0 or high y < 0.
+        if (range * Vec4::new(1.0, -1.0, 1.0, -1.0)).cmpgt(Vec4::ZERO).any() {
+            return None;
+        }
         let span = |s: f32| {
             let (a, b) = (s * z0, s * z1);
             (a.min(b), a.max(b))
         };
-        let sheared = |k: usize, s: f32| {
-            let (lo, hi) = span(s);
-            ((node.min[k] - o[k]) + lo, (node.max[k] - o[k]) + hi)
-        };
-        let (x0, x1) = sheared(kx, s.x);
-        let (y0, y1) = sheared(ky, s.y);
-        if x0 > 0.0 || x1 < 0.0 || y0 > 0.0 || y1 < 0.0 {
-            return None;
-        }
         let (lo, hi) = span(s.z);
         // All vertices at z ≤ 0: the test's t_scaled ≤ 0, no hit.
         if hi <= 0.0 {
