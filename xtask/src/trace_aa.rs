@@ -4,51 +4,15 @@
 //! [0, 1]), with rays a pixel, RMSE, the worst pixel, and the rays the
 //! regular grid needs for the same RMSE.
 
-use std::sync::Arc;
-
 use anyhow::Result;
-use glam::{Mat4, Vec3};
-use zline::scene::{Camera, Mesh, Object, Projection, RenderSettings, Scene};
-use zline::shading::Material;
+use glam::Vec3;
+use zline::scene::Scene;
 use zline::trace::antialias::Adaptive;
 use zline::trace::{render, TraceOptions, Traced};
 
-/// White emissive triangles in the plane z = −1 seen by an orthographic
-/// camera whose view is [−1, 1]², on black.
+/// White triangles on black whose pixels are areas.
 fn flat(triangles: &[[(f32, f32); 3]], size: u32) -> Scene {
-    let white =
-        Material { ka: Vec3::ZERO, kd: Vec3::ZERO, ks: Vec3::ZERO, ke: Vec3::ONE, ..Material::DEFAULT };
-    let objects = triangles
-        .iter()
-        .map(|t| {
-            let p = t.iter().map(|&(x, y)| Vec3::new(x, y, -1.0)).collect();
-            Object {
-                mesh: Arc::new(
-                    Mesh::new("triangle", p, None, vec![[0, 1, 2]], white).expect("a valid triangle"),
-                ),
-                world_from_object: Mat4::IDENTITY,
-                material: None,
-                shading: None,
-                cull_back_faces: false,
-            }
-        })
-        .collect();
-    Scene {
-        environment: None,
-        shadows: Default::default(),
-        camera: Camera {
-            eye: Vec3::ZERO,
-            target: Vec3::NEG_Z,
-            up: Vec3::Y,
-            projection: Projection::Orthographic { height: 2.0, near: 0.5, far: 2.0 },
-        },
-        background: Vec3::ZERO,
-        ambient: Vec3::ZERO,
-        lights: Vec::new(),
-        objects,
-        settings: RenderSettings { width: size, height: size, ..RenderSettings::default() },
-        fog: None,
-    }
+    zline::scenes::coverage_scene(triangles, size)
 }
 
 fn cases() -> Vec<(&'static str, Scene)> {

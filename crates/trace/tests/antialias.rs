@@ -2,53 +2,14 @@
 //! colours are areas: white emissive triangles on a black background, so
 //! a pixel's exact value is the share of it the triangles cover.
 
-use std::sync::Arc;
-
-use glam::{Mat4, Vec3};
-use zline_scene::{Camera, Mesh, Object, Projection, RenderSettings, Scene};
-use zline_shading::{Material, ToneMapping};
+use glam::Vec3;
+use zline_scene::Scene;
 use zline_trace::antialias::Adaptive;
 use zline_trace::{render, TraceOptions, Traced};
 
-/// White emissive triangles in the plane z = −1, seen by an orthographic
-/// camera whose view is the square [−1, 1]², drawn at `size`².
+/// White triangles on black whose pixels are areas (`zline-scenes`).
 fn scene(triangles: &[[(f32, f32); 3]], size: u32) -> Scene {
-    let white =
-        Material { ka: Vec3::ZERO, kd: Vec3::ZERO, ks: Vec3::ZERO, ke: Vec3::ONE, ..Material::DEFAULT };
-    let objects = triangles
-        .iter()
-        .map(|t| {
-            let p = t.iter().map(|&(x, y)| Vec3::new(x, y, -1.0)).collect();
-            Object {
-                mesh: Arc::new(Mesh::new("triangle", p, None, vec![[0, 1, 2]], white).unwrap()),
-                world_from_object: Mat4::IDENTITY,
-                material: None,
-                shading: None,
-                cull_back_faces: false,
-            }
-        })
-        .collect();
-    Scene {
-        environment: None,
-        shadows: Default::default(),
-        camera: Camera {
-            eye: Vec3::ZERO,
-            target: Vec3::NEG_Z,
-            up: Vec3::Y,
-            projection: Projection::Orthographic { height: 2.0, near: 0.5, far: 2.0 },
-        },
-        background: Vec3::ZERO,
-        ambient: Vec3::ZERO,
-        lights: Vec::new(),
-        objects,
-        settings: RenderSettings {
-            width: size,
-            height: size,
-            tone_mapping: ToneMapping::default(),
-            ..RenderSettings::default()
-        },
-        fog: None,
-    }
+    zline_scenes::coverage_scene(triangles, size)
 }
 
 /// Edges: long slanted ones, near-horizontal and near-vertical ones, and

@@ -425,8 +425,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::accel::brute::Brute;
-    use crate::accel::testkit::{check_same, hits, key, ray, scene, Rng};
+    use crate::accel::testkit::{check_each_hit_stops, check_rays, check_same, ray, scene, stacked, Rng};
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(256))]
@@ -446,31 +445,14 @@ mod tests {
     fn a_hundred_thousand_rays_through_a_soup_answer_as_brute_force() {
         let mut rng = Rng(0x5eed);
         let tris = scene(&mut rng, 2000);
-        let bvh = Bvh::build(&tris);
-        let (mut mine, mut brute) = (Counters::default(), Counters::default());
-        for _ in 0..100_000 {
-            let ray = ray(&mut rng, &tris);
-            let got = bvh.closest(&tris, &ray, &mut mine).map(key);
-            assert_eq!(got, Brute.closest(&tris, &ray, &mut brute).map(key), "{ray:?}");
-            if brute.rays % 10 == 0 {
-                assert_eq!(hits(&bvh, &tris, &ray), hits(&Brute, &tris, &ray), "{ray:?}");
-            }
-        }
+        let (mine, brute) = check_rays(&Bvh::build(&tris), &tris, &mut rng, 100_000);
         assert!(mine.tests * 10 < brute.tests, "{mine:?} against {brute:?}");
     }
 
     #[test]
     fn each_hit_stops_when_told() {
-        let tri = [Vec3::new(-1.0, -1.0, -2.0), Vec3::new(1.0, -1.0, -2.0), Vec3::new(0.0, 1.0, -2.0)];
-        let tris = [tri; 8];
-        let mut seen = 0;
-        let ray = Ray::new(Vec3::ZERO, -Vec3::Z);
-        let done = Bvh::build(&tris).each_hit(&tris, &ray, &mut Counters::default(), &mut |_| {
-            seen += 1;
-            seen < 3
-        });
-        assert!(!done);
-        assert_eq!(seen, 3);
+        let tris = stacked();
+        check_each_hit_stops(&Bvh::build(&tris), &tris);
     }
 
     #[test]

@@ -491,7 +491,7 @@ mod tests {
 
     use super::*;
     use crate::accel::brute::Brute;
-    use crate::accel::testkit::{check_same, hits, key, ray, scene, Rng};
+    use crate::accel::testkit::{check_each_hit_stops, check_rays, check_same, ray, scene, stacked, Rng};
 
     /// `tris` moved to `scale`·p + `offset`.
     fn moved(tris: &[[Vec3; 3]], scale: f32, offset: Vec3) -> Vec<[Vec3; 3]> {
@@ -549,43 +549,20 @@ mod tests {
     fn a_hundred_thousand_rays_through_a_soup_answer_as_brute_force() {
         let mut rng = Rng(0x5eed);
         let soup = scene(&mut rng, 1000);
-        let grid = Grid::build(&soup);
-        for i in 0..100_000 {
-            let ray = ray(&mut rng, &soup);
-            let got = grid.closest(&soup, &ray, &mut Counters::default()).map(key);
-            assert_eq!(got, Brute.closest(&soup, &ray, &mut Counters::default()).map(key), "{ray:?}");
-            if i % 10 == 0 {
-                assert_eq!(hits(&grid, &soup, &ray), hits(&Brute, &soup, &ray), "{ray:?}");
-            }
-        }
+        check_rays(&Grid::build(&soup), &soup, &mut rng, 100_000);
         let tris: Vec<_> = (0..4000).map(|_| small(&mut rng, 4.0, 0.1)).collect();
-        let grid = Grid::build(&tris);
-        let (mut mine, mut brute) = (Counters::default(), Counters::default());
-        for _ in 0..2000 {
-            let ray = ray(&mut rng, &tris);
-            let got = grid.closest(&tris, &ray, &mut mine).map(key);
-            assert_eq!(got, Brute.closest(&tris, &ray, &mut brute).map(key), "{ray:?}");
-        }
+        let (mine, brute) = check_rays(&Grid::build(&tris), &tris, &mut rng, 2000);
         assert!(mine.tests * 50 < brute.tests, "{mine:?} against {brute:?}");
         assert!(mine.nodes < 100 * mine.rays, "{mine:?}");
     }
 
     #[test]
     fn each_hit_stops_when_told() {
-        let tri = [Vec3::new(-1.0, -1.0, -2.0), Vec3::new(1.0, -1.0, -2.0), Vec3::new(0.0, 1.0, -2.0)];
-        let mut tris = vec![tri; 8];
+        let mut tris = stacked();
         tris.push([Vec3::splat(-5.0), Vec3::splat(-5.0), Vec3::splat(5.0)]);
         let grid = Grid::build(&tris);
-        assert!(grid.cell_count() > 1);
-        let mut seen = 0;
-        let ray = Ray::new(Vec3::ZERO, -Vec3::Z);
-        let done = grid.each_hit(&tris, &ray, &mut Counters::default(), &mut |_| {
-            seen += 1;
-            seen < 3
-        });
-        assert!(!done);
-        assert_eq!(seen, 3);
-        assert_eq!(hits(&grid, &tris, &ray).len(), 8, "each once, though in many cells");
+        assert!(grid.cell_count() > 1, "the stacked triangles lie in many cells");
+        check_each_hit_stops(&grid, &tris);
     }
 
     #[test]

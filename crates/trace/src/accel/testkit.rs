@@ -118,3 +118,44 @@ pub(crate) fn check_same(accel: &dyn Accelerator, tris: &[[Vec3; 3]], ray: &Ray)
     assert_eq!(count.rays, 1);
     assert_eq!(hits(accel, tris, ray), hits(&Brute, tris, ray), "each_hit, {ray:?}");
 }
+
+/// `count` random rays through `tris`: `accel`'s nearest hit equals brute
+/// force's on each, and its hits on every tenth; returns the counters of
+/// `accel` and of brute force.
+pub(crate) fn check_rays(
+    accel: &dyn Accelerator,
+    tris: &[[Vec3; 3]],
+    rng: &mut Rng,
+    count: usize,
+) -> (Counters, Counters) {
+    let (mut mine, mut brute) = (Counters::default(), Counters::default());
+    for i in 0..count {
+        let ray = ray(rng, tris);
+        let got = accel.closest(tris, &ray, &mut mine).map(key);
+        assert_eq!(got, Brute.closest(tris, &ray, &mut brute).map(key), "{ray:?}");
+        if i % 10 == 0 {
+            assert_eq!(hits(accel, tris, &ray), hits(&Brute, tris, &ray), "{ray:?}");
+        }
+    }
+    (mine, brute)
+}
+
+/// Eight copies of one triangle across −z from the origin (the first
+/// eight of `tris`): `each_hit` stops after the visit that returns false,
+/// and reports each of them once.
+pub(crate) fn check_each_hit_stops(accel: &dyn Accelerator, tris: &[[Vec3; 3]]) {
+    let mut seen = 0;
+    let ray = Ray::new(Vec3::ZERO, -Vec3::Z);
+    let done = accel.each_hit(tris, &ray, &mut Counters::default(), &mut |_| {
+        seen += 1;
+        seen < 3
+    });
+    assert!(!done);
+    assert_eq!(seen, 3);
+    assert_eq!(hits(accel, tris, &ray).len(), 8, "each once");
+}
+
+/// The eight stacked triangles [`check_each_hit_stops`] reads.
+pub(crate) fn stacked() -> Vec<[Vec3; 3]> {
+    vec![[Vec3::new(-1.0, -1.0, -2.0), Vec3::new(1.0, -1.0, -2.0), Vec3::new(0.0, 1.0, -2.0)]; 8]
+}
