@@ -102,7 +102,7 @@ impl TraceArgs {
     /// Refuses the ray tracer for `command`, which only rasterizes.
     pub(crate) fn refuse(&self, command: &str) -> Result<()> {
         if self.asks_to_trace() || self.given() {
-            bail!("{command} rasterizes only: --renderer raytrace and its flags work with render and demo");
+            bail!("{command} rasterizes only: --renderer raytrace and its flags work with render, demo and view");
         }
         Ok(())
     }
