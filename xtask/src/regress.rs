@@ -1,7 +1,8 @@
 //! `cargo xtask regress` and `cargo xtask bless`: render regression.
 //!
 //! Every scene file `tests/scenes/<name>.toml` is rendered with
-//! `zline::pipeline::render` and the default `RenderOptions`, and compared
+//! `zline::pipeline::render` and the default `RenderOptions` (or ray-traced
+//! with its `[raytrace]` options when its `renderer` says so), and compared
 //! with its reference image `tests/scenes/<name>.png`, pixel by pixel and
 //! exactly ([`TOLERANCE`], [`PIXEL_BUDGET`]). The pipeline's images are
 //! bit-identical for any thread count and tile size, so a difference is a
@@ -22,6 +23,7 @@ use image::{Rgb, RgbImage};
 use rayon::prelude::*;
 use zline::io::{load_scene_with_options, LoadOptions};
 use zline::pipeline::{render, RenderOptions};
+use zline::scene::trace_options::Renderer;
 
 /// Scene files and their reference images, relative to the workspace root.
 const SCENES: &str = "tests/scenes";
@@ -146,7 +148,13 @@ fn render_scene(path: &Path) -> Rendered {
     // The scenes' models are in assets/, outside tests/scenes.
     let options = LoadOptions { allow_outside: true };
     let image = load_scene_with_options(path, options).map_err(anyhow::Error::from).and_then(|scene| {
-        let (image, _) = render(&scene, &RenderOptions::default());
+        let (image, _) = match scene.settings.renderer {
+            Renderer::RayTrace => zline::ray_traced_image(&scene, &scene.settings.trace),
+            Renderer::Raster => {
+                let (image, _) = render(&scene, &RenderOptions::default());
+                (image, Default::default())
+            }
+        };
         RgbImage::from_raw(image.width, image.height, image.to_rgb()).context("image size")
     });
     Rendered { name: scene_name(path), image, time: start.elapsed() }
