@@ -50,7 +50,10 @@ pub(crate) fn run(args: &Args) -> Result<()> {
 }
 
 fn accelerators(args: &Args) -> Result<()> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace");
+    let cornell = root.join("assets/cornell/cornell_box.toml");
     let mut cases = vec![
+        frame("Cornell box", &zline::io::load_scene(&cornell)?, args.width),
         frame("Whitted scene", &zline::scenes::whitted_scene(), args.width),
         frame("demo", &zline::scenes::demo_scene(), args.width),
         frame("room", &zline::scenes::room_scene(), args.width),

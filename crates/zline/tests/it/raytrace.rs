@@ -175,3 +175,21 @@ fn every_structure_draws_the_same_image() {
         assert!(*b == bytes[0], "--accel {accel} draws another image than the BVH");
     }
 }
+
+/// The shipped Cornell box loads and draws its red left and green right
+/// walls, ray-traced and rasterized.
+#[test]
+fn the_cornell_box_draws_its_coloured_walls() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("cornell.png");
+    let scene = repo().join("assets/cornell/cornell_box.toml");
+    for extra in [&["--renderer", "raytrace"][..], &[][..]] {
+        let mut args =
+            vec!["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "64x64"];
+        args.extend_from_slice(extra);
+        let img = check_png(&zline(&args), &png, (64, 64));
+        let (left, right) = (img.get_pixel(4, 32), img.get_pixel(59, 32));
+        assert!(left[0] > 2 * left[1] && left[0] > 40, "{extra:?}: left wall {left:?}");
+        assert!(right[1] > 2 * right[0] && right[1] > 40, "{extra:?}: right wall {right:?}");
+    }
+}
