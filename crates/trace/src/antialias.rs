@@ -20,7 +20,6 @@ use glam::Vec3;
 use zline_shading::ToneMapping;
 
 use crate::whitted::{Tracer, Work};
-use crate::world::Camera;
 
 pub use zline_scene::trace_options::{Adaptive, MAX_ADAPTIVE_DEPTH};
 
@@ -34,7 +33,6 @@ struct Sample {
 /// Traces image points for one row of pixels.
 pub(crate) struct Sampler<'a> {
     pub(crate) tracer: &'a Tracer<'a>,
-    pub(crate) camera: &'a Camera,
     pub(crate) tone: ToneMapping,
     pub(crate) work: Work,
     pub(crate) stack: Vec<(crate::ray::Ray, Vec3, u32)>,
@@ -43,7 +41,7 @@ pub(crate) struct Sampler<'a> {
 impl Sampler<'_> {
     /// The tree sum of the camera ray through (x, y).
     pub(crate) fn trace(&mut self, x: f64, y: f64) -> Vec3 {
-        self.tracer.trace(self.camera.ray(x, y), &mut self.work, &mut self.stack)
+        self.tracer.trace(self.tracer.camera.ray(x, y), &mut self.work, &mut self.stack)
     }
 
     fn sample(&mut self, x: f64, y: f64) -> Sample {

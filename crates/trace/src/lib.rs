@@ -94,7 +94,6 @@ pub fn render(scene: &Scene, options: &TraceOptions) -> Traced {
     let mut pixels = vec![Vec3::ZERO; width as usize * height as usize];
     let sampler = || Sampler {
         tracer: &tracer,
-        camera: &camera,
         tone: scene.settings.tone_mapping,
         work: Work::default(),
         stack: Vec::new(),

@@ -140,6 +140,13 @@ impl Sheared {
         Some(Sheared { origin: ray.origin, axes: [kx, ky, kz], shear, t_max: ray.t_max })
     }
 
+    /// The axes permuted so that the last is the direction's largest
+    /// component, and the shear: what a structure's exact box test
+    /// repeats.
+    pub(crate) fn frame(&self) -> ([usize; 3], Vec3) {
+        (self.axes, self.shear)
+    }
+
     /// The watertight test of the triangle `p` (index `triangle`): the hit
     /// for 0 < t < t_max, edges and vertices included.
     #[inline]

@@ -110,7 +110,7 @@ impl Tracer<'_> {
                 color += weight * self.missed(&ray);
                 continue;
             };
-            if self.alpha(hit.triangle, hit.b) == Alpha::CutOut {
+            let Some(opacity) = self.opacity(hit.triangle, hit.b) else {
                 // No surface here: the same ray goes on past it, at the
                 // same depth and weight.
                 if rays + stack.len() as u32 >= RAY_BUDGET {
@@ -123,9 +123,9 @@ impl Tracer<'_> {
                 let origin = offset_origin(p, error, ng.normalize_or_zero(), ray.dir);
                 stack.push((Ray { origin, dir: ray.dir, t_max: ray.t_max - hit.t }, weight, depth));
                 continue;
-            }
+            };
             work.depth = work.depth.max(depth);
-            let node = self.shade(&ray, &hit, work);
+            let node = self.shade(&ray, &hit, opacity, work);
             color += weight * node.local;
             if depth >= self.max_depth {
                 continue;
@@ -148,7 +148,7 @@ impl Tracer<'_> {
 
     /// The local colour at `hit` (times the opacity d) and the two
     /// children with their weights.
-    fn shade(&self, ray: &Ray, hit: &Hit, work: &mut Work) -> Node {
+    fn shade(&self, ray: &Ray, hit: &Hit, opacity: f32, work: &mut Work) -> Node {
         let corners = &self.world.triangles[hit.triangle as usize];
         let attributes = &self.world.attributes[hit.triangle as usize];
         let surface = &self.world.surfaces[attributes.surface as usize];
@@ -189,7 +189,6 @@ impl Tracer<'_> {
             let radial = fog.coordinate == FogCoordinate::Radial;
             local = fog.apply(local, self.camera.fog_distance(p, radial));
         }
-        let opacity = self.opacity(hit.triangle, hit.b);
         let spawn = |w: Vec3| Ray::new(offset_origin(p, error, ng, w), w);
         let r = reflect(v, n);
         let mirror = (m.kr.max_element() > 0.0).then(|| (spawn(r), m.kr));
@@ -229,7 +228,7 @@ impl Tracer<'_> {
             ShadowRays::Opaque => {
                 let mut blocked = false;
                 self.accel.each_hit(&self.world.triangles, &ray, count, &mut |hit| {
-                    blocked = self.alpha(hit.triangle, hit.b) != Alpha::CutOut;
+                    blocked = self.opacity(hit.triangle, hit.b).is_some();
                     !blocked
                 });
                 blocked.then_some(Vec3::ZERO)
@@ -238,10 +237,10 @@ impl Tracer<'_> {
                 let mut hits = Vec::new();
                 let mut opaque = false;
                 self.accel.each_hit(&self.world.triangles, &ray, count, &mut |hit| {
-                    if self.alpha(hit.triangle, hit.b) == Alpha::CutOut {
+                    let Some(d) = self.opacity(hit.triangle, hit.b) else {
                         return true; // no surface: not a crossing
-                    }
-                    let kt = 1.0 - self.opacity(hit.triangle, hit.b);
+                    };
+                    let kt = 1.0 - d;
                     // An opaque occluder ends the ray before anything is kept.
                     opaque = kt <= 0.0;
                     if !opaque {
@@ -278,46 +277,25 @@ impl Tracer<'_> {
     }
 
     /// The opacity d at barycentrics `b` of `triangle`: the material's,
-    /// times the texture's alpha where the map blends, 0 where a cut-out
-    /// map removes the surface.
-    fn opacity(&self, triangle: u32, b: [f32; 3]) -> f32 {
-        let surface = self.world.attributes[triangle as usize].surface;
-        let d = self.world.surfaces[surface as usize].material.opacity;
-        match self.alpha(triangle, b) {
-            Alpha::Opaque => d,
-            Alpha::Blend(a) => d * a,
-            Alpha::CutOut => 0.0,
-        }
-    }
-
-    /// What the diffuse map's alpha does at barycentrics `b` of `triangle`
-    /// (SPEC §7 and §9, read at level 0 as the colour is).
-    fn alpha(&self, triangle: u32, b: [f32; 3]) -> Alpha {
+    /// times the diffuse map's alpha where the map blends; `None` where a
+    /// mask's alpha is below its cutoff: no surface (SPEC §7 and §9, the
+    /// texture read at level 0 as the colour is, once a hit).
+    fn opacity(&self, triangle: u32, b: [f32; 3]) -> Option<f32> {
         let attributes = &self.world.attributes[triangle as usize];
         let surface = &self.world.surfaces[attributes.surface as usize];
+        let d = surface.material.opacity;
         let Some(map) = surface.texture.as_ref().filter(|m| m.alpha_blend || m.alpha_cutoff.is_some()) else {
-            return Alpha::Opaque;
+            return Some(d);
         };
         let [u0, u1, u2] = attributes.uvs;
         let uv = b[0] * u0 + b[1] * u1 + b[2] * u2;
-        let a = map.texture.sample(&map.sampler, uv.x, uv.y, 0.0).w;
+        let alpha = map.texture.sample(&map.sampler, uv.x, uv.y, 0.0).w;
         match map.alpha_cutoff {
-            Some(cutoff) if a < cutoff => Alpha::CutOut,
-            Some(_) => Alpha::Opaque,
-            None => Alpha::Blend(a),
+            Some(cutoff) if alpha < cutoff => None,
+            Some(_) => Some(d),
+            None => Some(d * alpha),
         }
     }
-}
-
-/// A texture's alpha at a hit.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Alpha {
-    /// No alpha, or a mask's alpha at or above its cutoff.
-    Opaque,
-    /// A blending map's alpha: it multiplies the opacity.
-    Blend(f32),
-    /// A mask's alpha below its cutoff: no surface.
-    CutOut,
 }
 
 /// A node of the ray tree: its local colour (times d) and its children

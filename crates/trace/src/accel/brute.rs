@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use super::{nearest_in, Accelerator, Counters};
+use super::{each_in, nearest_in, Accelerator, Counters};
 use crate::ray::{Hit, Ray, Sheared};
 
 /// No structure.
@@ -28,14 +28,6 @@ impl Accelerator for Brute {
     ) -> bool {
         count.rays += 1;
         let Some(ray) = Sheared::new(ray) else { return true };
-        for (i, t) in triangles.iter().enumerate() {
-            count.tests += 1;
-            if let Some(hit) = ray.intersect(t, i as u32) {
-                if !visit(hit) {
-                    return false;
-                }
-            }
-        }
-        true
+        each_in(triangles, 0..triangles.len() as u32, &ray, count, visit)
     }
 }

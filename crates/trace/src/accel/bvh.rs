@@ -48,7 +48,7 @@
 
 use glam::{BVec4A, Vec3, Vec4};
 
-use super::{nearest_in, Accelerator, Bounds, Counters};
+use super::{each_in, nearest_in, Accelerator, Bounds, Counters};
 use crate::ray::{gamma, Hit, Ray, Sheared};
 
 /// The most triangles the build puts in a leaf when a split would pay.
@@ -230,7 +230,7 @@ impl Accelerator for Bvh {
     fn closest(&self, triangles: &[[Vec3; 3]], ray: &Ray, count: &mut Counters) -> Option<Hit> {
         count.rays += 1;
         let sheared = Sheared::new(ray)?;
-        let frame = Frame::new(ray);
+        let frame = Frame::new(ray, &sheared);
         let mut best: Option<Hit> = None;
         let best_t = std::cell::Cell::new(f32::INFINITY);
         self.traverse(
@@ -255,17 +255,12 @@ impl Accelerator for Bvh {
     ) -> bool {
         count.rays += 1;
         let Some(sheared) = Sheared::new(ray) else { return true };
-        let frame = Frame::new(ray);
+        let frame = Frame::new(ray, &sheared);
         self.traverse(
             &frame,
             count,
             |_| false,
-            |indices, count| {
-                indices.iter().all(|&i| {
-                    count.tests += 1;
-                    sheared.intersect(&triangles[i as usize], i).is_none_or(&mut *visit)
-                })
-            },
+            |indices, count| each_in(triangles, indices.iter().copied(), &sheared, count, &mut *visit),
         )
     }
 }
@@ -345,9 +340,9 @@ fn ceil_log2(n: usize) -> usize {
     n.next_power_of_two().trailing_zeros() as usize
 }
 
-/// A ray's per-traversal values: those of the watertight test's shear
-/// (computed with the very same operations as [`Sheared::new`]) and the
-/// bounds that make the box test exact (module doc).
+/// A ray's per-traversal values: the watertight test's own shear (taken
+/// from its [`Sheared`]) and the bounds that make the box test exact
+/// (module doc).
 #[derive(Clone, Copy, Debug)]
 struct Frame {
     origin: [f32; 3],
@@ -365,12 +360,10 @@ struct Frame {
 }
 
 impl Frame {
-    fn new(ray: &Ray) -> Frame {
+    /// The frame of `ray`, whose watertight test's values are `sheared`.
+    fn new(ray: &Ray, sheared: &Sheared) -> Frame {
         let d = ray.dir;
-        let kz = d.abs().max_position();
-        let kx = (kz + 1) % 3;
-        let ky = (kx + 1) % 3;
-        let shear = Vec3::new(-d[kx] / d[kz], -d[ky] / d[kz], 1.0 / d[kz]);
+        let ([kx, ky, kz], shear) = sheared.frame();
         Frame {
             origin: ray.origin.to_array(),
             axes: [kx, ky, kz],

@@ -67,7 +67,7 @@ use std::cell::Cell;
 
 use glam::Vec3;
 
-use super::{nearest_in, Accelerator, Bounds, Counters};
+use super::{each_in, nearest_in, Accelerator, Bounds, Counters, Reported};
 use crate::ray::{gamma, Hit, Ray, Sheared};
 
 /// The cells the resolution aims at per triangle (λ).
@@ -466,21 +466,18 @@ impl Accelerator for Grid {
     ) -> bool {
         count.rays += 1;
         let Some(sheared) = Sheared::new(ray) else { return true };
-        // The triangles reported, sorted: a triangle sits in many cells.
-        let mut reported: Vec<u32> = Vec::new();
-        let mut test = |i: u32, count: &mut Counters| {
-            count.tests += 1;
-            let Some(hit) = sheared.intersect(&triangles[i as usize], i) else { return true };
-            let Err(at) = reported.binary_search(&i) else { return true };
-            reported.insert(at, i);
-            visit(hit)
-        };
+        // A triangle sits in many cells: each is reported once.
+        let mut reported = Reported::default();
+        let mut once = |hit: Hit| !reported.insert(hit.triangle) || visit(hit);
         match self.route(ray) {
             Route::Miss => true,
-            Route::Every => (0..u32::MAX).take(triangles.len()).all(|i| test(i, count)),
-            Route::Walk(w) => {
-                self.walk(&w, count, |_| false, |cell, count| cell.iter().all(|&i| test(i, count)))
-            }
+            Route::Every => each_in(triangles, 0..triangles.len() as u32, &sheared, count, &mut once),
+            Route::Walk(w) => self.walk(
+                &w,
+                count,
+                |_| false,
+                |cell, count| each_in(triangles, cell.iter().copied(), &sheared, count, &mut once),
+            ),
         }
     }
 }

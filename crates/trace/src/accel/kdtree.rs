@@ -71,11 +71,9 @@
 //! only gap is underflow (triangles some 10⁻¹⁹ across). A triangle held by
 //! several leaves is tested once per leaf; `each_hit` reports it once.
 
-use std::collections::HashSet;
-
 use glam::Vec3;
 
-use super::{nearest_in, Accelerator, Bounds, Counters};
+use super::{each_in, nearest_in, Accelerator, Bounds, Counters, Reported};
 use crate::ray::{gamma, Hit, Ray, Sheared};
 
 /// pbrt's cost of a ray–triangle test, relative to a traversal step.
@@ -262,12 +260,8 @@ impl Accelerator for KdTree {
             count,
             |_| false,
             |indices, count| {
-                indices.iter().all(|&i| {
-                    count.tests += 1;
-                    match sheared.intersect(&triangles[i as usize], i) {
-                        Some(hit) if reported.insert(i) => visit(hit),
-                        _ => true,
-                    }
+                each_in(triangles, indices.iter().copied(), &sheared, count, |hit| {
+                    !reported.insert(hit.triangle) || visit(hit)
                 })
             },
         )
@@ -406,29 +400,6 @@ fn edge(t: f32, kind: u64) -> u64 {
 fn coordinate(edge: u64) -> f32 {
     let ordered = (edge >> 2) as u32;
     f32::from_bits(if ordered >> 31 == 1 { ordered & !(1 << 31) } else { !ordered })
-}
-
-/// The triangles `each_hit` has reported: a few inline, the rest hashed.
-#[derive(Default)]
-struct Reported {
-    few: [u32; 16],
-    len: usize,
-    many: HashSet<u32>,
-}
-
-impl Reported {
-    /// Records `i`; false when it was recorded before.
-    fn insert(&mut self, i: u32) -> bool {
-        if self.few[..self.len].contains(&i) {
-            return false;
-        }
-        if self.len < self.few.len() {
-            self.few[self.len] = i;
-            self.len += 1;
-            return true;
-        }
-        self.many.insert(i)
-    }
 }
 
 /// A node's interval of t, `None` when the ray misses it.

@@ -120,3 +120,50 @@ pub(crate) fn nearest_in(
         }
     }
 }
+
+/// Every triangle of `indices` tested against `ray`, `visit` called with
+/// each hit until it returns false; false when it did (the leaf loop of a
+/// structure's `each_hit`).
+#[inline]
+pub(crate) fn each_in(
+    triangles: &[[Vec3; 3]],
+    indices: impl IntoIterator<Item = u32>,
+    ray: &Sheared,
+    count: &mut Counters,
+    mut visit: impl FnMut(Hit) -> bool,
+) -> bool {
+    for i in indices {
+        count.tests += 1;
+        if let Some(hit) = ray.intersect(&triangles[i as usize], i) {
+            if !visit(hit) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// The triangles a ray's `each_hit` has reported, for structures that
+/// hold a triangle in several leaves or cells: a few inline, the rest
+/// hashed.
+#[derive(Default)]
+pub(crate) struct Reported {
+    few: [u32; 16],
+    len: usize,
+    many: std::collections::HashSet<u32>,
+}
+
+impl Reported {
+    /// Records `i`; false when it was recorded before.
+    pub(crate) fn insert(&mut self, i: u32) -> bool {
+        if self.few[..self.len].contains(&i) {
+            return false;
+        }
+        if self.len < self.few.len() {
+            self.few[self.len] = i;
+            self.len += 1;
+            return true;
+        }
+        self.many.insert(i)
+    }
+}
