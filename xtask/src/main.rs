@@ -23,6 +23,7 @@ mod report_shadows;
 mod terrain;
 mod timing;
 mod trace_aa;
+mod trace_embree;
 mod trace_report;
 mod trace_truth;
 mod versus;
@@ -228,6 +229,10 @@ enum Task {
         /// The error against the f64 truth (at most 320 pixels wide).
         #[arg(long)]
         truth: bool,
+        /// Against Embree's viewer (Debian's embree-tools), this many
+        /// alternated rounds; 640-pixel frames whatever --width says.
+        #[arg(long, value_name = "ROUNDS", num_args = 0..=1, default_missing_value = "3")]
+        embree: Option<usize>,
     },
     /// A real screenshot of `zline view`: the viewer on a private Xvfb
     /// (started here; skipped with a message when Xvfb is not installed),
@@ -275,15 +280,16 @@ fn main() -> Result<()> {
             })
         }
         Task::Modules { verbose } => modules::run(verbose),
-        Task::TraceReport { assets, width, accel, antialias, truth } => {
-            let all = !(accel || antialias || truth);
+        Task::TraceReport { assets, width, accel, antialias, truth, embree } => {
+            let all = !(accel || antialias || truth || embree.is_some());
             trace_report::run(&trace_report::Args {
                 assets: &assets,
                 width,
                 accel: accel || all,
                 antialias: antialias || all,
                 truth: truth || all,
-            })
+            })?;
+            embree.map_or(Ok(()), trace_embree::run)
         }
         Task::RayBatch { shards, size } => ray_batch::run(shards, &size),
         Task::ViewScreenshot { out, size, model, flags } => view_screenshot::run(&out, &model, size, &flags),

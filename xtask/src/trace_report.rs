@@ -20,10 +20,10 @@ use zline::trace::world::{Camera, World};
 
 /// One scene of the table: its triangles, and the camera rays and the
 /// shadow rays (towards a light) of a frame.
-struct Case {
-    name: String,
-    triangles: Vec<[Vec3; 3]>,
-    camera: Vec<Ray>,
+pub(crate) struct Case {
+    pub(crate) name: String,
+    pub(crate) triangles: Vec<[Vec3; 3]>,
+    pub(crate) camera: Vec<Ray>,
     light: Vec3,
 }
 
@@ -123,7 +123,7 @@ fn timed_build(
 }
 
 /// The camera rays of `scene` at `width` pixels across (its aspect kept).
-fn frame(name: &str, scene: &Scene, width: u32) -> Case {
+pub(crate) fn frame(name: &str, scene: &Scene, width: u32) -> Case {
     let mut scene = scene.clone();
     let aspect = scene.settings.height as f32 / scene.settings.width as f32;
     scene.settings.width = width;
@@ -185,7 +185,7 @@ fn stadium(model: &[Mesh], width: u32) -> Case {
 }
 
 /// A UV sphere of about `n` triangles, filling the view.
-fn sphere_case(name: &str, n: u32, width: u32) -> Case {
+pub(crate) fn sphere_case(name: &str, n: u32, width: u32) -> Case {
     let rings = ((n as f32 / 4.0).sqrt() as u32).max(2); // 4·rings² triangles
     let mesh = uv_sphere(rings, 2 * rings, 1.0);
     let mut scene = zline::scenes::whitted_scene();

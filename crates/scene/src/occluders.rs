@@ -13,19 +13,20 @@
 //! triangle the point lies on is skipped by identity ([`TriangleId`]),
 //! not by an offset of the ray's start.
 //!
-//! The boxes of the hierarchy are widened a little, so that it rejects
-//! only triangles the segment–triangle test would miss too: the answer is
-//! the brute-force answer over all triangles.
+//! The hierarchy is the shared SAH tree ([`crate::sah`]) over the
+//! triangles' boxes rounded outward to f32, and its boxes are widened a
+//! little more, so that it rejects only triangles the segment–triangle
+//! test would miss too: the answer is the brute-force answer over all
+//! triangles.
 
 use glam::DVec3;
+
+use crate::sah::{self, SahTree};
 
 /// Hits at a segment or ray parameter t ≤ this (relative to the segment
 /// for a point light) are ignored, and for point lights those at
 /// t ≥ 1 − this too.
 const T_EPSILON: f64 = 1e-9;
-
-/// Triangles per leaf of the hierarchy.
-const LEAF_TRIANGLES: usize = 4;
 
 /// An axis-aligned box.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -35,19 +36,9 @@ struct Bounds {
 }
 
 impl Bounds {
-    const EMPTY: Bounds = Bounds { min: DVec3::splat(f64::INFINITY), max: DVec3::splat(f64::NEG_INFINITY) };
-
-    fn grow(self, p: DVec3) -> Bounds {
-        Bounds { min: self.min.min(p), max: self.max.max(p) }
-    }
-
-    fn union(self, b: Bounds) -> Bounds {
-        Bounds { min: self.min.min(b.min), max: self.max.max(b.max) }
-    }
-
-    /// The box widened by `margin` on every side.
-    fn widened(self, margin: f64) -> Bounds {
-        Bounds { min: self.min - DVec3::splat(margin), max: self.max + DVec3::splat(margin) }
+    /// The f32 box `b` widened by `margin` on every side.
+    fn widened(b: &sah::Bounds, margin: f64) -> Bounds {
+        Bounds { min: b.min.as_dvec3() - DVec3::splat(margin), max: b.max.as_dvec3() + DVec3::splat(margin) }
     }
 
     /// True when the segment o + t·d, t ∈ [0, t_max], may meet the box
@@ -102,12 +93,9 @@ impl Triangle {
             .then_some(Triangle { a, e1, e2, id })
     }
 
-    fn bounds(&self) -> Bounds {
-        Bounds::EMPTY.grow(self.a).grow(self.a + self.e1).grow(self.a + self.e2)
-    }
-
-    fn centroid(&self) -> DVec3 {
-        self.a + (self.e1 + self.e2) / 3.0
+    /// The box of the corners the test reads, in f32 rounded outward.
+    fn bounds(&self) -> sah::Bounds {
+        sah::Bounds::enclosing(&[self.a, self.a + self.e1, self.a + self.e2])
     }
 
     /// Möller–Trumbore: the parameter t where o + t·d meets the triangle
@@ -133,12 +121,13 @@ impl Triangle {
     }
 }
 
-/// A node of the hierarchy: a leaf holds `count` triangles from `first`;
-/// an inner node (`count` 0) has its children at `first` and `first + 1`.
+/// A node of the hierarchy ([`SahNode`](sah::SahNode)'s layout): a leaf
+/// holds `count` triangles from `offset`; an inner node (`count` 0) has
+/// its children next to it and at `offset`.
 #[derive(Clone, Copy, Debug)]
 struct Node {
     bounds: Bounds,
-    first: usize,
+    offset: usize,
     count: usize,
 }
 
@@ -154,19 +143,25 @@ impl Occluders {
     /// The occluders formed by `triangles` (identity and eye-space
     /// corners); degenerate and non-finite ones are dropped.
     pub fn new(triangles: impl IntoIterator<Item = (TriangleId, [DVec3; 3])>) -> Occluders {
-        let mut triangles: Vec<Triangle> =
+        let triangles: Vec<Triangle> =
             triangles.into_iter().filter_map(|(id, [a, b, c])| Triangle::new(id, a, b, c)).collect();
-        let mut nodes = Vec::new();
-        if !triangles.is_empty() {
-            let all = triangles.iter().fold(Bounds::EMPTY, |b, t| b.union(t.bounds()));
-            // Widen every box by a hair of the scene's size: the slab test's
-            // rounding must never reject a triangle the exact test hits.
-            let scale = (all.max - all.min).max_element().max(all.min.abs().max(all.max.abs()).max_element());
-            let margin = 1e-7 * scale.max(f64::MIN_POSITIVE);
-            nodes.push(Node { bounds: all, first: 0, count: triangles.len() });
-            build(&mut triangles, &mut nodes, 0, margin);
-        }
-        Occluders { triangles, nodes }
+        let tree = SahTree::build((0..).zip(triangles.iter().map(Triangle::bounds)));
+        let Some(root) = tree.nodes.first() else { return Occluders::default() };
+        // Widen every box by a hair of the scene's size: the slab test's
+        // rounding must never reject a triangle the exact test hits.
+        let all = Bounds::widened(&root.bounds, 0.0);
+        let scale = (all.max - all.min).max_element().max(all.min.abs().max(all.max.abs()).max_element());
+        let margin = 1e-7 * scale.max(f64::MIN_POSITIVE);
+        let nodes = tree
+            .nodes
+            .iter()
+            .map(|n| Node {
+                bounds: Bounds::widened(&n.bounds, margin),
+                offset: n.offset as usize,
+                count: usize::from(n.count),
+            })
+            .collect();
+        Occluders { triangles: tree.order.iter().map(|&i| triangles[i as usize]).collect(), nodes }
     }
 
     /// True without any caster triangle.
@@ -193,23 +188,24 @@ impl Occluders {
         if self.nodes.is_empty() || !o.is_finite() || !d.is_finite() || d == DVec3::ZERO {
             return false;
         }
-        // Median splits keep the depth within log2 of the triangle count,
-        // so the stack holds at most one node per level plus one.
-        let mut stack = [0usize; 2 * usize::BITS as usize];
+        // The tree has at most 63 levels (crate::sah), so the stack holds
+        // at most one node a level plus one.
+        let mut stack = [0usize; 64];
         let mut len = 1;
         while len > 0 {
             len -= 1;
-            let node = &self.nodes[stack[len]];
+            let at = stack[len];
+            let node = &self.nodes[at];
             if !node.bounds.meets(o, d, t_max) {
                 continue;
             }
             if node.count == 0 {
-                stack[len] = node.first;
-                stack[len + 1] = node.first + 1;
+                stack[len] = node.offset;
+                stack[len + 1] = at + 1;
                 len += 2;
                 continue;
             }
-            let hit = self.triangles[node.first..node.first + node.count]
+            let hit = self.triangles[node.offset..node.offset + node.count]
                 .iter()
                 .filter(|t| t.id != skip)
                 .filter_map(|t| t.hit(o, d))
@@ -220,37 +216,6 @@ impl Occluders {
         }
         false
     }
-}
-
-/// Splits node `index` (its triangles in place) until leaves hold at most
-/// [`LEAF_TRIANGLES`]: at the median centroid along the widest axis of the
-/// centroids. Sets the node's widened bounds.
-fn build(triangles: &mut [Triangle], nodes: &mut Vec<Node>, index: usize, margin: f64) {
-    let Node { first, count, .. } = nodes[index];
-    let own = &mut triangles[first..first + count];
-    let bounds = own.iter().fold(Bounds::EMPTY, |b, t| b.union(t.bounds()));
-    nodes[index].bounds = bounds.widened(margin);
-    if count <= LEAF_TRIANGLES {
-        return;
-    }
-    let centroids = own.iter().fold(Bounds::EMPTY, |b, t| b.grow(t.centroid()));
-    let extent = centroids.max - centroids.min;
-    let axis = if extent.x >= extent.y && extent.x >= extent.z {
-        0
-    } else if extent.y >= extent.z {
-        1
-    } else {
-        2
-    };
-    let half = count / 2;
-    own.select_nth_unstable_by(half, |a, b| a.centroid()[axis].total_cmp(&b.centroid()[axis]));
-    let left = nodes.len();
-    nodes[index].first = left;
-    nodes[index].count = 0;
-    nodes.push(Node { bounds, first, count: half });
-    nodes.push(Node { bounds, first: first + half, count: count - half });
-    build(triangles, nodes, left, margin);
-    build(triangles, nodes, left + 1, margin);
 }
 
 #[cfg(test)]

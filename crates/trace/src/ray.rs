@@ -127,6 +127,7 @@ pub struct Sheared {
 impl Sheared {
     /// The per-ray values for `ray`; `None` for a zero or non-finite
     /// direction (it hits nothing).
+    #[inline]
     pub fn new(ray: &Ray) -> Option<Sheared> {
         let d = ray.dir;
         if !d.is_finite() || d == Vec3::ZERO || !ray.origin.is_finite() || ray.t_max.is_nan() {

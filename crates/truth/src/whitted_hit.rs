@@ -19,18 +19,17 @@
 //! **The ray.** o + t·d for `t_min` < t < `t_max`, optionally skipping one
 //! triangle by index (the one a secondary ray starts on).
 //!
-//! **The hierarchy.** Median splits of the centroids along the widest
-//! axis, four triangles a leaf, every box widened by 10⁻⁷ of the scene's
-//! extent so that the slab test's rounding never rejects a triangle the
-//! exact test would hit; traversal with a stack of its own. The closest
+//! **The hierarchy.** The shared SAH tree (`zline_scene::sah`, the ray
+//! tracer's too) over the triangles' boxes rounded outward to f32, every
+//! box widened by 10⁻⁷ of the scene's extent so that the slab test's
+//! rounding never rejects a triangle the exact test would hit; traversal
+//! with a stack of its own. The closest
 //! hit is the brute-force one: the smallest t, and at equal t the lower
 //! triangle index (boxes are pruned only when they start strictly beyond
 //! the best t).
 
 use glam::DVec3;
-
-/// Triangles per leaf.
-const LEAF_TRIANGLES: usize = 4;
+use zline_scene::sah::{self, SahTree};
 
 /// A ray o + t·d over the open interval (`t_min`, `t_max`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -115,18 +114,9 @@ struct Bounds {
 }
 
 impl Bounds {
-    const EMPTY: Bounds = Bounds { min: DVec3::splat(f64::INFINITY), max: DVec3::splat(f64::NEG_INFINITY) };
-
-    fn of(p: &[DVec3; 3]) -> Bounds {
-        Bounds { min: p[0].min(p[1]).min(p[2]), max: p[0].max(p[1]).max(p[2]) }
-    }
-
-    fn union(self, b: Bounds) -> Bounds {
-        Bounds { min: self.min.min(b.min), max: self.max.max(b.max) }
-    }
-
-    fn centre(&self) -> DVec3 {
-        0.5 * (self.min + self.max)
+    /// The f32 box `b` widened by `margin` on every side.
+    fn widened(b: &sah::Bounds, margin: f64) -> Bounds {
+        Bounds { min: b.min.as_dvec3() - DVec3::splat(margin), max: b.max.as_dvec3() + DVec3::splat(margin) }
     }
 
     /// Where the ray enters the box within its interval; `None` when it
@@ -153,12 +143,13 @@ impl Bounds {
     }
 }
 
-/// A node: a leaf holds `count` entries of the order from `first`; an
-/// inner node (`count` 0) has its children at `first` and `first + 1`.
+/// A node ([`SahNode`](sah::SahNode)'s layout): a leaf holds `count`
+/// entries of the order from `offset`; an inner node (`count` 0) has its
+/// children next to it and at `offset`.
 #[derive(Clone, Copy, Debug)]
 struct Node {
     bounds: Bounds,
-    first: usize,
+    offset: usize,
     count: usize,
 }
 
@@ -176,29 +167,26 @@ impl Triangles {
     /// The hierarchy over `corners`; a triangle with a non-finite corner
     /// or zero area is left out (it is never hit).
     pub(crate) fn new(corners: Vec<[DVec3; 3]>) -> Triangles {
-        let mut order: Vec<u32> = (0..corners.len())
-            .filter(|&i| {
-                let p = &corners[i];
-                let n = (p[1] - p[0]).cross(p[2] - p[0]);
-                p.iter().all(|c| c.is_finite()) && n.is_finite() && n != DVec3::ZERO
+        let hittable = (0..corners.len() as u32).filter(|&i| {
+            let p = &corners[i as usize];
+            let n = (p[1] - p[0]).cross(p[2] - p[0]);
+            p.iter().all(|c| c.is_finite()) && n.is_finite() && n != DVec3::ZERO
+        });
+        let tree = SahTree::build(hittable.map(|i| (i, sah::Bounds::enclosing(&corners[i as usize]))));
+        let Some(root) = tree.nodes.first() else { return Triangles { corners, ..Triangles::default() } };
+        let all = Bounds::widened(&root.bounds, 0.0);
+        let scale = (all.max - all.min).max_element().max(all.min.abs().max(all.max.abs()).max_element());
+        let margin = 1e-7 * scale.max(f64::MIN_POSITIVE);
+        let nodes = tree
+            .nodes
+            .iter()
+            .map(|n| Node {
+                bounds: Bounds::widened(&n.bounds, margin),
+                offset: n.offset as usize,
+                count: usize::from(n.count),
             })
-            .map(|i| i as u32)
             .collect();
-        let mut nodes = Vec::new();
-        if !order.is_empty() {
-            let boxes: Vec<Bounds> = corners.iter().map(Bounds::of).collect();
-            let all = order.iter().fold(Bounds::EMPTY, |b, &i| b.union(boxes[i as usize]));
-            let scale = (all.max - all.min).max_element().max(all.min.abs().max(all.max.abs()).max_element());
-            let margin = 1e-7 * scale.max(f64::MIN_POSITIVE);
-            nodes.push(Node { bounds: all, first: 0, count: order.len() });
-            let mut pending = vec![0usize];
-            while let Some(index) = pending.pop() {
-                if let Some(children) = split(&mut order, &boxes, &mut nodes, index, margin) {
-                    pending.extend(children);
-                }
-            }
-        }
-        Triangles { corners, order, nodes }
+        Triangles { corners, order: tree.order, nodes }
     }
 
     /// The nearest hit of `ray` by the tie rule.
@@ -232,18 +220,18 @@ impl Triangles {
         }
         let mut limit = ray.t_max;
         let mut stack = vec![0usize];
-        while let Some(index) = stack.pop() {
-            let node = &self.nodes[index];
+        while let Some(at) = stack.pop() {
+            let node = &self.nodes[at];
             match node.bounds.entry(ray) {
                 Some(t) if t <= limit => {}
                 _ => continue,
             }
             if node.count == 0 {
-                stack.push(node.first + 1);
-                stack.push(node.first);
+                stack.push(node.offset);
+                stack.push(at + 1);
                 continue;
             }
-            for &triangle in &self.order[node.first..node.first + node.count] {
+            for &triangle in &self.order[node.offset..node.offset + node.count] {
                 if ray.skip == Some(triangle) {
                     continue;
                 }
@@ -254,41 +242,6 @@ impl Triangles {
             }
         }
     }
-}
-
-/// Splits node `index` at the median centroid along the widest axis of
-/// its centroids, when it holds more than [`LEAF_TRIANGLES`]; sets its
-/// widened bounds either way. Returns the children's indices.
-fn split(
-    order: &mut [u32],
-    boxes: &[Bounds],
-    nodes: &mut Vec<Node>,
-    index: usize,
-    margin: f64,
-) -> Option<[usize; 2]> {
-    let Node { first, count, .. } = nodes[index];
-    let own = &mut order[first..first + count];
-    let bounds = own.iter().fold(Bounds::EMPTY, |b, &i| b.union(boxes[i as usize]));
-    nodes[index].bounds =
-        Bounds { min: bounds.min - DVec3::splat(margin), max: bounds.max + DVec3::splat(margin) };
-    if count <= LEAF_TRIANGLES {
-        return None;
-    }
-    let centre = |i: u32| boxes[i as usize].centre();
-    let (lo, hi) =
-        own.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), &i| {
-            (lo.min(centre(i)), hi.max(centre(i)))
-        });
-    let axis = (hi - lo).max_position();
-    let half = count / 2;
-    // Ties by index: the same tree whatever the sort's internals.
-    own.select_nth_unstable_by(half, |&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b)));
-    let left = nodes.len();
-    nodes[index].first = left;
-    nodes[index].count = 0;
-    nodes.push(Node { bounds, first, count: half });
-    nodes.push(Node { bounds, first: first + half, count: count - half });
-    Some([left, left + 1])
 }
 
 #[cfg(test)]

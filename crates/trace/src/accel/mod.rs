@@ -5,7 +5,7 @@
 //!
 //! | structure | build | traversal |
 //! |---|---|---|
-//! | [`bvh::Bvh`] | binned surface-area heuristic (pbrt-v4's) | nearer child first, a fixed stack |
+//! | [`bvh::Bvh`] | binned surface-area heuristic (pbrt-v4's), collapsed to four children a node | four boxes a step, nearest bound first, a fixed stack |
 //! | [`kdtree::KdTree`] | surface-area heuristic over box edges (pbrt-v3's) | front to back, a fixed stack |
 //! | [`grid::Grid`] | cells ∝ the triangle count, capped | cell to cell by the 3D-DDA (Amanatides–Woo) |
 //! | [`brute::Brute`] | none | every triangle |
@@ -21,6 +21,7 @@ pub mod kdtree;
 #[cfg(test)]
 pub(crate) mod testkit;
 
+pub use zline_scene::sah::Bounds;
 pub use zline_scene::trace_options::AccelKind;
 
 /// Work counted during traversal, per ray kind.
@@ -28,7 +29,7 @@ pub use zline_scene::trace_options::AccelKind;
 pub struct Counters {
     /// Rays traced.
     pub rays: u64,
-    /// Nodes visited (boxes tested).
+    /// Nodes visited (for the BVH, each visit tests four boxes).
     pub nodes: u64,
     /// Ray–triangle tests.
     pub tests: u64,
@@ -59,46 +60,6 @@ pub trait Accelerator: Send + Sync {
         count: &mut Counters,
         visit: &mut dyn FnMut(Hit) -> bool,
     ) -> bool;
-}
-
-/// An axis-aligned box (empty: min > max).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Bounds {
-    /// The low corner.
-    pub min: Vec3,
-    /// The high corner.
-    pub max: Vec3,
-}
-
-impl Bounds {
-    /// The empty box.
-    pub const EMPTY: Bounds = Bounds { min: Vec3::INFINITY, max: Vec3::NEG_INFINITY };
-
-    /// The box of a triangle.
-    pub fn of(t: &[Vec3; 3]) -> Bounds {
-        Bounds { min: t[0].min(t[1]).min(t[2]), max: t[0].max(t[1]).max(t[2]) }
-    }
-
-    /// The box holding both.
-    pub fn union(self, o: Bounds) -> Bounds {
-        Bounds { min: self.min.min(o.min), max: self.max.max(o.max) }
-    }
-
-    /// The box grown to hold `p`.
-    pub fn grow(self, p: Vec3) -> Bounds {
-        Bounds { min: self.min.min(p), max: self.max.max(p) }
-    }
-
-    /// The surface area (0 for the empty box).
-    pub fn area(&self) -> f32 {
-        let d = (self.max - self.min).max(Vec3::ZERO);
-        2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
-    }
-
-    /// The centre.
-    pub fn centroid(&self) -> Vec3 {
-        0.5 * (self.min + self.max)
-    }
 }
 
 /// Every triangle tested against `ray`: the reference the structures must
