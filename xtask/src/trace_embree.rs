@@ -8,7 +8,10 @@
 //! the `occlusion` shader (any hit, the shadow-ray query). zline traces
 //! the same camera rays in the viewer's order (8 × 8 tiles), nearest hits
 //! with `closest` and any hit with `each_hit` stopping at the first, the
-//! mean of 16 passes after 4 warm-up passes.
+//! mean of 16 passes after 4 warm-up passes. The builds beside each other:
+//! Embree's (`--rtcore verbose=2`: its BVH8's build time and SAH cost,
+//! in its own cost units) and zline's (its binary tree's SAH cost,
+//! [`Bvh::sah_cost`]: not the same units).
 
 use std::path::Path;
 use std::process::Command;
@@ -45,10 +48,10 @@ pub(crate) fn run(rounds: usize) -> Result<()> {
             case: frame("Cornell box", &zline::io::load_scene(&cornell.join("cornell_box.toml"))?, 640),
             embree: cornell_args,
         },
-        // Embree's sphere of 446 (1,414) segments has 198,916 (1,999,396)
+        // Embree's sphere of 223 (707) has zline's 198,024 (1,996,568)
         // triangles.
-        Pair { case: sphere_case("sphere 200k", 200_000, 640), embree: sphere(446) },
-        Pair { case: sphere_case("sphere 2M", 2_000_000, 640), embree: sphere(1414) },
+        Pair { case: sphere_case("sphere 200k", 200_000, 640), embree: sphere(223) },
+        Pair { case: sphere_case("sphere 2M", 2_000_000, 640), embree: sphere(707) },
     ];
     let embree = viewer_works();
     if !embree {
@@ -56,12 +59,15 @@ pub(crate) fn run(rounds: usize) -> Result<()> {
     }
     println!("## zline against Embree, one thread\n");
     println!("Mrays/s, the median of {rounds} alternated rounds (each round's lowest and highest ratio in brackets).\n");
-    println!("| scene | triangles | build | Embree camera | zline camera | ratio | Embree occlusion | zline any hit | ratio |");
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "| scene | triangles | Embree build (SAH) | zline build (SAH) | Embree camera | zline camera | ratio | Embree occlusion | zline any hit | ratio |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for pair in &pairs {
         let start = Instant::now();
         let bvh = Bvh::build(&pair.case.triangles);
         let build = start.elapsed().as_secs_f64();
+        let embree_build = if embree { embree_build(&pair.embree)? } else { "—".into() };
         let rays = tiled(&pair.case.camera, 640);
         let mut figures: Vec<[f64; 4]> = Vec::new();
         for _ in 0..rounds {
@@ -83,11 +89,12 @@ pub(crate) fn run(rounds: usize) -> Result<()> {
             format!("**{:.2}** ({lo:.2}–{hi:.2})", median(z) / median(e))
         };
         println!(
-            "| {} | {} | {:.1} ms ({:.2} Mprims/s) | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} |",
+            "| {} | {} | {embree_build} | {:.1} ms, {:.2} Mprims/s ({:.1}) | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} |",
             pair.case.name,
             pair.case.triangles.len(),
             build * 1e3,
             pair.case.triangles.len() as f64 / build / 1e6,
+            bvh.sah_cost(),
             median(0),
             median(1),
             spread(1, 0),
@@ -121,6 +128,30 @@ fn viewer(args: &[String], shader: &str) -> Result<f64> {
         .find_map(|l| l.strip_prefix("BENCHMARK_RENDER_MRAYPS_AVG "))
         .with_context(|| format!("no BENCHMARK_RENDER_MRAYPS_AVG in the viewer's output: {text}"))?;
     Ok(line.trim().parse()?)
+}
+
+/// Embree's build of the scene, from its verbose report: "T ms, R
+/// Mprims/s (SAH)".
+fn embree_build(args: &[String]) -> Result<String> {
+    let out = Command::new("viewer")
+        .args(["--threads", "1", "--rtcore", "verbose=2", "--benchmark", "0", "1"])
+        .args(args)
+        .output()
+        .context("running Embree's viewer")?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    // "finished BVH8<triangle4> : 82.1481ms, 2.4106 Mprim/s, 0.1502 GB/s"
+    let finished =
+        text.lines().find(|l| l.starts_with("finished BVH")).context("no build line from Embree")?;
+    let mut figures = finished.split(':').nth(1).unwrap_or("").split(',');
+    let ms: f64 = figures.next().unwrap_or("").trim().trim_end_matches("ms").parse()?;
+    let rate: f64 = figures.next().unwrap_or("").trim().trim_end_matches(" Mprim/s").parse()?;
+    // "  total            : sah =  14.019 (100.00%), ..."
+    let sah = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("total") && l.contains("sah ="))
+        .and_then(|l| l.split("sah =").nth(1)?.split_whitespace().next()?.parse::<f64>().ok())
+        .context("no SAH cost from Embree")?;
+    Ok(format!("{ms:.1} ms, {rate:.2} Mprims/s ({sah:.1})"))
 }
 
 /// The row-major `rays` of a frame `width` pixels wide, in 8 × 8 tiles,

@@ -99,7 +99,7 @@ impl Accelerator for Bvh {
         let frame = Frame::new(ray, &sheared);
         let mut best: Option<Hit> = None;
         let best_t = std::cell::Cell::new(f32::INFINITY);
-        wide::traverse(
+        wide::traverse::<true>(
             &self.nodes,
             self.levels,
             &self.indices,
@@ -125,7 +125,7 @@ impl Accelerator for Bvh {
         count.rays += 1;
         let Some(sheared) = Sheared::new(ray) else { return true };
         let frame = Frame::new(ray, &sheared);
-        wide::traverse(
+        wide::traverse::<false>(
             &self.nodes,
             self.levels,
             &self.indices,

@@ -7,10 +7,11 @@
 //! children lie deeper in the binary tree than it does, so the wide tree
 //! has no more levels than the binary one (≤ 63, see the parent module).
 //!
-//! **Traversal.** A visited node tests its four boxes at once and pushes
-//! the children that pass with their lower bounds, sorted so that the
-//! nearest is on top; the walk pops the top and skips it when a hit found
-//! since has made its bound too far. Each visit pushes at most four and
+//! **Traversal.** A visited node tests its four boxes at once. A lone
+//! child that passes is entered at once; two or more are pushed with
+//! their lower bounds, for the nearest hit sorted so that the nearest is
+//! on top (for any hit in lane order); the walk pops the top and skips it
+//! when a hit found since has made its bound too far. Each visit pushes at most four and
 //! pops one before the next, so the stack holds at most 3·(levels − 1) + 4
 //! entries: ≤ 190 < [`STACK`], and ≤ [`SHALLOW`] for trees of at most 21
 //! levels (about every tree: the 2M-triangle sphere's has 15), which walk
@@ -126,11 +127,12 @@ impl Wide {
     }
 }
 
-/// Visits the leaves `ray` may hit in, nearest bound first, calling `leaf`
-/// with each leaf's indices; a node whose hits all have t above `best()`
-/// is skipped. Stops when `leaf` returns false.
+/// Visits the leaves `ray` may hit in, nearest bound first when `ORDERED`
+/// (for the nearest hit; any order for any hit), calling `leaf` with each
+/// leaf's indices; a node whose hits all have t above `best()` is skipped.
+/// Stops when `leaf` returns false.
 #[inline]
-pub(super) fn traverse(
+pub(super) fn traverse<const ORDERED: bool>(
     nodes: &[Wide],
     levels: usize,
     indices: &[u32],
@@ -145,19 +147,19 @@ pub(super) fn traverse(
     // One loop per dominant axis, so that the box test reads the node's
     // coordinates at fixed places.
     match (ray.kz, levels <= 21) {
-        (0, true) => walk::<0, SHALLOW>(nodes, indices, ray, count, best, leaf),
-        (1, true) => walk::<1, SHALLOW>(nodes, indices, ray, count, best, leaf),
-        (_, true) => walk::<2, SHALLOW>(nodes, indices, ray, count, best, leaf),
-        (0, false) => walk::<0, STACK>(nodes, indices, ray, count, best, leaf),
-        (1, false) => walk::<1, STACK>(nodes, indices, ray, count, best, leaf),
-        (_, false) => walk::<2, STACK>(nodes, indices, ray, count, best, leaf),
+        (0, true) => walk::<0, SHALLOW, ORDERED>(nodes, indices, ray, count, best, leaf),
+        (1, true) => walk::<1, SHALLOW, ORDERED>(nodes, indices, ray, count, best, leaf),
+        (_, true) => walk::<2, SHALLOW, ORDERED>(nodes, indices, ray, count, best, leaf),
+        (0, false) => walk::<0, STACK, ORDERED>(nodes, indices, ray, count, best, leaf),
+        (1, false) => walk::<1, STACK, ORDERED>(nodes, indices, ray, count, best, leaf),
+        (_, false) => walk::<2, STACK, ORDERED>(nodes, indices, ray, count, best, leaf),
     }
 }
 
 /// [`traverse`] for rays whose dominant axis is `KZ`, with a stack of `S`
-/// entries (module doc).
+/// entries (module doc), children nearest first when `ORDERED`.
 #[inline(always)]
-fn walk<const KZ: usize, const S: usize>(
+fn walk<const KZ: usize, const S: usize, const ORDERED: bool>(
     nodes: &[Wide],
     indices: &[u32],
     ray: &Frame,
@@ -168,25 +170,43 @@ fn walk<const KZ: usize, const S: usize>(
     let mut stack = [Entry::default(); S];
     let mut len = 0;
     let mut at = 0;
+    let mut open = |child: u32, count: &mut Counters| {
+        let first = (child & !LEAF) as usize >> 2;
+        let n = (child & 3) as usize + 1;
+        leaf(&indices[first..first + n], count)
+    };
     loop {
         let node = &nodes[at];
         count.nodes += 1;
         let (lower, keep) = ray.test::<KZ>(node, best());
-        let lower = lower.to_array();
         let mut lanes = keep.bitmask() & node.valid;
-        let base = len;
-        while lanes != 0 {
-            let lane = lanes.trailing_zeros() as usize;
-            lanes &= lanes - 1;
-            let entry = Entry { child: node.child[lane], lower: lower[lane] };
-            // Insertion, farthest at the bottom: the nearest ends on top.
-            let mut j = len;
-            while j > base && stack[j - 1].lower < entry.lower {
-                stack[j] = stack[j - 1];
-                j -= 1;
+        if lanes != 0 && lanes & (lanes - 1) == 0 {
+            // One child: straight to it, the stack untouched.
+            let child = node.child[lanes.trailing_zeros() as usize];
+            if child & LEAF == 0 {
+                at = child as usize;
+                continue;
             }
-            stack[j] = entry; // len < S (module doc)
-            len += 1;
+            if !open(child, count) {
+                return false;
+            }
+        } else {
+            let lower = lower.to_array();
+            let base = len;
+            while lanes != 0 {
+                let lane = lanes.trailing_zeros() as usize;
+                lanes &= lanes - 1;
+                let entry = Entry { child: node.child[lane], lower: lower[lane] };
+                // Insertion, farthest at the bottom: the nearest ends on
+                // top (any order will do when any hit will).
+                let mut j = len;
+                while ORDERED && j > base && stack[j - 1].lower < entry.lower {
+                    stack[j] = stack[j - 1];
+                    j -= 1;
+                }
+                stack[j] = entry; // len < S (module doc)
+                len += 1;
+            }
         }
         loop {
             if len == 0 {
@@ -201,9 +221,7 @@ fn walk<const KZ: usize, const S: usize>(
                 at = entry.child as usize;
                 break;
             }
-            let first = (entry.child & !LEAF) as usize >> 2;
-            let n = (entry.child & 3) as usize + 1;
-            if !leaf(&indices[first..first + n], count) {
+            if !open(entry.child, count) {
                 return false;
             }
         }
@@ -220,6 +238,9 @@ pub(super) struct Frame {
     origin: [Vec4; 3],
     /// The shear's x, y and z.
     shear: [Vec4; 3],
+    /// For the shear's x, y and z: 1 when it is negative, else 0 (which
+    /// kz face gives the least product).
+    negative: [usize; 3],
     /// Hits have t ≤ t_max·(1 + u)³; this is above that.
     t_limit: Vec4,
 }
@@ -233,6 +254,7 @@ impl Frame {
             kz,
             origin: [Vec4::splat(o[kx]), Vec4::splat(o[ky]), Vec4::splat(o[kz])],
             shear: [Vec4::splat(shear.x), Vec4::splat(shear.y), Vec4::splat(shear.z)],
+            negative: [shear.x, shear.y, shear.z].map(|s| usize::from(s.is_sign_negative())),
             t_limit: Vec4::splat(ray.t_max * (1.0 + gamma(4))),
         }
     }
@@ -245,18 +267,20 @@ impl Frame {
         let (kz, kx, ky) = (KZ, (KZ + 1) % 3, (KZ + 2) % 3);
         let b = &node.bounds;
         let [ox, oy, oz] = self.origin;
-        let (z0, z1) = (b[2 * kz] - oz, b[2 * kz + 1] - oz);
         // The sheared coordinate's range over each box: v − o plus the
-        // shear term, the latter least at the kz face its sign picks (z0 ≤
-        // z1 and rounding is monotone, so the smaller product is that
-        // face's; the boxes' coordinates are finite).
-        let span = |s: Vec4| {
-            let (a, c) = (s * z0, s * z1);
-            (a.min(c), a.max(c))
+        // shear term, the latter least at the kz face its sign picks (the
+        // low face for s ≥ 0: rounding is monotone, so s·(z_low − o) ≤
+        // s·(z_high − o); the boxes' coordinates are finite). The face is
+        // picked by where it is read, off the chain of operations.
+        let span = |axis: usize| {
+            let low = 2 * kz + (self.negative[axis] & 1);
+            let high = 2 * kz + (self.negative[axis] & 1 ^ 1);
+            let s = self.shear[axis];
+            (s * (b[low] - oz), s * (b[high] - oz))
         };
-        let (x_lo, x_hi) = span(self.shear[0]);
-        let (y_lo, y_hi) = span(self.shear[1]);
-        let (z_lo, z_hi) = span(self.shear[2]);
+        let (x_lo, x_hi) = span(0);
+        let (y_lo, y_hi) = span(1);
+        let (z_lo, z_hi) = span(2);
         let out = ((b[2 * kx] - ox) + x_lo).cmpgt(Vec4::ZERO)
             | ((b[2 * kx + 1] - ox) + x_hi).cmplt(Vec4::ZERO)
             | ((b[2 * ky] - oy) + y_lo).cmpgt(Vec4::ZERO)
