@@ -1,0 +1,173 @@
+//! Radiosity for zline (SPEC §13): the course's second global illumination
+//! model. Every surface is an ideal diffuse reflector cut into patches of
+//! constant radiosity ([`patch`]); the form factors come from hemicubes
+//! drawn with zline's scan converter and z-buffer ([`hemicube`]); the
+//! equation B_i = E_i + ρ_i Σ_j F_ij B_j is solved once, independently of
+//! the viewpoint, by Jacobi, Gauss–Seidel or progressive refinement
+//! ([`solve`]). The solution is drawn by the rasterizer: radiosities
+//! averaged to the patches' corners and Gouraud-interpolated
+//! ([`Solution::display_scene`]), so a new viewpoint costs one frame.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use glam::{Mat4, Vec3};
+use zline_scene::{Mesh, Object, Scene};
+use zline_trace::world::World;
+
+mod error;
+pub mod hemicube;
+pub mod patch;
+pub mod solve;
+
+pub use error::RadiosityError;
+
+pub use patch::{Patch, Patches};
+pub use solve::{Convergence, Method};
+
+/// The most patches a solve accepts (a 4 GB form-factor matrix for the
+/// sweeps; progressive refinement keeps no matrix).
+pub const MAX_PATCHES: usize = 1 << 16;
+/// The most hemicube resolution accepted.
+pub const MAX_RESOLUTION: usize = 2048;
+
+/// How to solve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// The longest patch edge, in world units; `None`: 1/16 of the
+    /// scene's largest extent.
+    pub patch_size: Option<f32>,
+    /// The hemicube's top-face resolution (pixels a side).
+    pub resolution: usize,
+    /// The solver.
+    pub method: Method,
+    /// Stop when the residual is at most this (see [`solve`]).
+    pub tolerance: f64,
+    /// Stop after this many sweeps or shots.
+    pub max_steps: usize,
+    /// Progressive refinement shoots from four points of a patch, not its
+    /// centre (four hemicubes a shot; closer to reciprocity).
+    pub area_shooting: bool,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            patch_size: None,
+            resolution: 100,
+            method: Method::Progressive,
+            tolerance: 1e-3,
+            max_steps: 100_000,
+            area_shooting: false,
+        }
+    }
+}
+
+/// A solved scene.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    /// The patches.
+    pub patches: Patches,
+    /// Each patch's radiosity (with the ambient term for progressive
+    /// refinement).
+    pub radiosity: Vec<Vec3>,
+    /// The residual after each step.
+    pub convergence: Convergence,
+    /// The options used (the patch size resolved).
+    pub options: Options,
+    /// Time to mesh and solve.
+    pub took: Duration,
+}
+
+/// Meshes and solves `scene`. The hemicube resolution is clamped to
+/// [`MAX_RESOLUTION`] and the step count to 10⁶, each with a warning in
+/// the solution's patches.
+pub fn solve(scene: &Scene, options: &Options) -> Result<Solution, RadiosityError> {
+    let start = Instant::now();
+    let world = World::new(scene);
+    let mut options = *options;
+    let size = options.patch_size.unwrap_or_else(|| {
+        let (lo, hi) = world
+            .triangles
+            .iter()
+            .flatten()
+            .filter(|p| p.is_finite())
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        ((hi - lo).max_element() / 16.0).max(f32::MIN_POSITIVE)
+    });
+    options.patch_size = Some(size);
+    let mut patches = Patches::new(&world, size, MAX_PATCHES)?;
+    if options.resolution > MAX_RESOLUTION {
+        patches
+            .warnings
+            .push(format!("hemicube resolution {} clamped to {MAX_RESOLUTION}", options.resolution));
+        options.resolution = MAX_RESOLUTION;
+    }
+    if options.max_steps > 1_000_000 {
+        patches.warnings.push(format!("{} radiosity steps clamped to 1000000", options.max_steps));
+        options.max_steps = 1_000_000;
+    }
+    let tolerance = if options.tolerance.is_finite() { options.tolerance.max(0.0) } else { 1e-3 };
+    let (radiosity, convergence) = match options.method {
+        Method::Progressive => {
+            let mut cube = hemicube::Hemicube::new(options.resolution);
+            solve::progressive(
+                &patches.patches,
+                &mut cube,
+                tolerance,
+                options.max_steps,
+                options.area_shooting,
+                true,
+            )
+        }
+        method => {
+            let rows = solve::matrix(&patches.patches, options.resolution);
+            solve::sweep(&patches.patches, &rows, method == Method::GaussSeidel, tolerance, options.max_steps)
+        }
+    };
+    Ok(Solution { patches, radiosity, convergence, options, took: start.elapsed() })
+}
+
+impl Solution {
+    /// The radiosity at each shared corner: the area-weighted mean of the
+    /// patches around it.
+    pub fn vertex_radiosity(&self) -> Vec<Vec3> {
+        let mut sum = vec![Vec3::ZERO; self.patches.vertices.len()];
+        let mut weight = vec![0.0f32; self.patches.vertices.len()];
+        for (p, b) in self.patches.patches.iter().zip(&self.radiosity) {
+            for &v in &p.vertices {
+                sum[v as usize] += *b * p.area;
+                weight[v as usize] += p.area;
+            }
+        }
+        sum.iter().zip(&weight).map(|(s, &w)| if w > 0.0 { *s / w } else { Vec3::ZERO }).collect()
+    }
+
+    /// `scene` with its objects replaced by the solution: one mesh of the
+    /// patches whose vertex colours are the corners' radiosities, drawn
+    /// with Gouraud shading by ambient light 1 on ka = 1 (no other light,
+    /// kd = ks = 0), so that the rasterizer shows B.
+    pub fn display_scene(&self, scene: &Scene) -> Scene {
+        let mut out = scene.clone();
+        out.lights.clear();
+        out.ambient = Vec3::ONE;
+        out.objects.clear();
+        let triangles: Vec<[u32; 3]> = self.patches.patches.iter().map(|p| p.vertices).collect();
+        let mut material = zline_shading::Material::default();
+        (material.ka, material.kd, material.ks, material.ke) =
+            (Vec3::ONE, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
+        let colors: Vec<Vec3> =
+            self.vertex_radiosity().iter().map(|c| if c.is_finite() { *c } else { Vec3::ZERO }).collect();
+        let mesh = Mesh::new("radiosity", self.patches.vertices.clone(), None, triangles, material)
+            .and_then(|m| m.with_colors(colors))
+            .expect("patches index their own finite corners");
+        out.objects.push(Object {
+            mesh: Arc::new(mesh),
+            world_from_object: Mat4::IDENTITY,
+            material: None,
+            shading: Some(zline_shading::ShadingMode::Gouraud),
+            cull_back_faces: false,
+        });
+        out
+    }
+}
