@@ -154,6 +154,11 @@ fn render_scene(path: &Path) -> Rendered {
                 let (image, _) = render(&scene, &RenderOptions::default());
                 (image, Default::default())
             }
+            Renderer::Radiosity => {
+                let solution = zline::radiosity::solve(&scene, &Default::default())?;
+                let (image, _) = render(&solution.display_scene(&scene), &RenderOptions::default());
+                (image, Default::default())
+            }
         };
         RgbImage::from_raw(image.width, image.height, image.to_rgb()).context("image size")
     });

@@ -97,6 +97,11 @@ pub fn solve(scene: &Scene, options: &Options) -> Result<Solution, RadiosityErro
     });
     options.patch_size = Some(size);
     let mut patches = Patches::new(&world, size, MAX_PATCHES)?;
+    if patches.emitted() == Vec3::ZERO {
+        patches
+            .warnings
+            .push("no surface emits light (every material's ke is 0): radiosity is 0 everywhere".into());
+    }
     if options.resolution > MAX_RESOLUTION {
         patches
             .warnings
@@ -143,10 +148,32 @@ impl Solution {
         sum.iter().zip(&weight).map(|(s, &w)| if w > 0.0 { *s / w } else { Vec3::ZERO }).collect()
     }
 
+    /// The display's scale: emission is at most 1 (a material's ke), so a
+    /// room's walls come out far darker; B is shown times the scale that
+    /// puts the 99th percentile of the patches that emit nothing (their
+    /// brightest channel) at 0.85.
+    pub fn display_scale(&self) -> f32 {
+        let mut lit: Vec<f32> = self
+            .patches
+            .patches
+            .iter()
+            .zip(&self.radiosity)
+            .filter(|(p, _)| p.emission == Vec3::ZERO)
+            .map(|(_, b)| b.max_element())
+            .filter(|b| b.is_finite() && *b > 0.0)
+            .collect();
+        if lit.is_empty() {
+            return 1.0;
+        }
+        lit.sort_by(f32::total_cmp);
+        0.85 / lit[(lit.len() - 1) * 99 / 100]
+    }
+
     /// `scene` with its objects replaced by the solution: one mesh of the
-    /// patches whose vertex colours are the corners' radiosities, drawn
-    /// with Gouraud shading by ambient light 1 on ka = 1 (no other light,
-    /// kd = ks = 0), so that the rasterizer shows B.
+    /// patches whose vertex colours are the corners' radiosities times
+    /// [`Self::display_scale`], drawn with Gouraud shading by ambient light
+    /// 1 on ka = 1 (no other light, kd = ks = 0), so that the rasterizer
+    /// shows B.
     pub fn display_scene(&self, scene: &Scene) -> Scene {
         let mut out = scene.clone();
         out.lights.clear();
@@ -156,8 +183,12 @@ impl Solution {
         let mut material = zline_shading::Material::default();
         (material.ka, material.kd, material.ks, material.ke) =
             (Vec3::ONE, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
-        let colors: Vec<Vec3> =
-            self.vertex_radiosity().iter().map(|c| if c.is_finite() { *c } else { Vec3::ZERO }).collect();
+        let scale = self.display_scale();
+        let colors: Vec<Vec3> = self
+            .vertex_radiosity()
+            .iter()
+            .map(|c| if c.is_finite() { *c * scale } else { Vec3::ZERO })
+            .collect();
         let mesh = Mesh::new("radiosity", self.patches.vertices.clone(), None, triangles, material)
             .and_then(|m| m.with_colors(colors))
             .expect("patches index their own finite corners");

@@ -8,7 +8,7 @@ use zline_radiosity::{solve, Method, Options};
 fn the_cornell_box_bleeds_red_and_green_onto_the_white_walls() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/cornell/cornell_box.toml");
     let scene = zline_io::load_scene(&path).expect("the shipped Cornell box loads");
-    let options = Options { method: Method::Progressive, patch_size: Some(50.0), ..Options::default() };
+    let options = Options { method: Method::Progressive, patch_size: Some(100.0), ..Options::default() };
     let solution = solve(&scene, &options).unwrap();
     let n = solution.patches.patches.len();
     let residual = solution.convergence.residuals.last().copied().unwrap_or(1.0);

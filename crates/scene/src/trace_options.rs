@@ -10,6 +10,8 @@ pub enum Renderer {
     Raster,
     /// Whitted ray tracing (`zline-trace`).
     RayTrace,
+    /// Radiosity (`zline-radiosity`), drawn by the z-buffer pipeline.
+    Radiosity,
 }
 
 impl Renderer {
@@ -18,6 +20,7 @@ impl Renderer {
         match self {
             Renderer::Raster => "raster",
             Renderer::RayTrace => "raytrace",
+            Renderer::Radiosity => "radiosity",
         }
     }
 }

@@ -22,6 +22,7 @@ pub mod viewer;
 
 pub use zline_io as io;
 pub use zline_pipeline as pipeline;
+pub use zline_radiosity as radiosity;
 pub use zline_raster as raster;
 pub use zline_scene as scene;
 pub use zline_scenes as scenes;

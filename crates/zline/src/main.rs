@@ -220,7 +220,7 @@ fn run(cli: Cli) -> Result<()> {
             common.layers.refuse("view")?;
             common.trace.check()?;
             let allow_outside = view.allow_paths_outside;
-            return view_command::run(&view, &job(&common, allow_outside)?, &common.trace);
+            return view_command::run(&view, &job(&common, allow_outside)?, &common.trace, &common.radiosity);
         }
     };
     // Everything that can be checked without the scene is checked before
@@ -254,6 +254,11 @@ fn run(cli: Cli) -> Result<()> {
     let pool = pool.build().context("cannot start the worker threads")?;
     let loaded = loading.elapsed();
     let options = RenderOptions { tile_size: common.tile_size };
+    if common.trace.radiosity(&scene) {
+        scene = pool.install(|| common.radiosity.display(&scene))?;
+    } else {
+        common.radiosity.check_unused()?;
+    }
     if common.trace.traces(&scene)? {
         common.layers.refuse("the ray tracer")?;
         return ray_trace(&scene, &common, &pool, loaded);

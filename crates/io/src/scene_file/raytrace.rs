@@ -47,6 +47,7 @@ enum AccelDef {
 pub(super) enum RendererDef {
     Raster,
     Raytrace,
+    Radiosity,
 }
 
 /// The ray tracer's options of the `[raytrace]` table, the defaults

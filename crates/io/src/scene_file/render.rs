@@ -242,6 +242,7 @@ pub(super) fn settings(check: &Checker, render: Option<RenderDef>) -> Result<Ren
         settings.renderer = match r {
             RendererDef::Raster => Renderer::Raster,
             RendererDef::Raytrace => Renderer::RayTrace,
+            RendererDef::Radiosity => Renderer::Radiosity,
         };
     }
     Ok(settings)

@@ -35,6 +35,7 @@ fn the_renderer_and_the_ray_tracers_options_are_read_as_written() {
     let s = settings("off.toml", "[raytrace]\nadaptive = false\nadaptive_depth = 2");
     assert_eq!(s.trace.adaptive, None);
     assert_eq!(settings("raster.toml", "[render]\nrenderer = \"raster\"").renderer, Renderer::Raster);
+    assert_eq!(settings("rad.toml", "[render]\nrenderer = \"radiosity\"").renderer, Renderer::Radiosity);
 }
 
 #[test]
@@ -60,7 +61,7 @@ fn bad_ray_tracing_settings_name_their_key() {
     check_scene_error("key.toml", &rt("dpeth = 3"), &["unknown field `dpeth`"]);
     check_scene_error(
         "r.toml",
-        &format!("[render]\nrenderer = \"radiosity\"\n{OBJECT}"),
-        &["unknown variant `radiosity`, expected `raster` or `raytrace`"],
+        &format!("[render]\nrenderer = \"pathtracer\"\n{OBJECT}"),
+        &["unknown variant `pathtracer`, expected one of `raster`, `raytrace`, `radiosity`"],
     );
 }

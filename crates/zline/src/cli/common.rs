@@ -168,4 +168,6 @@ pub(crate) struct Common {
     pub(crate) layers: super::layers::LayerArgs,
     #[command(flatten)]
     pub(crate) trace: super::trace::TraceArgs,
+    #[command(flatten)]
+    pub(crate) radiosity: super::radiosity::RadiosityArgs,
 }

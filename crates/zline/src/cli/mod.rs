@@ -6,5 +6,6 @@ pub(crate) mod common;
 pub(crate) mod layers;
 pub(crate) mod load;
 pub(crate) mod parse;
+pub(crate) mod radiosity;
 pub(crate) mod trace;
 pub(crate) mod visibility;

@@ -17,6 +17,8 @@ pub(crate) enum RendererChoice {
     Raster,
     /// Whitted ray tracing.
     Raytrace,
+    /// Radiosity, solved once and drawn by the z-buffer pipeline.
+    Radiosity,
 }
 
 /// `--accel`.
@@ -43,9 +45,10 @@ pub(crate) enum ShadowChoice {
 
 #[derive(Args)]
 pub(crate) struct TraceArgs {
-    /// The renderer: the z-buffer pipeline, or Whitted ray tracing
+    /// The renderer: the z-buffer pipeline, Whitted ray tracing
     /// (reflection kr, refraction by the index of refraction,
-    /// shadow rays; docs/SPEC.md §12).
+    /// shadow rays; docs/SPEC.md §12), or radiosity (diffuse
+    /// interreflection solved over patches, then drawn by the pipeline).
     /// Default: the scene file's `renderer`, else raster.
     #[arg(long, value_enum)]
     pub(crate) renderer: Option<RendererChoice>,
@@ -119,6 +122,15 @@ impl TraceArgs {
     }
 
     const NEED: &str = "--ray-depth, --min-weight, --accel, --shadow-rays, --rays-per-axis, --adaptive-aa, --aa-depth and --aa-threshold need --renderer raytrace (or renderer = \"raytrace\" in the scene file)";
+
+    /// True when radiosity draws `scene`: `--renderer`, else the scene's
+    /// own choice.
+    pub(crate) fn radiosity(&self, scene: &Scene) -> bool {
+        match self.renderer {
+            Some(r) => r == RendererChoice::Radiosity,
+            None => scene.settings.renderer == Renderer::Radiosity,
+        }
+    }
 
     /// True when the ray tracer draws `scene`: `--renderer`, else the
     /// scene's own choice; ray-tracing flags for a rasterized scene are

@@ -11,6 +11,7 @@ mod hard_cases;
 mod hostile;
 mod layers;
 mod lighting_model;
+mod radiosity;
 mod raytrace;
 mod terrain;
 mod turntable;

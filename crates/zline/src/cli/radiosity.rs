@@ -1,0 +1,94 @@
+//! `--renderer radiosity` and the solver's flags (docs/SPEC.md §13).
+
+use anyhow::{bail, Result};
+use clap::{Args, ValueEnum};
+use zline::radiosity::{Method, Options};
+use zline::scene::Scene;
+
+/// `--solver`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum SolverChoice {
+    /// Sweeps over the form-factor matrix, each from the previous one's values.
+    Jacobi,
+    /// Sweeps reading the values already updated.
+    GaussSeidel,
+    /// Shooting the most unshot power first (no matrix).
+    Progressive,
+}
+
+#[derive(Args)]
+pub(crate) struct RadiosityArgs {
+    /// Radiosity: the longest patch edge, in world units (default: 1/16 of
+    /// the scene's largest extent).
+    #[arg(long, value_name = "LENGTH")]
+    pub(crate) patch_size: Option<f32>,
+    /// Radiosity: the hemicube's resolution, pixels along its top face
+    /// (default 100).
+    #[arg(long, value_name = "N")]
+    pub(crate) hemicube: Option<usize>,
+    /// Radiosity: the solver (default progressive).
+    #[arg(long, value_enum)]
+    pub(crate) solver: Option<SolverChoice>,
+    /// Radiosity: stop when the power left to move is at most this share
+    /// of the emitted power (default 0.001).
+    #[arg(long, value_name = "FRACTION")]
+    pub(crate) radiosity_tolerance: Option<f64>,
+}
+
+impl RadiosityArgs {
+    /// True when a radiosity flag was given.
+    fn given(&self) -> bool {
+        self.patch_size.is_some()
+            || self.hemicube.is_some()
+            || self.solver.is_some()
+            || self.radiosity_tolerance.is_some()
+    }
+
+    /// Refuses the flags for a scene radiosity does not draw.
+    pub(crate) fn check_unused(&self) -> Result<()> {
+        if self.given() {
+            bail!("--patch-size, --hemicube, --solver and --radiosity-tolerance need --renderer radiosity (or renderer = \"radiosity\" in the scene file)");
+        }
+        Ok(())
+    }
+
+    /// The solver's options from the flags.
+    pub(crate) fn options(&self) -> Options {
+        let mut o = Options { patch_size: self.patch_size, ..Options::default() };
+        if let Some(n) = self.hemicube {
+            o.resolution = n;
+        }
+        if let Some(s) = self.solver {
+            o.method = match s {
+                SolverChoice::Jacobi => Method::Jacobi,
+                SolverChoice::GaussSeidel => Method::GaussSeidel,
+                SolverChoice::Progressive => Method::Progressive,
+            };
+        }
+        if let Some(t) = self.radiosity_tolerance {
+            o.tolerance = t;
+        }
+        o
+    }
+
+    /// Solves `scene` and returns the scene the rasterizer draws in its
+    /// place, after telling what the solve did.
+    pub(crate) fn display(&self, scene: &Scene) -> Result<Scene> {
+        let solution = zline::radiosity::solve(scene, &self.options())?;
+        for warning in &solution.patches.warnings {
+            eprintln!("warning: {warning}");
+        }
+        let residual = solution.convergence.residuals.last().copied().unwrap_or(0.0);
+        eprintln!(
+            "radiosity: {} patches of {:.3} at most, {} by {} steps ({} hemicubes of {}²), residual {residual:.1e}, {:.2} s",
+            solution.patches.patches.len(),
+            solution.options.patch_size.unwrap_or(0.0),
+            solution.options.method.name(),
+            solution.convergence.residuals.len(),
+            solution.convergence.hemicubes,
+            solution.options.resolution,
+            solution.took.as_secs_f64()
+        );
+        Ok(solution.display_scene(scene))
+    }
+}

@@ -1,0 +1,65 @@
+//! `--renderer radiosity`: the solver from the command line.
+
+use crate::{check_clean_error, check_png, repo, zline};
+
+#[test]
+fn the_cornell_box_by_radiosity_is_the_same_for_any_thread_count_and_bleeds() {
+    let dir = tempfile::tempdir().unwrap();
+    let cornell = repo().join("assets/cornell/cornell_box.toml");
+    let run = |png: &std::path::Path, threads: &str, solver: &str| {
+        zline(&[
+            "render",
+            cornell.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+            "--size",
+            "128x128",
+            "--renderer",
+            "radiosity",
+            "--patch-size",
+            "120",
+            "--solver",
+            solver,
+            "--threads",
+            threads,
+        ])
+    };
+    let (one, two) = (dir.path().join("one.png"), dir.path().join("two.png"));
+    let (a, b) = (run(&one, "1", "progressive"), run(&two, "2", "progressive"));
+    let img = check_png(&a, &one, (128, 128));
+    check_png(&b, &two, (128, 128));
+    let said = String::from_utf8_lossy(&a.stderr);
+    assert!(
+        said.contains("radiosity:") && said.contains("patches") && said.contains("progressive"),
+        "{said}"
+    );
+    assert_eq!(std::fs::read(&one).unwrap(), std::fs::read(&two).unwrap(), "PNG bytes differ across threads");
+    // The left (red) wall reddens, the right (green) one greens.
+    let (left, right) = (img.get_pixel(8, 64), img.get_pixel(119, 64));
+    assert!(left[0] > 2 * left[1] && right[1] > 2 * right[0], "{left:?} {right:?}");
+    // The sweeps converge to a picture like it.
+    let jacobi = dir.path().join("jacobi.png");
+    let c = run(&jacobi, "2", "gauss-seidel");
+    check_png(&c, &jacobi, (128, 128));
+}
+
+#[test]
+fn radiosity_flags_without_radiosity_and_a_billion_patches_are_clean_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("out.png");
+    let cornell = repo().join("assets/cornell/cornell_box.toml");
+    let out =
+        zline(&["render", cornell.to_str().unwrap(), "-o", png.to_str().unwrap(), "--patch-size", "10"]);
+    check_clean_error(&out, &["--patch-size", "--renderer radiosity"]);
+    let out = zline(&[
+        "render",
+        cornell.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--renderer",
+        "radiosity",
+        "--patch-size",
+        "0.001",
+    ]);
+    check_clean_error(&out, &["patches", "more than", "--patch-size"]);
+}
