@@ -14,6 +14,7 @@ mod contact;
 mod docs;
 mod kernels;
 mod modules;
+mod radiosity_report;
 mod ray_batch;
 mod regress;
 mod report;
@@ -234,6 +235,14 @@ enum Task {
         #[arg(long, value_name = "ROUNDS", num_args = 0..=1, default_missing_value = "3")]
         embree: Option<usize>,
     },
+    /// Radiosity on the Cornell box: the three solvers to the same
+    /// residual, the time to a first useful picture, convergence curves
+    /// as CSV.
+    RadiosityReport {
+        /// Where the convergence curves go (CSV).
+        #[arg(long, default_value = "target/radiosity-convergence.csv")]
+        out: PathBuf,
+    },
     /// A real screenshot of `zline view`: the viewer on a private Xvfb
     /// (started here; skipped with a message when Xvfb is not installed),
     /// the picture read from the X server's framebuffer and checked
@@ -291,6 +300,7 @@ fn main() -> Result<()> {
             })?;
             embree.map_or(Ok(()), trace_embree::run)
         }
+        Task::RadiosityReport { out } => radiosity_report::run(&out),
         Task::RayBatch { shards, size } => ray_batch::run(shards, &size),
         Task::ViewScreenshot { out, size, model, flags } => view_screenshot::run(&out, &model, size, &flags),
         Task::TerrainAsset { out } => terrain::write_assets(&out),

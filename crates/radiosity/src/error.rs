@@ -16,6 +16,13 @@ pub enum RadiosityError {
         /// The limit.
         max: usize,
     },
+    /// The sweeps' matrix would be too large.
+    Matrix {
+        /// The patches.
+        patches: usize,
+        /// The most the sweeps accept.
+        max: usize,
+    },
     /// A material's emission is not finite.
     Emission {
         /// The triangle's index in the scene's world order.
@@ -32,6 +39,10 @@ impl std::fmt::Display for RadiosityError {
             RadiosityError::TooManyPatches { size, patches, max } => write!(
                 f,
                 "radiosity: a patch size of {size} cuts the scene into {patches:.3e} patches, more than {max}; give a larger --patch-size"
+            ),
+            RadiosityError::Matrix { patches, max } => write!(
+                f,
+                "radiosity: Jacobi and Gauss-Seidel keep a {patches} × {patches} matrix of form factors, more than {max} patches allow; use --solver progressive or a larger --patch-size"
             ),
             RadiosityError::Emission { triangle, emission } => {
                 write!(f, "radiosity: triangle {triangle} emits {emission} (not finite)")

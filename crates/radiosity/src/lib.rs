@@ -28,6 +28,9 @@ pub use solve::{Convergence, Method};
 /// The most patches a solve accepts (a 4 GB form-factor matrix for the
 /// sweeps; progressive refinement keeps no matrix).
 pub const MAX_PATCHES: usize = 1 << 16;
+/// The most patches Jacobi and Gauss–Seidel accept (their matrix of form
+/// factors: 1 GiB).
+pub const MAX_MATRIX_PATCHES: usize = 1 << 14;
 /// The most hemicube resolution accepted.
 pub const MAX_RESOLUTION: usize = 2048;
 
@@ -126,6 +129,12 @@ pub fn solve(scene: &Scene, options: &Options) -> Result<Solution, RadiosityErro
             )
         }
         method => {
+            if patches.patches.len() > MAX_MATRIX_PATCHES {
+                return Err(RadiosityError::Matrix {
+                    patches: patches.patches.len(),
+                    max: MAX_MATRIX_PATCHES,
+                });
+            }
             let rows = solve::matrix(&patches.patches, options.resolution);
             solve::sweep(&patches.patches, &rows, method == Method::GaussSeidel, tolerance, options.max_steps)
         }

@@ -56,6 +56,10 @@ fn bad_input_is_refused_or_clamped_with_a_message() {
             .unwrap_or_default();
         assert!(error.contains("not a positive length"), "{size}: {error}");
     }
+    // The sweeps' matrix beyond its bound: refused before it is made.
+    let big = Options { patch_size: Some(12.0), method: Method::Jacobi, ..Options::default() };
+    let error = solve(&scene, &big).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(error.contains("matrix") && error.contains("--solver progressive"), "{error}");
     // A reflectance at or above 1: clamped, with a warning.
     let mut bright = scene.clone();
     for object in &mut bright.objects {
