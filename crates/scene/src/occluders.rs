@@ -21,48 +21,12 @@
 
 use glam::DVec3;
 
-use crate::sah::{self, SahTree};
+use crate::sah::{self, F64Node, SahTree};
 
 /// Hits at a segment or ray parameter t ≤ this (relative to the segment
 /// for a point light) are ignored, and for point lights those at
 /// t ≥ 1 − this too.
 const T_EPSILON: f64 = 1e-9;
-
-/// An axis-aligned box.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Bounds {
-    min: DVec3,
-    max: DVec3,
-}
-
-impl Bounds {
-    /// The f32 box `b` widened by `margin` on every side.
-    fn widened(b: &sah::Bounds, margin: f64) -> Bounds {
-        Bounds { min: b.min.as_dvec3() - DVec3::splat(margin), max: b.max.as_dvec3() + DVec3::splat(margin) }
-    }
-
-    /// True when the segment o + t·d, t ∈ [0, t_max], may meet the box
-    /// (slab test; a zero component of d tests o's coordinate directly).
-    fn meets(&self, o: DVec3, d: DVec3, t_max: f64) -> bool {
-        let (mut t0, mut t1) = (0.0f64, t_max);
-        for axis in 0..3 {
-            let (lo, hi, o, d) = (self.min[axis], self.max[axis], o[axis], d[axis]);
-            if d == 0.0 {
-                if o < lo || o > hi {
-                    return false;
-                }
-                continue;
-            }
-            let (a, b) = ((lo - o) / d, (hi - o) / d);
-            t0 = t0.max(a.min(b));
-            t1 = t1.min(a.max(b));
-            if t0 > t1 {
-                return false;
-            }
-        }
-        true
-    }
-}
 
 /// Which mesh triangle a caster is, or which one a receiver sample lies
 /// on: the object's index in the scene and the triangle's in its mesh.
@@ -121,22 +85,12 @@ impl Triangle {
     }
 }
 
-/// A node of the hierarchy ([`SahNode`](sah::SahNode)'s layout): a leaf
-/// holds `count` triangles from `offset`; an inner node (`count` 0) has
-/// its children next to it and at `offset`.
-#[derive(Clone, Copy, Debug)]
-struct Node {
-    bounds: Bounds,
-    offset: usize,
-    count: usize,
-}
-
 /// Every caster triangle of a frame in eye space, in a bounding-volume
 /// hierarchy, and the segment test of the shadow rule.
 #[derive(Debug, Default)]
 pub struct Occluders {
     triangles: Vec<Triangle>,
-    nodes: Vec<Node>,
+    nodes: Vec<F64Node>,
 }
 
 impl Occluders {
@@ -146,21 +100,9 @@ impl Occluders {
         let triangles: Vec<Triangle> =
             triangles.into_iter().filter_map(|(id, [a, b, c])| Triangle::new(id, a, b, c)).collect();
         let tree = SahTree::build((0..).zip(triangles.iter().map(Triangle::bounds)));
-        let Some(root) = tree.nodes.first() else { return Occluders::default() };
-        // Widen every box by a hair of the scene's size: the slab test's
+        // Boxes widened by a hair of the scene's size: the slab test's
         // rounding must never reject a triangle the exact test hits.
-        let all = Bounds::widened(&root.bounds, 0.0);
-        let scale = (all.max - all.min).max_element().max(all.min.abs().max(all.max.abs()).max_element());
-        let margin = 1e-7 * scale.max(f64::MIN_POSITIVE);
-        let nodes = tree
-            .nodes
-            .iter()
-            .map(|n| Node {
-                bounds: Bounds::widened(&n.bounds, margin),
-                offset: n.offset as usize,
-                count: usize::from(n.count),
-            })
-            .collect();
+        let nodes = tree.f64_nodes();
         Occluders { triangles: tree.order.iter().map(|&i| triangles[i as usize]).collect(), nodes }
     }
 
@@ -196,7 +138,7 @@ impl Occluders {
             len -= 1;
             let at = stack[len];
             let node = &self.nodes[at];
-            if !node.bounds.meets(o, d, t_max) {
+            if node.entry(o, d, 0.0, t_max).is_none() {
                 continue;
             }
             if node.count == 0 {

@@ -127,6 +127,46 @@ pub struct SahTree {
     pub depth: usize,
 }
 
+/// A node of an [`SahTree`] in f64, for exact tests on f64 geometry: its
+/// box widened ([`SahTree::f64_nodes`]), its offset and count as in
+/// [`SahNode`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct F64Node {
+    /// The low corner.
+    pub min: DVec3,
+    /// The high corner.
+    pub max: DVec3,
+    /// The second child, or the leaf's first entry.
+    pub offset: usize,
+    /// The leaf's count, 0 for an interior node.
+    pub count: usize,
+}
+
+impl F64Node {
+    /// Where o + t·d enters the box within [max(t_min, 0), t_max]; `None`
+    /// when it misses it (slab test; a zero component of d tests o's
+    /// coordinate).
+    pub fn entry(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Option<f64> {
+        let (mut t0, mut t1) = (t_min.max(0.0), t_max);
+        for axis in 0..3 {
+            let (lo, hi, o, d) = (self.min[axis], self.max[axis], o[axis], d[axis]);
+            if d == 0.0 {
+                if o < lo || o > hi {
+                    return None;
+                }
+                continue;
+            }
+            let (a, b) = ((lo - o) / d, (hi - o) / d);
+            t0 = t0.max(a.min(b));
+            t1 = t1.min(a.max(b));
+            if t0 > t1 {
+                return None;
+            }
+        }
+        Some(t0)
+    }
+}
+
 /// A box during the build.
 #[derive(Clone, Copy, Debug)]
 struct Prim {
@@ -170,6 +210,23 @@ impl SahTree {
         let second = self.nodes.len();
         self.emit(above, start + mid, depth + 1);
         self.nodes[at] = node(second, 0);
+    }
+
+    /// The nodes in f64, every box widened by 10⁻⁷ of the root's size (its
+    /// extent or its distance from the origin, the larger): an f64 slab
+    /// test's rounding then never rejects geometry an exact test hits.
+    pub fn f64_nodes(&self) -> Vec<F64Node> {
+        let Some(root) = self.nodes.first() else { return Vec::new() };
+        let (lo, hi) = (root.bounds.min.as_dvec3(), root.bounds.max.as_dvec3());
+        let scale = (hi - lo).max_element().max(lo.abs().max(hi.abs()).max_element());
+        let margin = DVec3::splat(1e-7 * scale.max(f64::MIN_POSITIVE));
+        let node = |n: &SahNode| F64Node {
+            min: n.bounds.min.as_dvec3() - margin,
+            max: n.bounds.max.as_dvec3() + margin,
+            offset: n.offset as usize,
+            count: usize::from(n.count),
+        };
+        self.nodes.iter().map(node).collect()
     }
 
     /// The tree's SAH cost, for reports: the expected work of a ray that

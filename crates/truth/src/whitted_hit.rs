@@ -29,7 +29,7 @@
 //! the best t).
 
 use glam::DVec3;
-use zline_scene::sah::{self, SahTree};
+use zline_scene::sah::{self, F64Node, SahTree};
 
 /// A ray o + t·d over the open interval (`t_min`, `t_max`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -106,53 +106,6 @@ impl Sheared {
     }
 }
 
-/// An axis-aligned box.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Bounds {
-    min: DVec3,
-    max: DVec3,
-}
-
-impl Bounds {
-    /// The f32 box `b` widened by `margin` on every side.
-    fn widened(b: &sah::Bounds, margin: f64) -> Bounds {
-        Bounds { min: b.min.as_dvec3() - DVec3::splat(margin), max: b.max.as_dvec3() + DVec3::splat(margin) }
-    }
-
-    /// Where the ray enters the box within its interval; `None` when it
-    /// misses it (slab test; a zero direction component tests the
-    /// origin's coordinate).
-    fn entry(&self, ray: &Ray) -> Option<f64> {
-        let (mut t0, mut t1) = (ray.t_min.max(0.0), ray.t_max);
-        for axis in 0..3 {
-            let (lo, hi, o, d) = (self.min[axis], self.max[axis], ray.origin[axis], ray.dir[axis]);
-            if d == 0.0 {
-                if o < lo || o > hi {
-                    return None;
-                }
-                continue;
-            }
-            let (a, b) = ((lo - o) / d, (hi - o) / d);
-            t0 = t0.max(a.min(b));
-            t1 = t1.min(a.max(b));
-            if t0 > t1 {
-                return None;
-            }
-        }
-        Some(t0)
-    }
-}
-
-/// A node ([`SahNode`](sah::SahNode)'s layout): a leaf holds `count`
-/// entries of the order from `offset`; an inner node (`count` 0) has its
-/// children next to it and at `offset`.
-#[derive(Clone, Copy, Debug)]
-struct Node {
-    bounds: Bounds,
-    offset: usize,
-    count: usize,
-}
-
 /// The triangles in world space and their hierarchy.
 #[derive(Debug, Default)]
 pub(crate) struct Triangles {
@@ -160,7 +113,7 @@ pub(crate) struct Triangles {
     pub(crate) corners: Vec<[DVec3; 3]>,
     /// Indices of the triangles that can be hit, in leaf order.
     order: Vec<u32>,
-    nodes: Vec<Node>,
+    nodes: Vec<F64Node>,
 }
 
 impl Triangles {
@@ -173,19 +126,7 @@ impl Triangles {
             p.iter().all(|c| c.is_finite()) && n.is_finite() && n != DVec3::ZERO
         });
         let tree = SahTree::build(hittable.map(|i| (i, sah::Bounds::enclosing(&corners[i as usize]))));
-        let Some(root) = tree.nodes.first() else { return Triangles { corners, ..Triangles::default() } };
-        let all = Bounds::widened(&root.bounds, 0.0);
-        let scale = (all.max - all.min).max_element().max(all.min.abs().max(all.max.abs()).max_element());
-        let margin = 1e-7 * scale.max(f64::MIN_POSITIVE);
-        let nodes = tree
-            .nodes
-            .iter()
-            .map(|n| Node {
-                bounds: Bounds::widened(&n.bounds, margin),
-                offset: n.offset as usize,
-                count: usize::from(n.count),
-            })
-            .collect();
+        let nodes = tree.f64_nodes();
         Triangles { corners, order: tree.order, nodes }
     }
 
@@ -222,7 +163,7 @@ impl Triangles {
         let mut stack = vec![0usize];
         while let Some(at) = stack.pop() {
             let node = &self.nodes[at];
-            match node.bounds.entry(ray) {
+            match node.entry(ray.origin, ray.dir, ray.t_min, ray.t_max) {
                 Some(t) if t <= limit => {}
                 _ => continue,
             }
