@@ -15,6 +15,7 @@ use glam::{Mat4, Vec3};
 use zline_scene::{Mesh, Object, Scene};
 use zline_trace::world::World;
 
+pub mod cache;
 mod error;
 pub mod hemicube;
 pub mod patch;
@@ -87,6 +88,15 @@ pub struct Solution {
 /// the solution's patches.
 pub fn solve(scene: &Scene, options: &Options) -> Result<Solution, RadiosityError> {
     let start = Instant::now();
+    let (patches, options) = mesh(scene, options)?;
+    let mut solution = solve_patches(patches, &options)?;
+    solution.took = start.elapsed();
+    Ok(solution)
+}
+
+/// The patches of `scene` and the options resolved (the patch size
+/// chosen, the resolution and step count clamped with a warning).
+pub fn mesh(scene: &Scene, options: &Options) -> Result<(Patches, Options), RadiosityError> {
     let world = World::new(scene);
     let mut options = *options;
     let size = options.patch_size.unwrap_or_else(|| {
@@ -115,7 +125,17 @@ pub fn solve(scene: &Scene, options: &Options) -> Result<Solution, RadiosityErro
         patches.warnings.push(format!("{} radiosity steps clamped to 1000000", options.max_steps));
         options.max_steps = 1_000_000;
     }
-    let tolerance = if options.tolerance.is_finite() { options.tolerance.max(0.0) } else { 1e-3 };
+    if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
+        patches.warnings.push(format!("radiosity tolerance {} taken as 0.001", options.tolerance));
+        options.tolerance = 1e-3;
+    }
+    Ok((patches, options))
+}
+
+/// Solves meshed `patches` with resolved `options` (see [`mesh`]).
+pub fn solve_patches(patches: Patches, options: &Options) -> Result<Solution, RadiosityError> {
+    let start = Instant::now();
+    let tolerance = options.tolerance;
     let (radiosity, convergence) = match options.method {
         Method::Progressive => {
             let mut cube = hemicube::Hemicube::new(options.resolution);
@@ -139,7 +159,7 @@ pub fn solve(scene: &Scene, options: &Options) -> Result<Solution, RadiosityErro
             solve::sweep(&patches.patches, &rows, method == Method::GaussSeidel, tolerance, options.max_steps)
         }
     };
-    Ok(Solution { patches, radiosity, convergence, options, took: start.elapsed() })
+    Ok(Solution { patches, radiosity, convergence, options: *options, took: start.elapsed() })
 }
 
 impl Solution {
@@ -187,6 +207,8 @@ impl Solution {
         let mut out = scene.clone();
         out.lights.clear();
         out.ambient = Vec3::ONE;
+        // Drawn by the rasterizer: a scene to be solved no more.
+        out.settings.renderer = zline_scene::trace_options::Renderer::Raster;
         out.objects.clear();
         let triangles: Vec<[u32; 3]> = self.patches.patches.iter().map(|p| p.vertices).collect();
         let mut material = zline_shading::Material::default();

@@ -26,7 +26,7 @@ pub(crate) struct Job<'a> {
     /// The tile size.
     pub(crate) options: RenderOptions,
     /// The worker threads (`--threads`).
-    pub(crate) pool: rayon::ThreadPool,
+    pub(crate) pool: std::sync::Arc<rayon::ThreadPool>,
     /// Loading and setting up an input.
     pub(crate) load: Load<'a>,
     /// The camera flags.

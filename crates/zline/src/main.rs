@@ -220,7 +220,7 @@ fn run(cli: Cli) -> Result<()> {
             common.layers.refuse("view")?;
             common.trace.check()?;
             let allow_outside = view.allow_paths_outside;
-            return view_command::run(&view, &job(&common, allow_outside)?, &common.trace, &common.radiosity);
+            return view_command::run(&view, &job(&common, allow_outside)?, &common.trace);
         }
     };
     // Everything that can be checked without the scene is checked before
@@ -375,15 +375,23 @@ fn job(common: &Common, allow_outside: bool) -> Result<job::Job<'_>> {
     if let Some(n) = threads {
         pool = pool.num_threads(n);
     }
+    let pool = std::sync::Arc::new(pool.build().context("cannot start the worker threads")?);
+    let solver = pool.clone();
     Ok(job::Job {
         output: common.output.clone(),
         timings: common.timings,
         options: RenderOptions { tile_size: common.tile_size },
-        pool: pool.build().context("cannot start the worker threads")?,
+        pool,
         load: Box::new(move |input| {
             let mut scene = load_input(input, LoadOptions { allow_outside })?;
             let framed = zline::view::is_framed(&scene);
             set_up(&mut scene, common)?;
+            // Radiosity is solved once an input; its frames only rasterize.
+            if common.trace.radiosity(&scene) {
+                scene = solver.install(|| common.radiosity.display(&scene))?;
+            } else {
+                common.radiosity.check_unused()?;
+            }
             Ok((scene, framed))
         }),
         aim: Box::new(|scene, framed, turn| apply_camera(scene, common, framed, turn)),

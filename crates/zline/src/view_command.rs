@@ -71,12 +71,7 @@ pub(crate) fn timings_arg(arg: clap::Arg) -> clap::Arg {
 
 /// Loads the input as `render` does and opens the window (or writes the
 /// first frame).
-pub(crate) fn run(
-    args: &ViewArgs,
-    job: &Job<'_>,
-    trace: &crate::cli::trace::TraceArgs,
-    radiosity: &crate::cli::radiosity::RadiosityArgs,
-) -> Result<()> {
+pub(crate) fn run(args: &ViewArgs, job: &Job<'_>, trace: &crate::cli::trace::TraceArgs) -> Result<()> {
     match &args.save_first_frame {
         Some(path) => zline::check_output(path).map_err(|e| anyhow!("{}: {e}", path.display()))?,
         // A folder that takes no file only matters when S is pressed: a
@@ -91,12 +86,6 @@ pub(crate) fn run(
     }
     let (mut scene, framed) = (job.load)(&args.input)?;
     (job.aim)(&mut scene, framed, 0.0);
-    // Radiosity is solved once; the walk-through then only rasterizes.
-    if trace.radiosity(&scene) {
-        scene = job.pool.install(|| radiosity.display(&scene))?;
-    } else {
-        radiosity.check_unused()?;
-    }
     let traced = trace.traces(&scene)?.then(|| trace.options(scene.settings.trace));
     let mut state = ViewerState::new(scene);
     if traced.is_some() {

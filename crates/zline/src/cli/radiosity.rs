@@ -1,6 +1,6 @@
 //! `--renderer radiosity` and the solver's flags (docs/SPEC.md §13).
 
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use zline::radiosity::{Method, Options};
 use zline::scene::Scene;
@@ -33,6 +33,10 @@ pub(crate) struct RadiosityArgs {
     /// of the emitted power (default 0.001).
     #[arg(long, value_name = "FRACTION")]
     pub(crate) radiosity_tolerance: Option<f64>,
+    /// Radiosity: keep the solution in FILE and reuse it while the scene
+    /// and these settings are unchanged (a turntable, the next render).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) radiosity_cache: Option<std::path::PathBuf>,
 }
 
 impl RadiosityArgs {
@@ -42,12 +46,13 @@ impl RadiosityArgs {
             || self.hemicube.is_some()
             || self.solver.is_some()
             || self.radiosity_tolerance.is_some()
+            || self.radiosity_cache.is_some()
     }
 
     /// Refuses the flags for a scene radiosity does not draw.
     pub(crate) fn check_unused(&self) -> Result<()> {
         if self.given() {
-            bail!("--patch-size, --hemicube, --solver and --radiosity-tolerance need --renderer radiosity (or renderer = \"radiosity\" in the scene file)");
+            bail!("--patch-size, --hemicube, --solver, --radiosity-tolerance and --radiosity-cache need --renderer radiosity (or renderer = \"radiosity\" in the scene file)");
         }
         Ok(())
     }
@@ -74,9 +79,42 @@ impl RadiosityArgs {
     /// Solves `scene` and returns the scene the rasterizer draws in its
     /// place, after telling what the solve did.
     pub(crate) fn display(&self, scene: &Scene) -> Result<Scene> {
-        let solution = zline::radiosity::solve(scene, &self.options())?;
-        for warning in &solution.patches.warnings {
+        use zline::radiosity::{cache, mesh, solve_patches, Solution};
+        let start = std::time::Instant::now();
+        let (patches, options) = mesh(scene, &self.options())?;
+        for warning in &patches.warnings {
             eprintln!("warning: {warning}");
+        }
+        let key = cache::fingerprint(&patches, &options);
+        let kept = self.radiosity_cache.as_deref().and_then(|path| {
+            match cache::load(path, key, patches.patches.len()) {
+                Ok(kept) => kept,
+                Err(why) => {
+                    eprintln!("warning: {}: {why}; solving again", path.display());
+                    None
+                }
+            }
+        });
+        if let (Some(radiosity), Some(path)) = (kept, &self.radiosity_cache) {
+            eprintln!(
+                "radiosity: {} patches read from {} ({:.2} s)",
+                patches.patches.len(),
+                path.display(),
+                start.elapsed().as_secs_f64()
+            );
+            let solution = Solution {
+                patches,
+                radiosity,
+                convergence: Default::default(),
+                options,
+                took: start.elapsed(),
+            };
+            return Ok(solution.display_scene(scene));
+        }
+        let solution = solve_patches(patches, &options)?;
+        if let Some(path) = &self.radiosity_cache {
+            cache::save(path, key, &solution.radiosity)
+                .with_context(|| format!("{}: cannot write the radiosity cache", path.display()))?;
         }
         let residual = solution.convergence.residuals.last().copied().unwrap_or(0.0);
         eprintln!(

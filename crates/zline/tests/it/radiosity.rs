@@ -63,3 +63,65 @@ fn radiosity_flags_without_radiosity_and_a_billion_patches_are_clean_errors() {
     ]);
     check_clean_error(&out, &["patches", "more than", "--patch-size"]);
 }
+
+#[test]
+fn a_cached_solution_is_reused_and_a_turntable_solves_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let cornell = repo().join("assets/cornell/cornell_box.toml");
+    let cache = dir.path().join("cornell.radiosity");
+    let render = |png: &std::path::Path| {
+        zline(&[
+            "render",
+            cornell.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+            "--size",
+            "96x96",
+            "--renderer",
+            "radiosity",
+            "--patch-size",
+            "150",
+            "--radiosity-cache",
+            cache.to_str().unwrap(),
+        ])
+    };
+    let (first, second, third) =
+        (dir.path().join("1.png"), dir.path().join("2.png"), dir.path().join("3.png"));
+    let a = render(&first);
+    check_png(&a, &first, (96, 96));
+    assert!(cache.exists());
+    let b = render(&second);
+    check_png(&b, &second, (96, 96));
+    let said = String::from_utf8_lossy(&b.stderr);
+    assert!(said.contains("read from"), "{said}");
+    assert_eq!(std::fs::read(&first).unwrap(), std::fs::read(&second).unwrap());
+    // A damaged file: a warning, solved again, the same picture.
+    std::fs::write(&cache, b"zline radiosity 1\nshort").unwrap();
+    let c = render(&third);
+    check_png(&c, &third, (96, 96));
+    let said = String::from_utf8_lossy(&c.stderr);
+    assert!(
+        said.contains("warning") && said.contains("cut short") && said.contains("solving again"),
+        "{said}"
+    );
+    assert_eq!(std::fs::read(&first).unwrap(), std::fs::read(&third).unwrap());
+    // A turntable of three frames: one solve.
+    let gif = dir.path().join("turn.gif");
+    let out = zline(&[
+        "turntable",
+        cornell.to_str().unwrap(),
+        "-o",
+        gif.to_str().unwrap(),
+        "--frames",
+        "3",
+        "--size",
+        "64x64",
+        "--renderer",
+        "radiosity",
+        "--patch-size",
+        "150",
+    ]);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{said}");
+    assert_eq!(said.matches("radiosity:").count(), 1, "{said}");
+}
