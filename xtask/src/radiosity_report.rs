@@ -11,7 +11,82 @@ use anyhow::{Context, Result};
 use zline::radiosity::hemicube::Hemicube;
 use zline::radiosity::{solve, Method, Options};
 
+/// A unit square at `origin` spanned by `u`, `v` (front u × v), n × n
+/// cells of two triangles.
+fn square(origin: glam::Vec3, u: glam::Vec3, v: glam::Vec3, n: usize) -> Vec<zline::radiosity::Patch> {
+    let at = |i: usize, j: usize| origin + u * (i as f32 / n as f32) + v * (j as f32 / n as f32);
+    let cells = (0..n).flat_map(|i| (0..n).map(move |j| (i, j)));
+    cells
+        .flat_map(|(i, j)| {
+            [[at(i, j), at(i + 1, j), at(i + 1, j + 1)], [at(i, j), at(i + 1, j + 1), at(i, j + 1)]]
+        })
+        .map(|corners| {
+            let cross = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+            zline::radiosity::Patch {
+                corners,
+                normal: cross.normalize(),
+                centre: (corners[0] + corners[1] + corners[2]) / 3.0,
+                area: 0.5 * cross.length(),
+                reflectance: glam::Vec3::splat(0.5),
+                emission: glam::Vec3::ZERO,
+                vertices: [0; 3],
+            }
+        })
+        .collect()
+}
+
+/// Form factors between unit squares against their closed forms: the
+/// hemicube at two resolutions and the analytic point-to-polygon form
+/// factor, each averaged over the source square's cells.
+fn closed_forms() {
+    use glam::Vec3;
+    println!(
+        "## Form factors against closed forms
+"
+    );
+    println!("| squares | exact | hemicube 100² | hemicube 400² | analytic (Lambert) |");
+    println!("|---|---:|---:|---:|---:|");
+    let cases = [
+        ("parallel, 1 apart", Vec3::new(0.0, 1.0, 1.0), Vec3::X, -Vec3::Y, 0.199_825),
+        ("perpendicular, sharing an edge", Vec3::ZERO, Vec3::Z, Vec3::X, 0.200_044),
+    ];
+    for (name, origin, u, v, exact) in cases {
+        let mut patches = square(Vec3::ZERO, Vec3::X, Vec3::Y, 16);
+        let from = patches.len();
+        patches.extend(square(origin, u, v, 1));
+        let area: f64 = patches[..from].iter().map(|p| f64::from(p.area)).sum();
+        let hemicube = |res: usize| {
+            let mut cube = Hemicube::new(res);
+            let mut row = vec![0.0f32; patches.len()];
+            let mut sum = 0.0;
+            for k in 0..from {
+                row.fill(0.0);
+                cube.gather(&patches, k, &mut row);
+                sum += f64::from(patches[k].area) * row[from..].iter().map(|&f| f64::from(f)).sum::<f64>();
+            }
+            sum / area
+        };
+        let (h100, h400) = (hemicube(100), hemicube(400));
+        let analytic: f64 = patches[..from]
+            .iter()
+            .map(|p| {
+                f64::from(p.area)
+                    * patches[from..]
+                        .iter()
+                        .map(|q| {
+                            zline::radiosity::analytic::point_to_triangle(p.centre, p.normal, &q.corners)
+                        })
+                        .sum::<f64>()
+            })
+            .sum::<f64>()
+            / area;
+        println!("| {name} | {exact} | {h100:.6} | {h400:.6} | {analytic:.6} |");
+    }
+    println!();
+}
+
 pub(crate) fn run(out: &Path) -> Result<()> {
+    closed_forms();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace");
     let scene = zline::io::load_scene(&root.join("assets/cornell/cornell_box.toml"))?;
     println!("## Radiosity: the Cornell box\n");

@@ -15,6 +15,7 @@ use glam::{Mat4, Vec3};
 use zline_scene::{Mesh, Object, Scene};
 use zline_trace::world::World;
 
+pub mod analytic;
 pub mod cache;
 mod error;
 pub mod hemicube;
