@@ -20,6 +20,7 @@ mod regress;
 mod report;
 mod report_lod;
 mod report_models;
+mod report_renderers;
 mod report_shadows;
 mod terrain;
 mod timing;

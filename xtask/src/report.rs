@@ -168,6 +168,13 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         println!("wrote {} and {}", args.out.display(), shadow_chart.display());
         return Ok(());
     }
+    let renderers_image = args.chart.with_file_name("report-renderers.png");
+    if scenes.is_empty() && args.filter.as_deref() == Some("renderers") {
+        let markdown = crate::report_renderers::section(&renderers_image)?;
+        write(&args.out, markdown.as_bytes())?;
+        println!("wrote {} and {}", args.out.display(), renderers_image.display());
+        return Ok(());
+    }
     if scenes.is_empty() && args.filter.as_deref() == Some("lod") {
         let markdown = crate::report_lod::section(&args.assets, args.frames)?;
         write(&args.out, markdown.as_bytes())?;
@@ -181,7 +188,7 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         return Ok(());
     }
     if scenes.is_empty() {
-        bail!("no scene matches the filter (\"shadows\", \"models\" or \"lod\" gives that section alone)");
+        bail!("no scene matches the filter (\"shadows\", \"models\", \"lod\" or \"renderers\" gives that section alone)");
     }
     let mut rows = Vec::new();
     for (si, rs) in scenes.iter().enumerate() {
@@ -239,6 +246,9 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         let start = Instant::now();
         markdown += &crate::report_lod::section(&args.assets, args.frames)?;
         eprintln!("simplified meshes: {:.1} s", start.elapsed().as_secs_f64());
+        let start = Instant::now();
+        markdown += &crate::report_renderers::section(&renderers_image)?;
+        eprintln!("renderers: {:.1} s", start.elapsed().as_secs_f64());
     }
     write(&args.out, markdown.as_bytes())?;
     crate::chart::draw(&args.chart, &args.font, &points, &crate::chart::SETTINGS)?;
