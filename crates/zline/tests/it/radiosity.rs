@@ -1,28 +1,25 @@
 //! `--renderer radiosity`: the solver from the command line.
 
+use std::path::Path;
+use std::process::Output;
+
 use crate::{check_clean_error, check_png, repo, zline};
+
+/// `zline render` of the Cornell box by radiosity into `png` at `size`,
+/// with `extra` flags.
+fn cornell(png: &Path, size: &str, extra: &[&str]) -> Output {
+    let scene = repo().join("assets/cornell/cornell_box.toml");
+    let mut args = vec!["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", size];
+    args.extend(["--renderer", "radiosity"]);
+    args.extend(extra);
+    zline(&args)
+}
 
 #[test]
 fn the_cornell_box_by_radiosity_is_the_same_for_any_thread_count_and_bleeds() {
     let dir = tempfile::tempdir().unwrap();
-    let cornell = repo().join("assets/cornell/cornell_box.toml");
-    let run = |png: &std::path::Path, threads: &str, solver: &str| {
-        zline(&[
-            "render",
-            cornell.to_str().unwrap(),
-            "-o",
-            png.to_str().unwrap(),
-            "--size",
-            "128x128",
-            "--renderer",
-            "radiosity",
-            "--patch-size",
-            "120",
-            "--solver",
-            solver,
-            "--threads",
-            threads,
-        ])
+    let run = |png: &Path, threads: &str, solver: &str| {
+        cornell(png, "128x128", &["--patch-size", "120", "--solver", solver, "--threads", threads])
     };
     let (one, two) = (dir.path().join("one.png"), dir.path().join("two.png"));
     let (a, b) = (run(&one, "1", "progressive"), run(&two, "2", "progressive"));
@@ -67,23 +64,9 @@ fn radiosity_flags_without_radiosity_and_a_billion_patches_are_clean_errors() {
 #[test]
 fn a_cached_solution_is_reused_and_a_turntable_solves_once() {
     let dir = tempfile::tempdir().unwrap();
-    let cornell = repo().join("assets/cornell/cornell_box.toml");
     let cache = dir.path().join("cornell.radiosity");
-    let render = |png: &std::path::Path| {
-        zline(&[
-            "render",
-            cornell.to_str().unwrap(),
-            "-o",
-            png.to_str().unwrap(),
-            "--size",
-            "96x96",
-            "--renderer",
-            "radiosity",
-            "--patch-size",
-            "150",
-            "--radiosity-cache",
-            cache.to_str().unwrap(),
-        ])
+    let render = |png: &Path| {
+        cornell(png, "96x96", &["--patch-size", "150", "--radiosity-cache", cache.to_str().unwrap()])
     };
     let (first, second, third) =
         (dir.path().join("1.png"), dir.path().join("2.png"), dir.path().join("3.png"));
@@ -107,9 +90,10 @@ fn a_cached_solution_is_reused_and_a_turntable_solves_once() {
     assert_eq!(std::fs::read(&first).unwrap(), std::fs::read(&third).unwrap());
     // A turntable of three frames: one solve.
     let gif = dir.path().join("turn.gif");
+    let scene = repo().join("assets/cornell/cornell_box.toml");
     let out = zline(&[
         "turntable",
-        cornell.to_str().unwrap(),
+        scene.to_str().unwrap(),
         "-o",
         gif.to_str().unwrap(),
         "--frames",
