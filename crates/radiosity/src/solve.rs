@@ -21,6 +21,10 @@ use rayon::prelude::*;
 use crate::hemicube::Hemicube;
 use crate::patch::Patch;
 
+/// Progressive refinement keeps every shooter's row when all of them fit
+/// in this many bytes (a hemicube draws the same row each time).
+const ROW_CACHE_BYTES: usize = 512 << 20;
+
 /// How the equation is solved.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Method {
@@ -125,6 +129,8 @@ pub fn progressive(
     let mut unshot = b.clone();
     let mut convergence = Convergence::default();
     let mut row = vec![0.0f32; patches.len()];
+    let keep = patches.len() * patches.len() * 4 <= ROW_CACHE_BYTES;
+    let mut kept: Vec<Option<Vec<f32>>> = if keep { vec![None; patches.len()] } else { Vec::new() };
     for _ in 0..max_steps {
         let residual = power(patches, unshot.iter().copied()) / emitted;
         if residual <= tolerance {
@@ -135,20 +141,31 @@ pub fn progressive(
             .enumerate()
             .map(|(i, p)| (i, unshot[i].element_sum() * p.area))
             .fold((0, f32::NEG_INFINITY), |best, c| if c.1 > best.1 { c } else { best });
-        row.fill(0.0);
-        if area {
-            cube.gather_area(patches, i, &mut row);
-            convergence.hemicubes += 4;
-        } else {
-            cube.gather(patches, i, &mut row);
-            convergence.hemicubes += 1;
-        }
+        // A patch shoots several times (4.4 times a patch on the Cornell
+        // box): its row is kept after the first, within the budget.
+        let row: &[f32] = match kept.get(i) {
+            Some(Some(row)) => row,
+            _ => {
+                row.fill(0.0);
+                if area {
+                    cube.gather_area(patches, i, &mut row);
+                    convergence.hemicubes += 4;
+                } else {
+                    cube.gather(patches, i, &mut row);
+                    convergence.hemicubes += 1;
+                }
+                match kept.get_mut(i) {
+                    Some(slot) => slot.insert(row.clone()),
+                    None => &row,
+                }
+            }
+        };
         let shot = unshot[i];
         unshot[i] = Vec3::ZERO;
-        let area = patches[i].area;
+        let shooter = patches[i].area;
         for (j, q) in patches.iter().enumerate() {
             if row[j] > 0.0 {
-                let gained = q.reflectance * shot * (row[j] * area / q.area);
+                let gained = q.reflectance * shot * (row[j] * shooter / q.area);
                 b[j] += gained;
                 unshot[j] += gained;
             }
