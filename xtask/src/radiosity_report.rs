@@ -20,18 +20,7 @@ fn square(origin: glam::Vec3, u: glam::Vec3, v: glam::Vec3, n: usize) -> Vec<zli
         .flat_map(|(i, j)| {
             [[at(i, j), at(i + 1, j), at(i + 1, j + 1)], [at(i, j), at(i + 1, j + 1), at(i, j + 1)]]
         })
-        .map(|corners| {
-            let cross = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
-            zline::radiosity::Patch {
-                corners,
-                normal: cross.normalize(),
-                centre: (corners[0] + corners[1] + corners[2]) / 3.0,
-                area: 0.5 * cross.length(),
-                reflectance: glam::Vec3::splat(0.5),
-                emission: glam::Vec3::ZERO,
-                vertices: [0; 3],
-            }
-        })
+        .filter_map(|corners| zline::radiosity::Patch::new(corners, glam::Vec3::splat(0.5), glam::Vec3::ZERO))
         .collect()
 }
 

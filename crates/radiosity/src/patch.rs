@@ -39,6 +39,25 @@ pub struct Patch {
     pub vertices: [u32; 3],
 }
 
+impl Patch {
+    /// The patch with `corners` (its normal, centre and area derived from
+    /// them), `None` for zero or non-finite area; `vertices` all 0.
+    pub fn new(corners: [Vec3; 3], reflectance: Vec3, emission: Vec3) -> Option<Patch> {
+        let [p0, p1, p2] = corners;
+        let cross = (p1 - p0).cross(p2 - p0);
+        let area = 0.5 * cross.length();
+        (area > 0.0 && area.is_finite()).then(|| Patch {
+            corners,
+            normal: cross / (2.0 * area),
+            centre: (p0 + p1 + p2) / 3.0,
+            area,
+            reflectance,
+            emission,
+            vertices: [0; 3],
+        })
+    }
+}
+
 /// The scene's patches and the corners they share.
 #[derive(Clone, Debug, Default)]
 pub struct Patches {
@@ -105,13 +124,11 @@ impl Patches {
                 })
             };
             let mut emit = |corners: [(Vec3, Vec2); 3], out: &mut Patches| {
-                let [p0, p1, p2] = corners.map(|c| c.0);
-                let cross = (p1 - p0).cross(p2 - p0);
-                let area = 0.5 * cross.length();
-                if !(area > 0.0 && area.is_finite()) {
+                let Some(mut patch) =
+                    Patch::new(corners.map(|c| c.0), Vec3::ZERO, material.ke.max(Vec3::ZERO))
+                else {
                     return;
-                }
-                let centre = (p0 + p1 + p2) / 3.0;
+                };
                 let mut kd = material.kd;
                 if let Some(texture) = &surface.texture {
                     let mid = (corners[0].1 + corners[1].1 + corners[2].1) / 3.0;
@@ -140,17 +157,9 @@ impl Patches {
                     reflectance = reflectance.clamp(Vec3::ZERO, Vec3::splat(MAX_REFLECTANCE));
                     clamped += 1;
                 }
-                let normal = cross / (2.0 * area);
-                let vertices = [corner(p0, normal, out), corner(p1, normal, out), corner(p2, normal, out)];
-                out.patches.push(Patch {
-                    corners: [p0, p1, p2],
-                    normal,
-                    centre,
-                    area,
-                    reflectance,
-                    emission: material.ke.max(Vec3::ZERO),
-                    vertices,
-                });
+                patch.reflectance = reflectance;
+                patch.vertices = patch.corners.map(|p| corner(p, patch.normal, out));
+                out.patches.push(patch);
             };
             for i in 0..k {
                 for j in 0..k - i {

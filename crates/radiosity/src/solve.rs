@@ -127,12 +127,14 @@ pub fn progressive(
     let emitted = power(patches, patches.iter().map(|p| p.emission)).max(f64::MIN_POSITIVE);
     let mut b: Vec<Vec3> = patches.iter().map(|p| p.emission).collect();
     let mut unshot = b.clone();
+    // The unshot power over the emitted: 1 at the start (0 when nothing
+    // emits), then after each shot.
+    let mut residual = power(patches, unshot.iter().copied()) / emitted;
     let mut convergence = Convergence::default();
     let mut row = vec![0.0f32; patches.len()];
     let keep = patches.len() * patches.len() * 4 <= ROW_CACHE_BYTES;
     let mut kept: Vec<Option<Vec<f32>>> = if keep { vec![None; patches.len()] } else { Vec::new() };
     for _ in 0..max_steps {
-        let residual = power(patches, unshot.iter().copied()) / emitted;
         if residual <= tolerance {
             break;
         }
@@ -170,7 +172,8 @@ pub fn progressive(
                 unshot[j] += gained;
             }
         }
-        convergence.residuals.push(power(patches, unshot.iter().copied()) / emitted);
+        residual = power(patches, unshot.iter().copied()) / emitted;
+        convergence.residuals.push(residual);
     }
     if ambient {
         let total: f32 = patches.iter().map(|p| p.area).sum();

@@ -16,17 +16,7 @@ fn square(origin: Vec3, u: Vec3, v: Vec3, n: usize, rho: f32, e: f32) -> Vec<Pat
             for corners in
                 [[at(i, j), at(i + 1, j), at(i + 1, j + 1)], [at(i, j), at(i + 1, j + 1), at(i, j + 1)]]
             {
-                let cross = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
-                let area = 0.5 * cross.length();
-                out.push(Patch {
-                    corners,
-                    normal: cross.normalize(),
-                    centre: (corners[0] + corners[1] + corners[2]) / 3.0,
-                    area,
-                    reflectance: Vec3::splat(rho),
-                    emission: Vec3::splat(e),
-                    vertices: [0; 3],
-                });
+                out.push(Patch::new(corners, Vec3::splat(rho), Vec3::splat(e)).expect("half a cell"));
             }
         }
     }
