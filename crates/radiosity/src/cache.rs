@@ -1,9 +1,10 @@
 //! A solution kept in a file, so that the turns of a turntable or the next
 //! render of the same scene are not solved again. The file holds the
 //! radiosities only, after a fingerprint of what they were solved from
-//! (every patch's corners, ρ and E, and the solver's options, FNV-1a over
-//! their bits): meshing again is quick and gives the same patches, and a
-//! fingerprint that differs means a stale file, solved again.
+//! (every patch's corners, ρ, E and the lights' first reflection D, and
+//! the solver's options, FNV-1a over their bits): meshing again is quick
+//! and gives the same patches, and a fingerprint that differs means a
+//! stale file, solved again.
 //!
 //! Layout: `zline radiosity 1\n`, the fingerprint and the patch count as
 //! little-endian u64, then R, G, B as little-endian f32 for every patch.
@@ -26,7 +27,7 @@ pub fn fingerprint(patches: &Patches, options: &Options) -> u64 {
         }
     };
     for p in &patches.patches {
-        for v in p.corners.iter().chain([&p.reflectance, &p.emission]) {
+        for v in p.corners.iter().chain([&p.reflectance, &p.emission, &p.direct]) {
             v.to_array().iter().for_each(|c| eat(u64::from(c.to_bits())));
         }
     }
@@ -35,6 +36,7 @@ pub fn fingerprint(patches: &Patches, options: &Options) -> u64 {
     eat(options.tolerance.to_bits());
     eat(options.max_steps as u64);
     eat(u64::from(options.area_shooting));
+    eat(u64::from(options.lights));
     hash
 }
 

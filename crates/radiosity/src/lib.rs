@@ -2,9 +2,10 @@
 //! model. Every surface is an ideal diffuse reflector cut into patches of
 //! constant radiosity ([`patch`]); the form factors come from hemicubes
 //! drawn with zline's scan converter and z-buffer ([`hemicube`]); the
-//! equation B_i = E_i + ρ_i Σ_j F_ij B_j is solved once, independently of
-//! the viewpoint, by Jacobi, Gauss–Seidel or progressive refinement
-//! ([`solve`]). The solution is drawn by the rasterizer: radiosities
+//! scene's lights are shot once, first, as point sources ([`lights`]); the
+//! equation B_i = E_i + D_i + ρ_i Σ_j F_ij B_j is solved once,
+//! independently of the viewpoint, by Jacobi, Gauss–Seidel or progressive
+//! refinement ([`solve`]). The solution is drawn by the rasterizer: radiosities
 //! averaged to the patches' corners and Gouraud-interpolated
 //! ([`Solution::display_scene`]), so a new viewpoint costs one frame.
 
@@ -19,13 +20,15 @@ pub mod analytic;
 pub mod cache;
 mod error;
 pub mod hemicube;
+pub mod lights;
 pub mod patch;
 pub mod solve;
 
 pub use error::RadiosityError;
 
 pub use patch::{Patch, Patches};
-pub use solve::{Convergence, Method};
+pub use solve::Convergence;
+pub use zline_scene::radiosity_options::{Method, RadiosityOptions as Options, MAX_RESOLUTION};
 
 /// The most patches a solve accepts (a 4 GB form-factor matrix for the
 /// sweeps; progressive refinement keeps no matrix).
@@ -33,40 +36,6 @@ pub const MAX_PATCHES: usize = 1 << 16;
 /// The most patches Jacobi and Gauss–Seidel accept (their matrix of form
 /// factors: 1 GiB).
 pub const MAX_MATRIX_PATCHES: usize = 1 << 14;
-/// The most hemicube resolution accepted.
-pub const MAX_RESOLUTION: usize = 2048;
-
-/// How to solve.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Options {
-    /// The longest patch edge, in world units; `None`: 1/16 of the
-    /// scene's largest extent.
-    pub patch_size: Option<f32>,
-    /// The hemicube's top-face resolution (pixels a side).
-    pub resolution: usize,
-    /// The solver.
-    pub method: Method,
-    /// Stop when the residual is at most this (see [`solve`]).
-    pub tolerance: f64,
-    /// Stop after this many sweeps or shots.
-    pub max_steps: usize,
-    /// Progressive refinement shoots from four points of a patch, not its
-    /// centre (four hemicubes a shot; closer to reciprocity).
-    pub area_shooting: bool,
-}
-
-impl Default for Options {
-    fn default() -> Options {
-        Options {
-            patch_size: None,
-            resolution: 100,
-            method: Method::Progressive,
-            tolerance: 1e-3,
-            max_steps: 100_000,
-            area_shooting: false,
-        }
-    }
-}
 
 /// A solved scene.
 #[derive(Clone, Debug)]
@@ -111,10 +80,14 @@ pub fn mesh(scene: &Scene, options: &Options) -> Result<(Patches, Options), Radi
     });
     options.patch_size = Some(size);
     let mut patches = Patches::new(&world, size, MAX_PATCHES)?;
-    if patches.emitted() == Vec3::ZERO {
-        patches
-            .warnings
-            .push("no surface emits light (every material's ke is 0): radiosity is 0 everywhere".into());
+    if options.lights {
+        lights::light(&mut patches.patches, &world, &scene.lights);
+    }
+    if patches.sourced() == Vec3::ZERO {
+        let lights = if options.lights { "no light reaches a surface" } else { "the scene's lights are off" };
+        patches.warnings.push(format!(
+            "nothing lights the scene (no material emits, its ke is 0, and {lights}): radiosity is 0 everywhere"
+        ));
     }
     if options.resolution > MAX_RESOLUTION {
         patches
@@ -179,7 +152,9 @@ impl Solution {
     }
 
     /// The display's scale: emission is at most 1 (a material's ke), so a
-    /// room's walls come out far darker; B is shown times the scale that
+    /// room's walls come out far darker, and interreflection brightens a
+    /// room lit by lights past the local model's range; B is shown times
+    /// the scale that
     /// puts the 99th percentile of the patches that emit nothing (their
     /// brightest channel) at 0.85.
     pub fn display_scale(&self) -> f32 {

@@ -35,13 +35,19 @@ pub struct Patch {
     pub reflectance: Vec3,
     /// E per channel (radiant exitance of the surface's own light).
     pub emission: Vec3,
+    /// The scene's lights reflected once: ρ times their irradiance,
+    /// averaged over the patch (see [`crate::lights`]); 0 until lit.
+    pub direct: Vec3,
+    /// The index of the world triangle it was cut from.
+    pub triangle: u32,
     /// Its corners' indices in [`Patches::vertices`].
     pub vertices: [u32; 3],
 }
 
 impl Patch {
     /// The patch with `corners` (its normal, centre and area derived from
-    /// them), `None` for zero or non-finite area; `vertices` all 0.
+    /// them), `None` for zero or non-finite area; `vertices`, `direct`
+    /// and `triangle` all 0.
     pub fn new(corners: [Vec3; 3], reflectance: Vec3, emission: Vec3) -> Option<Patch> {
         let [p0, p1, p2] = corners;
         let cross = (p1 - p0).cross(p2 - p0);
@@ -53,8 +59,17 @@ impl Patch {
             area,
             reflectance,
             emission,
+            direct: Vec3::ZERO,
+            triangle: 0,
             vertices: [0; 3],
         })
+    }
+
+    /// What the patch gives out before any interreflection: its emission
+    /// and the scene's lights reflected once, E + D.
+    #[inline]
+    pub fn source(&self) -> Vec3 {
+        self.emission + self.direct
     }
 }
 
@@ -158,6 +173,7 @@ impl Patches {
                     clamped += 1;
                 }
                 patch.reflectance = reflectance;
+                patch.triangle = index as u32;
                 patch.vertices = patch.corners.map(|p| corner(p, patch.normal, out));
                 out.patches.push(patch);
             };
@@ -184,5 +200,11 @@ impl Patches {
     /// The total emitted power Σ E·A (per channel).
     pub fn emitted(&self) -> Vec3 {
         self.patches.iter().map(|p| p.emission * p.area).sum()
+    }
+
+    /// The total source power Σ (E + D)·A (per channel): the emitted and
+    /// the lights' first reflection.
+    pub fn sourced(&self) -> Vec3 {
+        self.patches.iter().map(|p| p.source() * p.area).sum()
     }
 }

@@ -1,5 +1,6 @@
-//! The discrete radiosity equation B_i = E_i + ρ_i Σ_j F_ij B_j, per
-//! channel, solved three ways:
+//! The discrete radiosity equation B_i = S_i + ρ_i Σ_j F_ij B_j, per
+//! channel, solved three ways. The source S_i = E_i + D_i is the patch's
+//! emission and the scene's lights reflected once ([`Patch::source`]).
 //!
 //! - **Jacobi**: every B_i from the previous sweep's B (the full matrix of
 //!   form factors first, a hemicube a patch).
@@ -11,7 +12,7 @@
 //!   the light not yet shot when the solution is displayed.
 //!
 //! The residual after each step, comparable across the three: the power
-//! the step left to move over the emitted power, Σ|ΔB_i|·A_i / Σ E_i·A_i
+//! the step left to move over the source power, Σ|ΔB_i|·A_i / Σ S_i·A_i
 //! (channels summed): for a sweep the change it made, for a shot the
 //! unshot power.
 
@@ -24,29 +25,6 @@ use crate::patch::Patch;
 /// Progressive refinement keeps every shooter's row when all of them fit
 /// in this many bytes (a hemicube draws the same row each time).
 const ROW_CACHE_BYTES: usize = 512 << 20;
-
-/// How the equation is solved.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Method {
-    /// Sweeps over the matrix, each from the previous sweep's values.
-    Jacobi,
-    /// Sweeps over the matrix, each reading the values already updated.
-    GaussSeidel,
-    /// Shooting the most unshot power first, no matrix.
-    #[default]
-    Progressive,
-}
-
-impl Method {
-    /// The name the command line uses.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Jacobi => "jacobi",
-            Method::GaussSeidel => "gauss-seidel",
-            Method::Progressive => "progressive",
-        }
-    }
-}
 
 /// How a solve went.
 #[derive(Clone, Debug, Default)]
@@ -78,7 +56,7 @@ pub fn matrix(patches: &[Patch], res: usize) -> Vec<Vec<f32>> {
         .collect()
 }
 
-/// Jacobi or Gauss–Seidel sweeps over `rows` from B = E until the
+/// Jacobi or Gauss–Seidel sweeps over `rows` from B = S until the
 /// residual is at most `tolerance` or `max_steps` sweeps.
 pub fn sweep(
     patches: &[Patch],
@@ -87,8 +65,8 @@ pub fn sweep(
     tolerance: f64,
     max_steps: usize,
 ) -> (Vec<Vec3>, Convergence) {
-    let emitted = power(patches, patches.iter().map(|p| p.emission)).max(f64::MIN_POSITIVE);
-    let mut b: Vec<Vec3> = patches.iter().map(|p| p.emission).collect();
+    let sourced = power(patches, patches.iter().map(Patch::source)).max(f64::MIN_POSITIVE);
+    let mut b: Vec<Vec3> = patches.iter().map(Patch::source).collect();
     let mut next = b.clone();
     let mut convergence = Convergence { residuals: Vec::new(), hemicubes: rows.len() };
     for _ in 0..max_steps {
@@ -97,12 +75,12 @@ pub fn sweep(
             let source = if seidel { &next } else { &b };
             let gathered: Vec3 =
                 rows[i].iter().zip(source).filter(|(f, _)| **f > 0.0).map(|(&f, &bj)| f * bj).sum();
-            let value = p.emission + p.reflectance * gathered;
+            let value = p.source() + p.reflectance * gathered;
             moved += f64::from((value - next[i]).abs().element_sum() * p.area);
             next[i] = value;
         }
         b.copy_from_slice(&next);
-        let residual = moved / emitted;
+        let residual = moved / sourced;
         convergence.residuals.push(residual);
         if residual <= tolerance {
             break;
@@ -111,8 +89,8 @@ pub fn sweep(
     (b, convergence)
 }
 
-/// Progressive refinement from B = ΔB = E until the unshot power is at
-/// most `tolerance` of the emitted or `max_steps` shots, each from the
+/// Progressive refinement from B = ΔB = S until the unshot power is at
+/// most `tolerance` of the source power or `max_steps` shots, each from the
 /// shooter's centre, or from its four quarters when `area`
 /// ([`Hemicube::gather_area`]); returns B, with the ambient term added
 /// when `ambient`.
@@ -124,12 +102,12 @@ pub fn progressive(
     area: bool,
     ambient: bool,
 ) -> (Vec<Vec3>, Convergence) {
-    let emitted = power(patches, patches.iter().map(|p| p.emission)).max(f64::MIN_POSITIVE);
-    let mut b: Vec<Vec3> = patches.iter().map(|p| p.emission).collect();
+    let sourced = power(patches, patches.iter().map(Patch::source)).max(f64::MIN_POSITIVE);
+    let mut b: Vec<Vec3> = patches.iter().map(Patch::source).collect();
     let mut unshot = b.clone();
-    // The unshot power over the emitted: 1 at the start (0 when nothing
+    // The unshot power over the source power: 1 at the start (0 when nothing
     // emits), then after each shot.
-    let mut residual = power(patches, unshot.iter().copied()) / emitted;
+    let mut residual = power(patches, unshot.iter().copied()) / sourced;
     let mut convergence = Convergence::default();
     let mut row = vec![0.0f32; patches.len()];
     let keep = patches.len() * patches.len() * 4 <= ROW_CACHE_BYTES;
@@ -172,7 +150,7 @@ pub fn progressive(
                 unshot[j] += gained;
             }
         }
-        residual = power(patches, unshot.iter().copied()) / emitted;
+        residual = power(patches, unshot.iter().copied()) / sourced;
         convergence.residuals.push(residual);
     }
     if ambient {

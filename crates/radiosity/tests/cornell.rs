@@ -8,7 +8,8 @@ use zline_radiosity::{solve, Method, Options};
 fn the_cornell_box_bleeds_red_and_green_onto_the_white_walls() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/cornell/cornell_box.toml");
     let scene = zline_io::load_scene(&path).expect("the shipped Cornell box loads");
-    let options = Options { method: Method::Progressive, patch_size: Some(100.0), ..Options::default() };
+    let options =
+        Options { method: Method::Progressive, patch_size: Some(100.0), ..scene.settings.radiosity };
     let solution = solve(&scene, &options).unwrap();
     let n = solution.patches.patches.len();
     let residual = solution.convergence.residuals.last().copied().unwrap_or(1.0);
@@ -44,20 +45,20 @@ fn bad_input_is_refused_or_clamped_with_a_message() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/cornell/cornell_box.toml");
     let scene = zline_io::load_scene(&path).unwrap();
     // A patch size that would give billions of patches: refused at once.
-    let tiny = Options { patch_size: Some(1e-4), ..Options::default() };
+    let tiny = Options { patch_size: Some(1e-4), ..scene.settings.radiosity };
     let started = std::time::Instant::now();
     let error = solve(&scene, &tiny).err().map(|e| e.to_string()).unwrap_or_default();
     assert!(error.contains("patches") && error.contains("--patch-size"), "{error}");
     assert!(started.elapsed().as_secs_f32() < 1.0);
     for size in [0.0, -1.0, f32::NAN, f32::INFINITY] {
-        let error = solve(&scene, &Options { patch_size: Some(size), ..Options::default() })
+        let error = solve(&scene, &Options { patch_size: Some(size), ..scene.settings.radiosity })
             .err()
             .map(|e| e.to_string())
             .unwrap_or_default();
         assert!(error.contains("not a positive length"), "{size}: {error}");
     }
     // The sweeps' matrix beyond its bound: refused before it is made.
-    let big = Options { patch_size: Some(12.0), method: Method::Jacobi, ..Options::default() };
+    let big = Options { patch_size: Some(12.0), method: Method::Jacobi, ..scene.settings.radiosity };
     let error = solve(&scene, &big).err().map(|e| e.to_string()).unwrap_or_default();
     assert!(error.contains("matrix") && error.contains("--solver progressive"), "{error}");
     // A reflectance at or above 1: clamped, with a warning.
@@ -67,7 +68,7 @@ fn bad_input_is_refused_or_clamped_with_a_message() {
         m.kd = glam::Vec3::splat(1.5);
         object.material = Some(m);
     }
-    let coarse = Options { patch_size: Some(200.0), max_steps: 50, ..Options::default() };
+    let coarse = Options { patch_size: Some(200.0), max_steps: 50, ..scene.settings.radiosity };
     let solution = solve(&bright, &coarse).unwrap();
     assert!(
         solution.patches.warnings.iter().any(|w| w.contains("clamped")),

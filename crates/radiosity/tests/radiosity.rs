@@ -3,7 +3,8 @@
 
 use glam::Vec3;
 use zline_radiosity::hemicube::Hemicube;
-use zline_radiosity::solve::{self, Method};
+use zline_radiosity::solve;
+use zline_radiosity::Method;
 use zline_radiosity::Patch;
 
 /// The unit square at `origin` spanned by `u` and `v` (front side u × v),

@@ -25,6 +25,7 @@ mod model;
 mod normal_map;
 mod occluders;
 mod primitives;
+pub mod radiosity_options;
 pub mod sah;
 mod shadow;
 pub mod trace_options;

@@ -312,6 +312,8 @@ pub struct RenderSettings {
     pub renderer: crate::trace_options::Renderer,
     /// How the ray tracer traces, when it draws.
     pub trace: crate::trace_options::TraceOptions,
+    /// How radiosity meshes and solves, when it draws.
+    pub radiosity: crate::radiosity_options::RadiosityOptions,
 }
 
 /// Where untextured Gouraud shading clamps the lit colour to [0, 1] (SPEC
@@ -412,6 +414,7 @@ impl Default for RenderSettings {
             tone_mapping: zline_shading::ToneMapping::default(),
             renderer: crate::trace_options::Renderer::Raster,
             trace: crate::trace_options::TraceOptions::DEFAULT,
+            radiosity: crate::radiosity_options::RadiosityOptions::DEFAULT,
         }
     }
 }

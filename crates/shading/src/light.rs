@@ -208,6 +208,26 @@ impl Light {
         }
     }
 
+    /// The unit vector from `point` towards the light and the intensity
+    /// that reaches it, attenuated (SPEC §5); `None` for a point light at `point`.
+    #[inline]
+    pub fn incident(&self, point: Vec3) -> Option<(Vec3, Vec3)> {
+        match *self {
+            Light::Point { position, color, attenuation } => {
+                let d = position - point;
+                let dist = d.length();
+                (dist != 0.0).then(|| (d / dist, color * attenuation.factor(dist)))
+            }
+            Light::Spot { position, direction, color, attenuation, cone } => {
+                let d = position - point;
+                let dist = d.length();
+                let cos_axis = direction.normalize_or_zero().dot(-d / dist);
+                (dist != 0.0).then(|| (d / dist, color * (attenuation.factor(dist) * cone.factor(cos_axis))))
+            }
+            Light::Directional { direction, color } => Some((-direction.normalize_or_zero(), color)),
+        }
+    }
+
     /// The light's position, for the lights that have one (point, spot).
     #[inline]
     pub fn position(&self) -> Option<Vec3> {

@@ -103,7 +103,7 @@ impl LightingModel {
             let (alpha2, (_, f0)) = (m.alpha2(), m.colors(material.kd));
             let mut sums = MicrofacetSums::default();
             for (k, light) in self.lights.iter().enumerate() {
-                let Some((to_light, mut intensity)) = incident(light, point) else { continue };
+                let Some((to_light, mut intensity)) = light.incident(point) else { continue };
                 if let Some(f) = seen(k, to_light) {
                     intensity *= f;
                 }
@@ -123,7 +123,7 @@ impl LightingModel {
         let mut specular = Vec3::ZERO;
         let specular_on = material.has_specular();
         for (k, light) in self.lights.iter().enumerate() {
-            let Some((to_light, mut intensity)) = incident(light, point) else { continue };
+            let Some((to_light, mut intensity)) = light.incident(point) else { continue };
             let n_dot_l = normal.dot(to_light);
             if n_dot_l <= 0.0 {
                 continue;
@@ -146,26 +146,6 @@ impl LightingModel {
             ambient_diffuse: material.ka * ambient + material.kd * diffuse,
             specular: material.ke + material.ks * specular,
         }
-    }
-}
-
-/// The unit vector from `point` towards `light` and the intensity that
-/// reaches it, attenuated (SPEC §5); `None` for a point light at `point`.
-#[inline]
-fn incident(light: &Light, point: Vec3) -> Option<(Vec3, Vec3)> {
-    match *light {
-        Light::Point { position, color, attenuation } => {
-            let d = position - point;
-            let dist = d.length();
-            (dist != 0.0).then(|| (d / dist, color * attenuation.factor(dist)))
-        }
-        Light::Spot { position, direction, color, attenuation, cone } => {
-            let d = position - point;
-            let dist = d.length();
-            let cos_axis = direction.normalize_or_zero().dot(-d / dist);
-            (dist != 0.0).then(|| (d / dist, color * (attenuation.factor(dist) * cone.factor(cos_axis))))
-        }
-        Light::Directional { direction, color } => Some((-direction.normalize_or_zero(), color)),
     }
 }
 

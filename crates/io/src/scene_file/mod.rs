@@ -38,6 +38,7 @@ mod checks;
 mod lights;
 mod material;
 mod models;
+mod radiosity;
 mod raytrace;
 mod render;
 mod view;
@@ -82,7 +83,7 @@ use view::{CameraDef, EnvironmentDef, FogDef};
 /// transparent_background = false    # true: RGBA output, alpha 0 where nothing is drawn, alpha = coverage
 /// tonemap = "none"                  # none | khr-pbr-neutral | aces (SPEC §10; the last two end in sRGB)
 /// exposure = 1.0                    # multiplies the colour before the tone mapping, ≥ 0
-/// renderer = "raster"               # raster (default) | raytrace: Whitted ray tracing (SPEC §12)
+/// renderer = "raster"               # raster (default) | raytrace: Whitted ray tracing (SPEC §12) | radiosity (SPEC §13)
 ///
 /// [raytrace]                        # the ray tracer's settings (used when it draws)
 /// depth = 8                         # the ray tree's depth limit, 1..=64; default 8
@@ -93,6 +94,13 @@ use view::{CameraDef, EnvironmentDef, FogDef};
 /// adaptive = false                  # true: the course's adaptive supersampling instead
 /// adaptive_depth = 3                # cuts of a pixel at most, 0..=4 (implies adaptive)
 /// adaptive_threshold = 0.0625       # display-value difference that cuts a square, in [0, 1]
+///
+/// [radiosity]                       # radiosity's settings (used when it draws)
+/// patch_size = 0.25                 # the longest patch edge in world units, > 0; default 1/16 of the scene
+/// hemicube = 100                    # pixels along the hemicube's top face, 2..=2048; default 100
+/// solver = "progressive"            # progressive (default) | jacobi | gauss-seidel
+/// tolerance = 0.001                 # stop at this share of the source power left to move, in [0, 1]
+/// lights = true                     # false: only emitting surfaces light the scene, not its lights
 ///
 /// [camera]                          # omitted: the scene is framed
 /// eye = [0, 1, 5]                   # required
@@ -226,6 +234,7 @@ struct SceneFile {
     ambient: Option<S<[f32; 3]>>,
     render: Option<RenderDef>,
     raytrace: Option<raytrace::RayTraceDef>,
+    radiosity: Option<radiosity::RadiosityDef>,
     camera: Option<S<CameraDef>>,
     lights: Option<Vec<S<LightDef>>>,
     fog: Option<S<FogDef>>,
@@ -289,6 +298,7 @@ impl Builder<'_> {
         let mut shadows = shadows(&self.check, file.render.as_ref())?;
         let mut settings = settings(&self.check, file.render)?;
         settings.trace = raytrace::options(&self.check, file.raytrace)?;
+        settings.radiosity = radiosity::options(&self.check, file.radiosity)?;
         let background = match &file.background {
             Some(c) => self.check.vec3_in(c, "background", 0.0, 1.0)?,
             None => DEFAULT_BACKGROUND,

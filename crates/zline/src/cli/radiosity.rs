@@ -37,6 +37,19 @@ pub(crate) struct RadiosityArgs {
     /// and these settings are unchanged (a turntable, the next render).
     #[arg(long, value_name = "FILE")]
     pub(crate) radiosity_cache: Option<std::path::PathBuf>,
+    /// Radiosity: whether the scene's lights (point, spot, directional,
+    /// area) shoot first besides the emitting surfaces (default on).
+    #[arg(long, value_name = "on|off", value_parser = parse_on_off)]
+    pub(crate) radiosity_lights: Option<bool>,
+}
+
+/// `on` or `off`.
+fn parse_on_off(s: &str) -> Result<bool, String> {
+    match s {
+        "on" => Ok(true),
+        "off" => Ok(false),
+        _ => Err(format!("expected on or off, got {s:?}")),
+    }
 }
 
 impl RadiosityArgs {
@@ -47,19 +60,27 @@ impl RadiosityArgs {
             || self.solver.is_some()
             || self.radiosity_tolerance.is_some()
             || self.radiosity_cache.is_some()
+            || self.radiosity_lights.is_some()
     }
 
     /// Refuses the flags for a scene radiosity does not draw.
     pub(crate) fn check_unused(&self) -> Result<()> {
         if self.given() {
-            bail!("--patch-size, --hemicube, --solver, --radiosity-tolerance and --radiosity-cache need --renderer radiosity (or renderer = \"radiosity\" in the scene file)");
+            bail!("--patch-size, --hemicube, --solver, --radiosity-tolerance, --radiosity-lights and --radiosity-cache need --renderer radiosity (or renderer = \"radiosity\" in the scene file)");
         }
         Ok(())
     }
 
-    /// The solver's options from the flags.
-    pub(crate) fn options(&self) -> Options {
-        let mut o = Options { patch_size: self.patch_size, ..Options::default() };
+    /// The solver's options: the scene file's (`base`), with the flags
+    /// given over them.
+    pub(crate) fn options(&self, base: Options) -> Options {
+        let mut o = base;
+        if let Some(size) = self.patch_size {
+            o.patch_size = Some(size);
+        }
+        if let Some(lights) = self.radiosity_lights {
+            o.lights = lights;
+        }
         if let Some(n) = self.hemicube {
             o.resolution = n;
         }
@@ -81,7 +102,7 @@ impl RadiosityArgs {
     pub(crate) fn display(&self, scene: &Scene) -> Result<Scene> {
         use zline::radiosity::{cache, mesh, solve_patches, Solution};
         let start = std::time::Instant::now();
-        let (patches, options) = mesh(scene, &self.options())?;
+        let (patches, options) = mesh(scene, &self.options(scene.settings.radiosity))?;
         for warning in &patches.warnings {
             eprintln!("warning: {warning}");
         }

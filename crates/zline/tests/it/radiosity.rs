@@ -3,7 +3,7 @@
 use std::path::Path;
 use std::process::Output;
 
-use crate::{check_clean_error, check_png, repo, zline};
+use crate::{check_clean_error, check_error_line, check_png, repo, zline};
 
 /// `zline render` of the Cornell box by radiosity into `png` at `size`,
 /// with `extra` flags.
@@ -108,4 +108,58 @@ fn a_cached_solution_is_reused_and_a_turntable_solves_once() {
     let said = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{said}");
     assert_eq!(said.matches("radiosity:").count(), 1, "{said}");
+}
+
+#[test]
+fn the_scenes_lights_shoot_unless_the_scene_file_or_the_flag_turns_them_off() {
+    let dir = tempfile::tempdir().unwrap();
+    // A grey floor and a cube under a point light, nothing emitting.
+    let scene = dir.path().join("lit.toml");
+    std::fs::write(
+        &scene,
+        r#"
+background = [0, 0, 0]
+[render]
+renderer = "radiosity"
+[radiosity]
+patch_size = 1.0
+hemicube = 32
+lights = false
+[camera]
+eye = [0, 4, 6]
+[[lights]]
+type = "point"
+position = [1, 3, 1]
+[[objects]]
+primitive = "plane"
+size = 6
+[[objects]]
+primitive = "cube"
+translate = [0, 0.5, 0]
+"#,
+    )
+    .unwrap();
+    let render = |png: &Path, extra: &[&str]| {
+        let mut args =
+            vec!["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "48x48"];
+        args.extend(extra);
+        zline(&args)
+    };
+    let (off, on) = (dir.path().join("off.png"), dir.path().join("on.png"));
+    let a = render(&off, &[]);
+    let dark = check_png(&a, &off, (48, 48));
+    let said = String::from_utf8_lossy(&a.stderr);
+    assert!(said.contains("nothing lights the scene") && said.contains("lights are off"), "{said}");
+    assert!(dark.pixels().all(|p| p[0] == 0 && p[1] == 0 && p[2] == 0), "lit without a source");
+    let b = render(&on, &["--radiosity-lights", "on"]);
+    let lit = check_png(&b, &on, (48, 48));
+    let said = String::from_utf8_lossy(&b.stderr);
+    assert!(!said.contains("nothing lights"), "{said}");
+    assert!(lit.pixels().filter(|p| p[0] > 40).count() > 48 * 48 / 4, "the floor is lit");
+    // A bad value for the flag, and in the scene file: clean errors.
+    check_error_line(&render(&on, &["--radiosity-lights", "maybe"]), 2, &["on or off"]);
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "[radiosity]\nhemicube = 1\n").unwrap();
+    let out = zline(&["render", bad.to_str().unwrap(), "-o", on.to_str().unwrap()]);
+    check_clean_error(&out, &["radiosity.hemicube", "2..=2048"]);
 }
