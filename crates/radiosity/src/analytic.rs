@@ -9,6 +9,8 @@
 
 use glam::{DVec3, Vec3};
 
+use crate::patch::Patch;
+
 /// The form factor from the point `p` of unit normal `n` to the triangle
 /// `corners`, as if nothing stood between them.
 pub fn point_to_triangle(p: Vec3, n: Vec3, corners: &[Vec3; 3]) -> f64 {
@@ -41,6 +43,36 @@ pub fn point_to_triangle(p: Vec3, n: Vec3, corners: &[Vec3; 3]) -> f64 {
         sum += theta * n.dot(cross) / length;
     }
     (sum / (2.0 * std::f64::consts::PI)).abs()
+}
+
+/// Near patches are those whose centres lie closer than this many times
+/// the longer of the two patches' longest edges.
+pub const NEAR_REACH: f32 = 2.0;
+
+/// Replaces, in the hemicube's row of patch `from`, the form factor of
+/// every near patch ([`NEAR_REACH`]) the hemicube saw by the analytic one
+/// from `from`'s centre ([`point_to_triangle`]): the hemicube decides
+/// what is seen, the contour integral how much. A patch the hemicube did
+/// not see stays 0. Returns how many entries it replaced.
+pub fn refine_near(patches: &[Patch], from: usize, row: &mut [f32]) -> usize {
+    let p = &patches[from];
+    let edge = |q: &Patch| {
+        let [a, b, c] = q.corners;
+        (b - a).length_squared().max((c - b).length_squared()).max((a - c).length_squared()).sqrt()
+    };
+    let own = edge(p);
+    let mut replaced = 0;
+    for (j, q) in patches.iter().enumerate() {
+        if row[j] <= 0.0 || j == from {
+            continue;
+        }
+        let reach = NEAR_REACH * own.max(edge(q));
+        if (q.centre - p.centre).length_squared() < reach * reach {
+            row[j] = point_to_triangle(p.centre, p.normal, &q.corners) as f32;
+            replaced += 1;
+        }
+    }
+    replaced
 }
 
 #[cfg(test)]

@@ -37,6 +37,7 @@ pub fn fingerprint(patches: &Patches, options: &Options) -> u64 {
     eat(options.max_steps as u64);
     eat(u64::from(options.area_shooting));
     eat(u64::from(options.lights));
+    eat(u64::from(options.analytic_near));
     hash
 }
 

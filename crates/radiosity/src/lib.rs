@@ -113,14 +113,7 @@ pub fn solve_patches(patches: Patches, options: &Options) -> Result<Solution, Ra
     let (radiosity, convergence) = match options.method {
         Method::Progressive => {
             let mut cube = hemicube::Hemicube::new(options.resolution);
-            solve::progressive(
-                &patches.patches,
-                &mut cube,
-                tolerance,
-                options.max_steps,
-                options.area_shooting,
-                true,
-            )
+            solve::progressive(&patches.patches, &mut cube, options, true)
         }
         method => {
             if patches.patches.len() > MAX_MATRIX_PATCHES {
@@ -129,7 +122,7 @@ pub fn solve_patches(patches: Patches, options: &Options) -> Result<Solution, Ra
                     max: MAX_MATRIX_PATCHES,
                 });
             }
-            let rows = solve::matrix(&patches.patches, options.resolution);
+            let rows = solve::matrix(&patches.patches, options.resolution, options.analytic_near);
             solve::sweep(&patches.patches, &rows, method == Method::GaussSeidel, tolerance, options.max_steps)
         }
     };

@@ -21,6 +21,7 @@ use rayon::prelude::*;
 
 use crate::hemicube::Hemicube;
 use crate::patch::Patch;
+use crate::Options;
 
 /// Progressive refinement keeps every shooter's row when all of them fit
 /// in this many bytes (a hemicube draws the same row each time).
@@ -41,8 +42,9 @@ fn power(patches: &[Patch], values: impl Iterator<Item = Vec3>) -> f64 {
 }
 
 /// Every patch's form-factor row F_i·, a hemicube each, in parallel
-/// (each row the same whatever the thread count).
-pub fn matrix(patches: &[Patch], res: usize) -> Vec<Vec<f32>> {
+/// (each row the same whatever the thread count); near patches' entries
+/// analytic when `analytic_near` ([`crate::analytic::refine_near`]).
+pub fn matrix(patches: &[Patch], res: usize, analytic_near: bool) -> Vec<Vec<f32>> {
     (0..patches.len())
         .into_par_iter()
         .map_init(
@@ -50,6 +52,9 @@ pub fn matrix(patches: &[Patch], res: usize) -> Vec<Vec<f32>> {
             |cube, i| {
                 let mut row = vec![0.0; patches.len()];
                 cube.gather(patches, i, &mut row);
+                if analytic_near {
+                    crate::analytic::refine_near(patches, i, &mut row);
+                }
                 row
             },
         )
@@ -90,18 +95,18 @@ pub fn sweep(
 }
 
 /// Progressive refinement from B = ΔB = S until the unshot power is at
-/// most `tolerance` of the source power or `max_steps` shots, each from the
-/// shooter's centre, or from its four quarters when `area`
-/// ([`Hemicube::gather_area`]); returns B, with the ambient term added
-/// when `ambient`.
+/// most `options.tolerance` of the source power or `options.max_steps`
+/// shots, each from the shooter's centre, or from its four quarters with
+/// `options.area_shooting` ([`Hemicube::gather_area`]), near patches'
+/// form factors analytic with `options.analytic_near`; returns B, with the
+/// ambient term added when `ambient`.
 pub fn progressive(
     patches: &[Patch],
     cube: &mut Hemicube,
-    tolerance: f64,
-    max_steps: usize,
-    area: bool,
+    options: &Options,
     ambient: bool,
 ) -> (Vec<Vec3>, Convergence) {
+    let (tolerance, max_steps) = (options.tolerance, options.max_steps);
     let sourced = power(patches, patches.iter().map(Patch::source)).max(f64::MIN_POSITIVE);
     let mut b: Vec<Vec3> = patches.iter().map(Patch::source).collect();
     let mut unshot = b.clone();
@@ -127,12 +132,15 @@ pub fn progressive(
             Some(Some(row)) => row,
             _ => {
                 row.fill(0.0);
-                if area {
+                if options.area_shooting {
                     cube.gather_area(patches, i, &mut row);
                     convergence.hemicubes += 4;
                 } else {
                     cube.gather(patches, i, &mut row);
                     convergence.hemicubes += 1;
+                }
+                if options.analytic_near {
+                    crate::analytic::refine_near(patches, i, &mut row);
                 }
                 match kept.get_mut(i) {
                     Some(slot) => slot.insert(row.clone()),

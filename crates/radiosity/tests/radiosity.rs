@@ -4,8 +4,8 @@
 use glam::Vec3;
 use zline_radiosity::hemicube::Hemicube;
 use zline_radiosity::solve;
-use zline_radiosity::Method;
 use zline_radiosity::Patch;
+use zline_radiosity::{Method, Options};
 
 /// The unit square at `origin` spanned by `u` and `v` (front side u × v),
 /// cut into n × n cells of two triangles each.
@@ -107,19 +107,20 @@ fn the_furnace_gives_e_over_one_minus_rho_on_every_patch() {
     for p in &patches {
         assert!((Vec3::splat(0.5) - p.centre).dot(p.normal) > 0.0, "{p:?}");
     }
-    let rows = solve::matrix(&patches, 100);
+    let rows = solve::matrix(&patches, 100, false);
     for (i, row) in rows.iter().enumerate() {
         let sum: f32 = row.iter().sum();
         assert!((sum - 1.0).abs() < 1e-3, "row {i} sums to {sum}");
     }
     let mut cube = Hemicube::new(100);
+    let exact = Options { tolerance: 1e-6, ..Options::default() };
     let runs = [
         ("jacobi", solve::sweep(&patches, &rows, false, 1e-6, 200)),
         ("gauss-seidel", solve::sweep(&patches, &rows, true, 1e-6, 200)),
-        ("progressive", solve::progressive(&patches, &mut cube, 1e-6, 100_000, false, false)),
+        ("progressive", solve::progressive(&patches, &mut cube, &exact, false)),
         (
             "progressive, shooting from the area",
-            solve::progressive(&patches, &mut cube, 1e-6, 100_000, true, false),
+            solve::progressive(&patches, &mut cube, &Options { area_shooting: true, ..exact }, false),
         ),
     ];
     for (name, (b, convergence)) in runs {
@@ -144,4 +145,31 @@ fn the_furnace_gives_e_over_one_minus_rho_on_every_patch() {
         assert!(*convergence.residuals.last().unwrap() <= 1e-6, "{name}: {:?}", convergence.residuals.last());
     }
     let _ = Method::Jacobi;
+}
+
+#[test]
+fn near_patches_take_the_analytic_form_factor_where_the_hemicube_sees_them() {
+    use zline_radiosity::analytic::{point_to_triangle, refine_near, NEAR_REACH};
+    // Two perpendicular unit squares sharing an edge, 4 × 4 cells each.
+    let (patches, from) = perpendicular(4);
+    let mut cube = Hemicube::new(100);
+    let mut hemicube = vec![0.0f32; patches.len()];
+    cube.gather(&patches, 0, &mut hemicube);
+    let mut row = hemicube.clone();
+    let replaced = refine_near(&patches, 0, &mut row);
+    assert!(replaced > 0);
+    let p = &patches[0];
+    let reach = NEAR_REACH * (2.0f32).sqrt() / 4.0;
+    let mut near = 0;
+    for (j, q) in patches.iter().enumerate() {
+        if hemicube[j] > 0.0 && (q.centre - p.centre).length() < reach {
+            near += 1;
+            assert_eq!(row[j], point_to_triangle(p.centre, p.normal, &q.corners) as f32, "patch {j}");
+            assert!((row[j] - hemicube[j]).abs() < 0.5 * hemicube[j], "{} against {}", row[j], hemicube[j]);
+        } else {
+            assert_eq!(row[j], hemicube[j], "patch {j}: far or unseen, the hemicube's");
+        }
+    }
+    assert_eq!(near, replaced);
+    assert!(from < patches.len());
 }

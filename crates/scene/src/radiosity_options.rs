@@ -46,6 +46,9 @@ pub struct RadiosityOptions {
     /// Progressive refinement shoots from four points of a patch, not its
     /// centre (four hemicubes a shot; closer to reciprocity).
     pub area_shooting: bool,
+    /// Near patches' form factors from the contour integral instead of the
+    /// hemicube's pixels (the hemicube still decides what is seen).
+    pub analytic_near: bool,
     /// The scene's point, spot, directional and area lights shoot first,
     /// as point sources, besides the emitting surfaces.
     pub lights: bool,
@@ -67,6 +70,7 @@ impl RadiosityOptions {
         tolerance: 1e-3,
         max_steps: 100_000,
         area_shooting: false,
+        analytic_near: false,
         lights: true,
     };
 }

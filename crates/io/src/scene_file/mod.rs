@@ -100,6 +100,7 @@ use view::{CameraDef, EnvironmentDef, FogDef};
 /// hemicube = 100                    # pixels along the hemicube's top face, 2..=2048; default 100
 /// solver = "progressive"            # progressive (default) | jacobi | gauss-seidel
 /// tolerance = 0.001                 # stop at this share of the source power left to move, in [0, 1]
+/// analytic_near = false             # true: near patches' form factors by the contour integral, not the hemicube
 /// lights = true                     # false: only emitting surfaces light the scene, not its lights
 ///
 /// [camera]                          # omitted: the scene is framed

@@ -1,8 +1,8 @@
 //! The `[radiosity]` table of a scene file → [`RadiosityOptions`]: the
-//! patch size, the hemicube's resolution, the solver, its tolerance and
-//! whether the scene's lights shoot (SPEC §13), each checked and located
-//! on error. `[render] renderer = "radiosity"` says whether radiosity
-//! draws.
+//! patch size, the hemicube's resolution, the solver, its tolerance,
+//! near patches' analytic form factors and whether the scene's lights
+//! shoot (SPEC §13), each checked and located on error. `[render]
+//! renderer = "radiosity"` says whether radiosity draws.
 
 use serde::Deserialize;
 use zline_scene::radiosity_options::{Method, RadiosityOptions, MAX_RESOLUTION};
@@ -17,6 +17,7 @@ pub(super) struct RadiosityDef {
     solver: Option<SolverDef>,
     tolerance: Option<S<f32>>,
     lights: Option<bool>,
+    analytic_near: Option<bool>,
 }
 
 /// The names are [`Method::name`]'s.
@@ -60,6 +61,9 @@ pub(super) fn options(check: &Checker, def: Option<RadiosityDef>) -> Result<Radi
     }
     if let Some(lights) = def.lights {
         o.lights = lights;
+    }
+    if let Some(analytic) = def.analytic_near {
+        o.analytic_near = analytic;
     }
     Ok(o)
 }

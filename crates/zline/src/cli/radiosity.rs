@@ -41,6 +41,11 @@ pub(crate) struct RadiosityArgs {
     /// area) shoot first besides the emitting surfaces (default on).
     #[arg(long, value_name = "on|off", value_parser = parse_on_off)]
     pub(crate) radiosity_lights: Option<bool>,
+    /// Radiosity: near patches' form factors by the analytic contour
+    /// integral instead of the hemicube's pixels (the hemicube still
+    /// decides what is seen).
+    #[arg(long)]
+    pub(crate) analytic_near: bool,
 }
 
 /// `on` or `off`.
@@ -61,12 +66,13 @@ impl RadiosityArgs {
             || self.radiosity_tolerance.is_some()
             || self.radiosity_cache.is_some()
             || self.radiosity_lights.is_some()
+            || self.analytic_near
     }
 
     /// Refuses the flags for a scene radiosity does not draw.
     pub(crate) fn check_unused(&self) -> Result<()> {
         if self.given() {
-            bail!("--patch-size, --hemicube, --solver, --radiosity-tolerance, --radiosity-lights and --radiosity-cache need --renderer radiosity (or renderer = \"radiosity\" in the scene file)");
+            bail!("--patch-size, --hemicube, --solver, --radiosity-tolerance, --radiosity-lights, --analytic-near and --radiosity-cache need --renderer radiosity (or renderer = \"radiosity\" in the scene file)");
         }
         Ok(())
     }
@@ -81,6 +87,7 @@ impl RadiosityArgs {
         if let Some(lights) = self.radiosity_lights {
             o.lights = lights;
         }
+        o.analytic_near |= self.analytic_near;
         if let Some(n) = self.hemicube {
             o.resolution = n;
         }

@@ -156,6 +156,11 @@ translate = [0, 0.5, 0]
     let said = String::from_utf8_lossy(&b.stderr);
     assert!(!said.contains("nothing lights"), "{said}");
     assert!(lit.pixels().filter(|p| p[0] > 40).count() > 48 * 48 / 4, "the floor is lit");
+    // Near form factors from the contour integral: lit all the same.
+    let near = dir.path().join("near.png");
+    let c = render(&near, &["--radiosity-lights", "on", "--analytic-near"]);
+    let analytic = check_png(&c, &near, (48, 48));
+    assert!(analytic.pixels().filter(|p| p[0] > 40).count() > 48 * 48 / 4, "the floor is lit");
     // A bad value for the flag, and in the scene file: clean errors.
     check_error_line(&render(&on, &["--radiosity-lights", "maybe"]), 2, &["on or off"]);
     let bad = dir.path().join("bad.toml");
