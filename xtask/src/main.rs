@@ -15,6 +15,7 @@ mod docs;
 mod kernels;
 mod modules;
 mod radiosity_report;
+mod radiosity_subdivision;
 mod ray_batch;
 mod regress;
 mod report;

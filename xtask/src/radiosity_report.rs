@@ -133,6 +133,7 @@ pub(crate) fn run(out: &Path) -> Result<()> {
     near_patches();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace");
     let scene = zline::io::load_scene(&root.join("assets/cornell/cornell_box.toml"))?;
+    crate::radiosity_subdivision::run(&scene)?;
     println!("## Radiosity: the Cornell box\n");
     println!(
         "Threads: {}. Residual: the power a step left to move over the source power (progressive: the unshot power).\n",
@@ -176,6 +177,7 @@ pub(crate) fn run(out: &Path) -> Result<()> {
         radiosity: b,
         convergence,
         options: Options { patch_size: Some(50.0), ..Options::default() },
+        splits: Vec::new(),
         took: start.elapsed(),
     };
     let (image, _) = zline::pipeline::render(&solution.display_scene(&scene), &Default::default());

@@ -23,6 +23,7 @@ pub mod hemicube;
 pub mod lights;
 pub mod patch;
 pub mod solve;
+pub mod subdivide;
 
 pub use error::RadiosityError;
 
@@ -49,6 +50,9 @@ pub struct Solution {
     pub convergence: Convergence,
     /// The options used (the patch size resolved).
     pub options: Options,
+    /// The patches cut at each subdivision level (indices into that
+    /// level's patches, see [`subdivide`]).
+    pub splits: Vec<Vec<u32>>,
     /// Time to mesh and solve.
     pub took: Duration,
 }
@@ -59,9 +63,72 @@ pub struct Solution {
 pub fn solve(scene: &Scene, options: &Options) -> Result<Solution, RadiosityError> {
     let start = Instant::now();
     let (patches, options) = mesh(scene, options)?;
-    let mut solution = solve_patches(patches, &options)?;
+    let mut solution = solve_refined(scene, patches, &options)?;
     solution.took = start.elapsed();
     Ok(solution)
+}
+
+/// Solves meshed `patches` of `scene` with resolved `options`, then
+/// `options.subdivide` times (at most [`subdivide::MAX_LEVELS`]) cuts the
+/// patches where radiosity changes fast and solves again; stops early,
+/// with a warning, before passing [`MAX_PATCHES`].
+pub fn solve_refined(scene: &Scene, patches: Patches, options: &Options) -> Result<Solution, RadiosityError> {
+    let start = Instant::now();
+    let mut solution = solve_patches(patches, options)?;
+    let world = (options.subdivide > 0).then(|| World::new(scene));
+    for _ in 0..options.subdivide.min(subdivide::MAX_LEVELS) {
+        let cut = subdivide::marks(&solution.patches, &solution.radiosity);
+        if cut.is_empty() {
+            break;
+        }
+        let mut patches = subdivide::split(&solution.patches, &cut);
+        if patches.patches.len() > MAX_PATCHES {
+            solution.patches.warnings.push(format!(
+                "subdivision stopped after {} levels: the next would pass {MAX_PATCHES} patches",
+                solution.splits.len()
+            ));
+            break;
+        }
+        if let (Some(world), true) = (&world, options.lights) {
+            lights::light(&mut patches.patches, world, &scene.lights);
+        }
+        let (mut splits, mut convergence) =
+            (std::mem::take(&mut solution.splits), std::mem::take(&mut solution.convergence));
+        solution = solve_patches(patches, options)?;
+        splits.push(cut);
+        convergence.residuals.append(&mut solution.convergence.residuals);
+        convergence.hemicubes += solution.convergence.hemicubes;
+        (solution.splits, solution.convergence) = (splits, convergence);
+    }
+    solution.took = start.elapsed();
+    Ok(solution)
+}
+
+/// The patches a solution with `splits` ended on, from the same freshly
+/// meshed `patches` of `scene` (a cached solution's; see [`mesh`]): the
+/// cuts replayed, the children lit. `None` when a split names a patch
+/// that is not there (a file from another mesh).
+pub fn replay(
+    scene: &Scene,
+    mut patches: Patches,
+    splits: &[Vec<u32>],
+    options: &Options,
+) -> Option<Patches> {
+    if splits.is_empty() {
+        return Some(patches);
+    }
+    for cut in splits {
+        let fits =
+            cut.windows(2).all(|w| w[0] < w[1]) && cut.iter().all(|&i| (i as usize) < patches.patches.len());
+        if !fits || patches.patches.len() + 3 * cut.len() > MAX_PATCHES {
+            return None;
+        }
+        patches = subdivide::split(&patches, cut);
+    }
+    if options.lights {
+        lights::light(&mut patches.patches, &World::new(scene), &scene.lights);
+    }
+    Some(patches)
 }
 
 /// The patches of `scene` and the options resolved (the patch size
@@ -126,7 +193,14 @@ pub fn solve_patches(patches: Patches, options: &Options) -> Result<Solution, Ra
             solve::sweep(&patches.patches, &rows, method == Method::GaussSeidel, tolerance, options.max_steps)
         }
     };
-    Ok(Solution { patches, radiosity, convergence, options: *options, took: start.elapsed() })
+    Ok(Solution {
+        patches,
+        radiosity,
+        convergence,
+        options: *options,
+        splits: Vec::new(),
+        took: start.elapsed(),
+    })
 }
 
 impl Solution {
@@ -147,24 +221,11 @@ impl Solution {
     /// The display's scale: emission is at most 1 (a material's ke), so a
     /// room's walls come out far darker, and interreflection brightens a
     /// room lit by lights past the local model's range; B is shown times
-    /// the scale that
-    /// puts the 99th percentile of the patches that emit nothing (their
-    /// brightest channel) at 0.85.
+    /// the scale that puts the 99th percentile by area of the patches that
+    /// emit nothing (their brightest channel) at 0.85.
     pub fn display_scale(&self) -> f32 {
-        let mut lit: Vec<f32> = self
-            .patches
-            .patches
-            .iter()
-            .zip(&self.radiosity)
-            .filter(|(p, _)| p.emission == Vec3::ZERO)
-            .map(|(_, b)| b.max_element())
-            .filter(|b| b.is_finite() && *b > 0.0)
-            .collect();
-        if lit.is_empty() {
-            return 1.0;
-        }
-        lit.sort_by(f32::total_cmp);
-        0.85 / lit[(lit.len() - 1) * 99 / 100]
+        let lit = self.patches.patches.iter().zip(&self.radiosity).filter(|(p, _)| p.emission == Vec3::ZERO);
+        subdivide::bright_level(lit.map(|(p, b)| (b.max_element(), p.area))).map_or(1.0, |level| 0.85 / level)
     }
 
     /// `scene` with its objects replaced by the solution: one mesh of the
@@ -173,6 +234,12 @@ impl Solution {
     /// 1 on ka = 1 (no other light, kd = ks = 0), so that the rasterizer
     /// shows B.
     pub fn display_scene(&self, scene: &Scene) -> Scene {
+        self.display_scene_scaled(scene, self.display_scale())
+    }
+
+    /// [`Self::display_scene`] with B shown times `scale` (to compare two
+    /// solutions in the same units).
+    pub fn display_scene_scaled(&self, scene: &Scene, scale: f32) -> Scene {
         let mut out = scene.clone();
         out.lights.clear();
         out.ambient = Vec3::ONE;
@@ -183,7 +250,6 @@ impl Solution {
         let mut material = zline_shading::Material::default();
         (material.ka, material.kd, material.ks, material.ke) =
             (Vec3::ONE, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
-        let scale = self.display_scale();
         let colors: Vec<Vec3> = self
             .vertex_radiosity()
             .iter()

@@ -132,7 +132,8 @@ impl Patches {
                 let q = 65536.0 / size;
                 let (p_key, n_key) = ((p * q).round(), (n * 4.0).round());
                 let key =
-                    (object, [p_key.x, p_key.y, p_key.z, n_key.x, n_key.y, n_key.z].map(|v| v.to_bits()));
+                    // + 0.0 turns −0 into +0: one key for both zeros.
+                    (object, [p_key.x, p_key.y, p_key.z, n_key.x, n_key.y, n_key.z].map(|v| (v + 0.0).to_bits()));
                 *shared.entry(key).or_insert_with(|| {
                     out.vertices.push(p);
                     out.vertices.len() as u32 - 1

@@ -21,7 +21,7 @@ use rayon::prelude::*;
 
 use crate::hemicube::Hemicube;
 use crate::patch::Patch;
-use crate::Options;
+use zline_scene::radiosity_options::RadiosityOptions as Options;
 
 /// Progressive refinement keeps every shooter's row when all of them fit
 /// in this many bytes (a hemicube draws the same row each time).

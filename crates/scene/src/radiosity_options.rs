@@ -5,6 +5,10 @@
 /// The most hemicube resolution accepted (pixels along the top face).
 pub const MAX_RESOLUTION: usize = 2048;
 
+/// The most subdivision levels a solve takes (each at most quadruples
+/// the patches it cuts).
+pub const MAX_SUBDIVISION: u32 = 4;
+
 /// How the radiosity equation is solved.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Method {
@@ -49,6 +53,9 @@ pub struct RadiosityOptions {
     /// Near patches' form factors from the contour integral instead of the
     /// hemicube's pixels (the hemicube still decides what is seen).
     pub analytic_near: bool,
+    /// Times to cut the patches where radiosity changes fast and solve
+    /// again (0: the uniform mesh only).
+    pub subdivide: u32,
     /// The scene's point, spot, directional and area lights shoot first,
     /// as point sources, besides the emitting surfaces.
     pub lights: bool,
@@ -71,6 +78,7 @@ impl RadiosityOptions {
         max_steps: 100_000,
         area_shooting: false,
         analytic_near: false,
+        subdivide: 0,
         lights: true,
     };
 }

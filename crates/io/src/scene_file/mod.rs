@@ -101,6 +101,7 @@ use view::{CameraDef, EnvironmentDef, FogDef};
 /// solver = "progressive"            # progressive (default) | jacobi | gauss-seidel
 /// tolerance = 0.001                 # stop at this share of the source power left to move, in [0, 1]
 /// analytic_near = false             # true: near patches' form factors by the contour integral, not the hemicube
+/// subdivide = 0                    # times to cut patches where radiosity changes fast and solve again, 0..=4
 /// lights = true                     # false: only emitting surfaces light the scene, not its lights
 ///
 /// [camera]                          # omitted: the scene is framed

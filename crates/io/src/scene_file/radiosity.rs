@@ -1,11 +1,13 @@
 //! The `[radiosity]` table of a scene file → [`RadiosityOptions`]: the
 //! patch size, the hemicube's resolution, the solver, its tolerance,
-//! near patches' analytic form factors and whether the scene's lights
+//! near patches' analytic form factors, the subdivision levels and whether the scene's lights
 //! shoot (SPEC §13), each checked and located on error. `[render]
 //! renderer = "radiosity"` says whether radiosity draws.
 
 use serde::Deserialize;
-use zline_scene::radiosity_options::{Method, RadiosityOptions, MAX_RESOLUTION};
+use zline_scene::radiosity_options::{
+    Method, RadiosityOptions, MAX_RESOLUTION, MAX_SUBDIVISION as MAX_LEVELS,
+};
 
 use super::checks::{Checker, Result, S};
 
@@ -18,6 +20,7 @@ pub(super) struct RadiosityDef {
     tolerance: Option<S<f32>>,
     lights: Option<bool>,
     analytic_near: Option<bool>,
+    subdivide: Option<S<u32>>,
 }
 
 /// The names are [`Method::name`]'s.
@@ -64,6 +67,17 @@ pub(super) fn options(check: &Checker, def: Option<RadiosityDef>) -> Result<Radi
     }
     if let Some(analytic) = def.analytic_near {
         o.analytic_near = analytic;
+    }
+    if let Some(levels) = &def.subdivide {
+        let n = *levels.get_ref();
+        if n > MAX_LEVELS {
+            return Err(check.error(
+                levels.span(),
+                "radiosity.subdivide",
+                format!("must be in 0..={MAX_LEVELS}, got {n}"),
+            ));
+        }
+        o.subdivide = n;
     }
     Ok(o)
 }

@@ -46,6 +46,10 @@ pub(crate) struct RadiosityArgs {
     /// decides what is seen).
     #[arg(long)]
     pub(crate) analytic_near: bool,
+    /// Radiosity: times to cut the patches where radiosity changes fast
+    /// and solve again (0 to 4; default 0).
+    #[arg(long, value_name = "LEVELS", value_parser = clap::value_parser!(u32).range(0..=4))]
+    pub(crate) subdivide: Option<u32>,
 }
 
 /// `on` or `off`.
@@ -67,12 +71,13 @@ impl RadiosityArgs {
             || self.radiosity_cache.is_some()
             || self.radiosity_lights.is_some()
             || self.analytic_near
+            || self.subdivide.is_some()
     }
 
     /// Refuses the flags for a scene radiosity does not draw.
     pub(crate) fn check_unused(&self) -> Result<()> {
         if self.given() {
-            bail!("--patch-size, --hemicube, --solver, --radiosity-tolerance, --radiosity-lights, --analytic-near and --radiosity-cache need --renderer radiosity (or renderer = \"radiosity\" in the scene file)");
+            bail!("--patch-size, --hemicube, --solver, --radiosity-tolerance, --radiosity-lights, --analytic-near, --subdivide and --radiosity-cache need --renderer radiosity (or renderer = \"radiosity\" in the scene file)");
         }
         Ok(())
     }
@@ -88,6 +93,9 @@ impl RadiosityArgs {
             o.lights = lights;
         }
         o.analytic_near |= self.analytic_near;
+        if let Some(levels) = self.subdivide {
+            o.subdivide = levels;
+        }
         if let Some(n) = self.hemicube {
             o.resolution = n;
         }
@@ -107,7 +115,7 @@ impl RadiosityArgs {
     /// Solves `scene` and returns the scene the rasterizer draws in its
     /// place, after telling what the solve did.
     pub(crate) fn display(&self, scene: &Scene) -> Result<Scene> {
-        use zline::radiosity::{cache, mesh, solve_patches, Solution};
+        use zline::radiosity::{cache, mesh, replay, solve_refined, Solution};
         let start = std::time::Instant::now();
         let (patches, options) = mesh(scene, &self.options(scene.settings.radiosity))?;
         for warning in &patches.warnings {
@@ -115,40 +123,55 @@ impl RadiosityArgs {
         }
         let key = cache::fingerprint(&patches, &options);
         let kept = self.radiosity_cache.as_deref().and_then(|path| {
-            match cache::load(path, key, patches.patches.len()) {
-                Ok(kept) => kept,
-                Err(why) => {
-                    eprintln!("warning: {}: {why}; solving again", path.display());
-                    None
-                }
-            }
+            let usable = cache::load(path, key).and_then(|kept| match kept {
+                None => Ok(None),
+                Some(kept) => match replay(scene, patches.clone(), &kept.splits, &options) {
+                    Some(replayed) if replayed.patches.len() == kept.radiosity.len() => {
+                        Ok(Some((replayed, kept)))
+                    }
+                    _ => Err("its subdivision does not fit these patches".to_string()),
+                },
+            });
+            usable.unwrap_or_else(|why| {
+                eprintln!("warning: {}: {why}; solving again", path.display());
+                None
+            })
         });
-        if let (Some(radiosity), Some(path)) = (kept, &self.radiosity_cache) {
+        if let (Some((replayed, kept)), Some(path)) = (kept, &self.radiosity_cache) {
             eprintln!(
                 "radiosity: {} patches read from {} ({:.2} s)",
-                patches.patches.len(),
+                replayed.patches.len(),
                 path.display(),
                 start.elapsed().as_secs_f64()
             );
             let solution = Solution {
-                patches,
-                radiosity,
+                patches: replayed,
+                radiosity: kept.radiosity,
                 convergence: Default::default(),
                 options,
+                splits: kept.splits,
                 took: start.elapsed(),
             };
             return Ok(solution.display_scene(scene));
         }
-        let solution = solve_patches(patches, &options)?;
+        let solution = solve_refined(scene, patches, &options)?;
         if let Some(path) = &self.radiosity_cache {
-            cache::save(path, key, &solution.radiosity)
+            let kept = cache::Kept { splits: solution.splits.clone(), radiosity: solution.radiosity.clone() };
+            cache::save(path, key, &kept)
                 .with_context(|| format!("{}: cannot write the radiosity cache", path.display()))?;
         }
         let residual = solution.convergence.residuals.last().copied().unwrap_or(0.0);
         eprintln!(
-            "radiosity: {} patches of {:.3} at most, {} by {} steps ({} hemicubes of {}²), residual {residual:.1e}, {:.2} s",
+            "radiosity: {} patches of {:.3} at most{}, {} by {} steps ({} hemicubes of {}²), residual {residual:.1e}, {:.2} s",
             solution.patches.patches.len(),
             solution.options.patch_size.unwrap_or(0.0),
+            match solution.splits.len() {
+                0 => String::new(),
+                levels => format!(
+                    " ({} cut in {levels} subdivision levels)",
+                    solution.splits.iter().map(Vec::len).sum::<usize>()
+                ),
+            },
             solution.options.method.name(),
             solution.convergence.residuals.len(),
             solution.convergence.hemicubes,

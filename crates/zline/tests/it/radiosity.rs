@@ -79,7 +79,7 @@ fn a_cached_solution_is_reused_and_a_turntable_solves_once() {
     assert!(said.contains("read from"), "{said}");
     assert_eq!(std::fs::read(&first).unwrap(), std::fs::read(&second).unwrap());
     // A damaged file: a warning, solved again, the same picture.
-    std::fs::write(&cache, b"zline radiosity 1\nshort").unwrap();
+    std::fs::write(&cache, b"zline radiosity 2\nshort").unwrap();
     let c = render(&third);
     check_png(&c, &third, (96, 96));
     let said = String::from_utf8_lossy(&c.stderr);
@@ -88,6 +88,22 @@ fn a_cached_solution_is_reused_and_a_turntable_solves_once() {
         "{said}"
     );
     assert_eq!(std::fs::read(&first).unwrap(), std::fs::read(&third).unwrap());
+    // Subdivided: the cuts are kept with the radiosities and replayed.
+    let cut = dir.path().join("cut.radiosity");
+    let subdivided = |png: &Path| {
+        let extra = ["--patch-size", "150", "--subdivide", "1", "--radiosity-cache", cut.to_str().unwrap()];
+        cornell(png, "96x96", &extra)
+    };
+    let (fourth, fifth) = (dir.path().join("4.png"), dir.path().join("5.png"));
+    let d = subdivided(&fourth);
+    check_png(&d, &fourth, (96, 96));
+    let said = String::from_utf8_lossy(&d.stderr);
+    assert!(said.contains("subdivision levels"), "{said}");
+    let e = subdivided(&fifth);
+    check_png(&e, &fifth, (96, 96));
+    let said = String::from_utf8_lossy(&e.stderr);
+    assert!(said.contains("read from"), "{said}");
+    assert_eq!(std::fs::read(&fourth).unwrap(), std::fs::read(&fifth).unwrap());
     // A turntable of three frames: one solve.
     let gif = dir.path().join("turn.gif");
     let scene = repo().join("assets/cornell/cornell_box.toml");
