@@ -9,15 +9,15 @@
 //! averaged to the patches' corners and Gouraud-interpolated
 //! ([`Solution::display_scene`]), so a new viewpoint costs one frame.
 
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use glam::{Mat4, Vec3};
-use zline_scene::{Mesh, Object, Scene};
+use glam::Vec3;
+use zline_scene::Scene;
 use zline_trace::world::World;
 
 pub mod analytic;
 pub mod cache;
+mod display;
 mod error;
 pub mod hemicube;
 pub mod lights;
@@ -201,70 +201,4 @@ pub fn solve_patches(patches: Patches, options: &Options) -> Result<Solution, Ra
         splits: Vec::new(),
         took: start.elapsed(),
     })
-}
-
-impl Solution {
-    /// The radiosity at each shared corner: the area-weighted mean of the
-    /// patches around it.
-    pub fn vertex_radiosity(&self) -> Vec<Vec3> {
-        let mut sum = vec![Vec3::ZERO; self.patches.vertices.len()];
-        let mut weight = vec![0.0f32; self.patches.vertices.len()];
-        for (p, b) in self.patches.patches.iter().zip(&self.radiosity) {
-            for &v in &p.vertices {
-                sum[v as usize] += *b * p.area;
-                weight[v as usize] += p.area;
-            }
-        }
-        sum.iter().zip(&weight).map(|(s, &w)| if w > 0.0 { *s / w } else { Vec3::ZERO }).collect()
-    }
-
-    /// The display's scale: emission is at most 1 (a material's ke), so a
-    /// room's walls come out far darker, and interreflection brightens a
-    /// room lit by lights past the local model's range; B is shown times
-    /// the scale that puts the 99th percentile by area of the patches that
-    /// emit nothing (their brightest channel) at 0.85.
-    pub fn display_scale(&self) -> f32 {
-        let lit = self.patches.patches.iter().zip(&self.radiosity).filter(|(p, _)| p.emission == Vec3::ZERO);
-        subdivide::bright_level(lit.map(|(p, b)| (b.max_element(), p.area))).map_or(1.0, |level| 0.85 / level)
-    }
-
-    /// `scene` with its objects replaced by the solution: one mesh of the
-    /// patches whose vertex colours are the corners' radiosities times
-    /// [`Self::display_scale`], drawn with Gouraud shading by ambient light
-    /// 1 on ka = 1 (no other light, kd = ks = 0), so that the rasterizer
-    /// shows B.
-    pub fn display_scene(&self, scene: &Scene) -> Scene {
-        self.display_scene_scaled(scene, self.display_scale())
-    }
-
-    /// [`Self::display_scene`] with B shown times `scale` (to compare two
-    /// solutions in the same units).
-    pub fn display_scene_scaled(&self, scene: &Scene, scale: f32) -> Scene {
-        let mut out = scene.clone();
-        out.lights.clear();
-        out.ambient = Vec3::ONE;
-        // Drawn by the rasterizer: a scene to be solved no more.
-        out.settings.renderer = zline_scene::trace_options::Renderer::Raster;
-        out.objects.clear();
-        let triangles: Vec<[u32; 3]> = self.patches.patches.iter().map(|p| p.vertices).collect();
-        let mut material = zline_shading::Material::default();
-        (material.ka, material.kd, material.ks, material.ke) =
-            (Vec3::ONE, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
-        let colors: Vec<Vec3> = self
-            .vertex_radiosity()
-            .iter()
-            .map(|c| if c.is_finite() { *c * scale } else { Vec3::ZERO })
-            .collect();
-        let mesh = Mesh::new("radiosity", self.patches.vertices.clone(), None, triangles, material)
-            .and_then(|m| m.with_colors(colors))
-            .expect("patches index their own finite corners");
-        out.objects.push(Object {
-            mesh: Arc::new(mesh),
-            world_from_object: Mat4::IDENTITY,
-            material: None,
-            shading: Some(zline_shading::ShadingMode::Gouraud),
-            cull_back_faces: false,
-        });
-        out
-    }
 }

@@ -40,14 +40,16 @@ pub struct Patch {
     pub direct: Vec3,
     /// The index of the world triangle it was cut from.
     pub triangle: u32,
+    /// The texture coordinates at the corners (zero without a texture).
+    pub uvs: [Vec2; 3],
     /// Its corners' indices in [`Patches::vertices`].
     pub vertices: [u32; 3],
 }
 
 impl Patch {
     /// The patch with `corners` (its normal, centre and area derived from
-    /// them), `None` for zero or non-finite area; `vertices`, `direct`
-    /// and `triangle` all 0.
+    /// them), `None` for zero or non-finite area; `vertices`, `direct`,
+    /// `triangle` and `uvs` all 0.
     pub fn new(corners: [Vec3; 3], reflectance: Vec3, emission: Vec3) -> Option<Patch> {
         let [p0, p1, p2] = corners;
         let cross = (p1 - p0).cross(p2 - p0);
@@ -61,6 +63,7 @@ impl Patch {
             emission,
             direct: Vec3::ZERO,
             triangle: 0,
+            uvs: [Vec2::ZERO; 3],
             vertices: [0; 3],
         })
     }
@@ -175,6 +178,7 @@ impl Patches {
                 }
                 patch.reflectance = reflectance;
                 patch.triangle = index as u32;
+                patch.uvs = corners.map(|c| uv_at(c.1));
                 patch.vertices = patch.corners.map(|p| corner(p, patch.normal, out));
                 out.patches.push(patch);
             };

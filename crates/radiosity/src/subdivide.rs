@@ -74,10 +74,19 @@ pub fn split(patches: &Patches, cut: &[u32]) -> Patches {
             })
         };
         let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
-        for vertices in [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]] {
+        let [ta, tb, tc] = p.uvs;
+        let (tab, tbc, tca) = ((ta + tb) * 0.5, (tb + tc) * 0.5, (tc + ta) * 0.5);
+        let quarters = [
+            ([a, ab, ca], [ta, tab, tca]),
+            ([ab, b, bc], [tab, tb, tbc]),
+            ([ca, bc, c], [tca, tbc, tc]),
+            ([ab, bc, ca], [tab, tbc, tca]),
+        ];
+        for (vertices, uvs) in quarters {
             let corners = vertices.map(|v| out.vertices[v as usize]);
             if let Some(mut child) = Patch::new(corners, p.reflectance, p.emission) {
                 child.triangle = p.triangle;
+                child.uvs = uvs;
                 child.vertices = vertices;
                 out.patches.push(child);
             }

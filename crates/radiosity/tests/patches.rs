@@ -1,5 +1,6 @@
-//! Subdivision where radiosity changes fast: the cut, the marks, and a
-//! solve replayed from its cuts.
+//! Patches after a solve: subdivision where radiosity changes fast (the
+//! cut, the marks, a solve replayed from its cuts) and the display of a
+//! textured surface.
 
 use std::sync::Arc;
 
@@ -117,4 +118,58 @@ fn a_subdivided_solve_keeps_the_balance_and_replays_from_its_cuts() {
     assert_eq!(replayed.vertices, solution.patches.vertices);
     // Cuts that name patches not there: refused.
     assert!(replay(&scene, uniform, &[vec![u32::MAX]], &options).is_none());
+}
+
+/// The floor with a 2 × 2 texture of texels `a` and `b` (a checker).
+fn textured_floor(lights: Vec<Light>, a: u8, b: u8) -> Scene {
+    let mut scene = floor(lights);
+    let texels = [a, a, a, 255, b, b, b, 255, b, b, b, 255, a, a, a, 255];
+    let texture = zline_shading::Texture::from_rgba8(2, 2, &texels).unwrap();
+    let map = zline_scene::TextureMap {
+        texture: Arc::new(texture),
+        sampler: zline_shading::Sampler::default(),
+        alpha_blend: false,
+        alpha_cutoff: None,
+    };
+    let uvs = vec![
+        glam::Vec2::new(0.0, 0.0),
+        glam::Vec2::new(0.0, 1.0),
+        glam::Vec2::new(1.0, 1.0),
+        glam::Vec2::new(1.0, 0.0),
+    ];
+    let mesh = (*scene.objects[0].mesh).clone().with_uvs(uvs).unwrap().with_diffuse_map(map);
+    scene.objects[0].mesh = Arc::new(mesh);
+    scene
+}
+
+#[test]
+fn a_textured_surface_shows_its_texture_lit_by_what_it_received() {
+    let light = Light::Directional { direction: Vec3::new(0.3, -1.0, 0.2), color: Vec3::ONE };
+    let options = Options { patch_size: Some(0.5), tolerance: 0.0, ..Options::default() };
+    // An even texture: the display's vertex colours times the texel are
+    // the corners' radiosities, as for an untextured surface.
+    let even = textured_floor(vec![light], 128, 128);
+    let solution = solve(&even, &options).unwrap();
+    let shown = solution.display_scene_scaled(&even, 1.0);
+    assert_eq!(shown.objects.len(), 1);
+    let mesh = &shown.objects[0].mesh;
+    assert!(mesh.diffuse_map.is_some() && mesh.uvs.len() == mesh.positions.len());
+    let texel = 128.0f32 / 255.0;
+    let expected = solution.vertex_radiosity();
+    for (position, color) in mesh.positions.iter().zip(&mesh.colors) {
+        let v = solution.patches.vertices.iter().position(|p| p == position).unwrap();
+        let got = *color * texel;
+        assert!(
+            (got - expected[v]).abs().max_element() <= 1e-5 * expected[v].max_element(),
+            "{got} against {}",
+            expected[v]
+        );
+    }
+    // A checker with the same mean: the same solve, the texture's detail
+    // on top (the colours are the same, the texels differ).
+    let checker = textured_floor(vec![light], 64, 192);
+    let other = solve(&checker, &options).unwrap();
+    let reflectance =
+        |s: &zline_radiosity::Solution| s.patches.patches.iter().map(|p| p.reflectance.x).sum::<f32>();
+    assert!((reflectance(&solution) - reflectance(&other)).abs() < 1e-3 * reflectance(&solution));
 }
