@@ -147,7 +147,7 @@ pub(crate) fn run(out: &Path) -> Result<()> {
         (50.0, &[Method::GaussSeidel, Method::Progressive][..]),
     ] {
         for &method in methods {
-            let options = Options { patch_size: Some(size), method, ..Options::default() };
+            let options = Options { patch_size: Some(size), method, ..scene.settings.radiosity };
             let solution = solve(&scene, &options)?;
             let n = solution.patches.patches.len();
             for (step, r) in solution.convergence.residuals.iter().enumerate() {
@@ -176,7 +176,7 @@ pub(crate) fn run(out: &Path) -> Result<()> {
         patches,
         radiosity: b,
         convergence,
-        options: Options { patch_size: Some(50.0), ..Options::default() },
+        options: Options { patch_size: Some(50.0), ..scene.settings.radiosity },
         splits: Vec::new(),
         took: start.elapsed(),
     };

@@ -40,7 +40,7 @@ pub(crate) fn section(image_path: &Path) -> Result<String> {
     let rgb = |image: &zline::pipeline::Image| image.to_rgb();
     let (raster_ms, raster) = fastest(|| Ok(rgb(&zline::pipeline::render(&scene, &Default::default()).0)))?;
     let (trace_ms, traced) = fastest(|| Ok(rgb(&zline::ray_traced_image(&scene, &scene.settings.trace).0)))?;
-    let options = zline::radiosity::Options { patch_size: Some(50.0), ..Default::default() };
+    let options = zline::radiosity::Options { patch_size: Some(50.0), ..scene.settings.radiosity };
     let mut patches = 0;
     let (radiosity_ms, radiosity) = fastest(|| {
         let solution = zline::radiosity::solve(&scene, &options)?;
