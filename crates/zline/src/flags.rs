@@ -12,16 +12,29 @@ use zline::scene::{
 };
 use zline::shading::{Filter, ModelChoice};
 
-use crate::cli::choices::{Clamp, Depth, FogCoord, Interp, Shading, ShadowFilter, Sides, TexFilter};
+use zline::views::{NamedView, ProjectionKind};
+
+use crate::cli::choices::{
+    Clamp, Depth, FogCoord, Interp, ProjectionName as Projection, Shading, ShadowFilter, Sides, TexFilter,
+};
 use crate::cli::common::Common;
 
 /// The camera flags and `--background`; a framed model is framed again
 /// for the final aspect ratio first. `turn` adds degrees to `--azimuth`
-/// (a turntable's frames).
+/// (a turntable's frames). The named view (`view`, else `--view`) comes
+/// first, the orbit and zoom flags after it, the projection last.
 pub(crate) fn apply_camera(scene: &mut Scene, common: &Common, framed: bool, turn: f32) {
+    aim(scene, common, common.view.map(Into::into), framed, turn);
+}
+
+/// [`apply_camera`] from the named view `view`.
+pub(crate) fn aim(scene: &mut Scene, common: &Common, view: Option<NamedView>, framed: bool, turn: f32) {
     let aspect = zline::view::aspect_of(scene);
     if framed {
         scene.camera = zline::io::model_camera(&scene.objects, aspect);
+    }
+    if let Some(view) = view {
+        view.apply(scene, aspect, framed);
     }
     let change = zline::view::ViewChange {
         azimuth: if turn == 0.0 { common.azimuth } else { Some(common.azimuth.unwrap_or(0.0) + turn) },
@@ -32,6 +45,21 @@ pub(crate) fn apply_camera(scene: &mut Scene, common: &Common, framed: bool, tur
         up: common.up,
     };
     change.apply(scene, aspect, framed);
+    if let Some(kind) = common.projection {
+        let kind = match kind {
+            Projection::Perspective => ProjectionKind::Perspective,
+            Projection::Ortho => ProjectionKind::Orthographic,
+        };
+        zline::views::set_projection(scene, kind, aspect, framed);
+        // Zoom divides the fitted orthographic height too.
+        if let (Some(z), zline::scene::Projection::Orthographic { height, .. }) =
+            (common.zoom.filter(|z| z.is_finite() && *z > 0.0), &mut scene.camera.projection)
+        {
+            if kind == ProjectionKind::Orthographic && framed {
+                *height /= z;
+            }
+        }
+    }
     if let Some(c) = common.background {
         scene.background = c;
     }

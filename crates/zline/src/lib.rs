@@ -14,11 +14,13 @@
 use std::io::{Error, ErrorKind, Write};
 use std::path::Path;
 
+pub mod check;
 pub mod info;
 pub mod layers;
 pub mod view;
 #[cfg(feature = "view")]
 pub mod viewer;
+pub mod views;
 
 pub use zline_io as io;
 pub use zline_pipeline as pipeline;

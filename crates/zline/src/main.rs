@@ -20,9 +20,11 @@ use zline::pipeline::RenderStats;
 use zline::scene::{Scene, MAX_SAMPLES, MAX_THREADS};
 
 mod batch;
+mod check_command;
 mod flags;
 mod job;
 mod progress;
+mod sheet;
 mod terrain;
 mod turntable;
 #[cfg(feature = "view")]
@@ -60,6 +62,11 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
+    /// Render and compare against a reference PNG: exact by default, with
+    /// tolerances as options; on a failure the rendered image and a heat
+    /// map of the differences are written. Exit code 0: passed; 1: failed.
+    /// Render flags go after `--`, e.g. `zline check scene.toml -- --ssaa 2`.
+    Check(check_command::CheckArgs),
     /// Render a built-in scene (needs no files).
     Demo {
         /// Which built-in scene: the demo (shading modes, texture,
@@ -196,6 +203,19 @@ fn run(cli: Cli) -> Result<()> {
         Command::Info { input, json, allow_paths_outside } => {
             return info(&input, json, LoadOptions { allow_outside: allow_paths_outside })
         }
+        Command::Check(check) => {
+            let render = |argv: Vec<std::ffi::OsString>| {
+                let cli = Cli::try_parse_from(argv).map_err(|e| {
+                    let text = e.to_string();
+                    anyhow!(
+                        "{}",
+                        text.lines().next().unwrap_or("bad render flags").trim_start_matches("error: ")
+                    )
+                })?;
+                run(cli)
+            };
+            return check_command::run(&check, &render);
+        }
         Command::Render { input, allow_paths_outside, common } => {
             (Some(input), BuiltIn::Demo, allow_paths_outside, common, None)
         }
@@ -246,7 +266,9 @@ fn run(cli: Cli) -> Result<()> {
     // model is framed again for the final image's shape.
     let framed = input.is_some() && zline::view::is_framed(&scene);
     set_up(&mut scene, &common)?;
-    apply_camera(&mut scene, &common, framed, 0.0);
+    if common.views.is_none() {
+        apply_camera(&mut scene, &common, framed, 0.0);
+    }
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         pool = pool.num_threads(n);
@@ -258,6 +280,13 @@ fn run(cli: Cli) -> Result<()> {
         scene = pool.install(|| common.radiosity.display(&scene))?;
     } else {
         common.radiosity.check_unused()?;
+    }
+    if let Some(views) = &common.views {
+        common.layers.refuse("--views")?;
+        if common.trace.traces(&scene)? {
+            bail!("--views draws its sheet with the rasterizer (or radiosity), not the ray tracer");
+        }
+        return sheet::write(&scene, &common, &views.0, framed, &pool, &options);
     }
     if common.trace.traces(&scene)? {
         common.layers.refuse("the ray tracer")?;
@@ -367,6 +396,11 @@ fn ray_trace(
 /// The common options as `turntable` and `batch` take them, checked as
 /// `render` checks them before loading anything.
 fn job(common: &Common, allow_outside: bool) -> Result<job::Job<'_>> {
+    if common.views.is_some() {
+        bail!(
+            "--views writes one contact sheet: an option of render and demo, not of view, turntable or batch"
+        );
+    }
     let threads = thread_count(common.threads)?;
     if let (Some((w, h)), Some(n)) = (common.size, common.ssaa) {
         check_samples(w, h, n)?;

@@ -13,7 +13,7 @@ use super::choices::{
 };
 use super::parse::{
     parse_angle, parse_color, parse_direction, parse_fog, parse_fov, parse_non_negative, parse_positive,
-    parse_size, parse_tolerance,
+    parse_size, parse_tolerance, parse_views,
 };
 
 /// The smallest `--shadow-map-size`, as the scene file's.
@@ -138,6 +138,18 @@ pub(crate) struct Common {
     /// The world's up direction (default: the scene's, +y for models).
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_direction, allow_hyphen_values = true, help_heading = "Camera")]
     pub(crate) up: Option<Vec3>,
+    /// Look from a named side (front: from +z, right: from +x, top: from
+    /// +y, iso: from (1, 1, 1)); a model is framed again along it.
+    #[arg(long, value_enum, help_heading = "Camera")]
+    pub(crate) view: Option<super::choices::ViewName>,
+    /// The camera's projection; ortho frames a model's tight box.
+    #[arg(long, value_enum, help_heading = "Camera")]
+    pub(crate) projection: Option<super::choices::ProjectionName>,
+    /// `render` and `demo`: write one contact sheet of these views
+    /// (comma-separated names as for --view, or `all`), each cell the
+    /// image size, named under it.
+    #[arg(long, value_name = "LIST", value_parser = parse_views, conflicts_with = "view", help_heading = "Camera")]
+    pub(crate) views: Option<super::parse::ViewList>,
     /// Background colour, each channel in [0, 1].
     #[arg(long, value_name = "R,G,B", value_parser = parse_color)]
     pub(crate) background: Option<Vec3>,

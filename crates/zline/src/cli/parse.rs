@@ -90,3 +90,27 @@ pub(crate) fn parse_direction(s: &str) -> Result<Vec3, String> {
         _ => Err(format!("expected X,Y,Z, finite and not all zero, got '{s}'")),
     }
 }
+
+/// `--views`: named views, in order.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ViewList(pub(crate) Vec<zline::views::NamedView>);
+
+/// A comma-separated list of view names, or `all`.
+pub(crate) fn parse_views(s: &str) -> Result<ViewList, String> {
+    use zline::views::NamedView;
+    if s.trim() == "all" {
+        return Ok(ViewList(NamedView::ALL.to_vec()));
+    }
+    let names = NamedView::ALL.map(NamedView::name).join(", ");
+    let views = s
+        .split(',')
+        .map(|name| {
+            NamedView::from_name(name.trim())
+                .ok_or_else(|| format!("no view named '{}' (the views: {names}, or all)", name.trim()))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if views.len() > 64 {
+        return Err(format!("{} views: at most 64 in one sheet", views.len()));
+    }
+    Ok(ViewList(views))
+}

@@ -5,6 +5,7 @@ mod bad_corpus;
 mod bad_input;
 mod batch;
 mod camera;
+mod check;
 mod cli;
 mod formats;
 mod hard_cases;
@@ -17,6 +18,7 @@ mod terrain;
 mod turntable;
 #[cfg(feature = "view")]
 mod view;
+mod views;
 mod visibility;
 
 use std::path::Path;
