@@ -60,6 +60,9 @@ pub fn is_jpeg(path: &Path) -> bool {
 /// here too, not after the render). The error says which, without the path
 /// (the caller names it).
 pub fn check_output(path: &Path) -> std::io::Result<()> {
+    if is_stdout(path) {
+        return Ok(());
+    }
     if format_of(path).is_none() {
         return Err(Error::new(
             ErrorKind::InvalidInput,
@@ -129,6 +132,12 @@ pub fn save_image(image: &pipeline::Image, path: &Path) -> Result<(), image::Ima
     save_as(image, path, format_of(path).unwrap_or(ImageFormat::Png))
 }
 
+/// True for `-`, the output path that means standard output: [`save_image`]
+/// writes a PNG there, in one piece after it is encoded.
+pub fn is_stdout(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
 fn save_as(image: &pipeline::Image, path: &Path, format: ImageFormat) -> Result<(), image::ImageError> {
     use image::codecs::jpeg::JpegEncoder;
     use image::codecs::png::{CompressionType, FilterType, PngEncoder};
@@ -144,7 +153,7 @@ fn save_as(image: &pipeline::Image, path: &Path, format: ImageFormat) -> Result<
     let (w, h) = (image.width, image.height);
     // The encoder's own error, kept apart from the file's I/O errors.
     let mut encoding = Ok(());
-    let written = write_atomically(path, |out| {
+    let mut write = |out: &mut dyn Write| {
         encoding = match format {
             ImageFormat::Png => {
                 PngEncoder::new_with_quality(&mut *out, CompressionType::Fast, FilterType::Adaptive)
@@ -155,7 +164,15 @@ fn save_as(image: &pipeline::Image, path: &Path, format: ImageFormat) -> Result<
             }
         };
         Ok(())
-    });
+    };
+    let written = if is_stdout(path) {
+        let mut bytes = Vec::new();
+        write(&mut bytes)?;
+        let mut stdout = std::io::stdout().lock();
+        stdout.write_all(&bytes).and_then(|()| stdout.flush())
+    } else {
+        write_atomically(path, |out| write(out))
+    };
     encoding?;
     written.map_err(image::ImageError::IoError)
 }

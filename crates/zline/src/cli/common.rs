@@ -21,9 +21,10 @@ const MIN_SHADOW_MAP_SIZE: u32 = 16;
 
 #[derive(Args)]
 pub(crate) struct Common {
-    /// Output image: .png, or .jpg/.jpeg for JPEG at quality 90. Written to
-    /// a temporary file in the same folder, then renamed over OUT: a failed
-    /// write leaves an existing file as it was.
+    /// Output image: .png, or .jpg/.jpeg for JPEG at quality 90; `-`: a
+    /// PNG on standard output. Written to a temporary file in the same
+    /// folder, then renamed over OUT: a failed write leaves an existing
+    /// file as it was.
     #[arg(short, long, value_name = "OUT.png")]
     pub(crate) output: PathBuf,
     /// Also print the time of each step: load, render, PNG encode and write.

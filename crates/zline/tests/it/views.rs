@@ -1,5 +1,5 @@
 //! `--view`, `--projection` and `--views`: named views, orthographic
-//! framing and the contact sheet.
+//! framing and the contact sheet; `-o -`, the image on standard output.
 
 use std::path::Path;
 
@@ -73,4 +73,17 @@ fn a_contact_sheet_has_a_named_cell_per_view() {
     let input = bunny();
     let out = zline(&["turntable", &input, "-o", gif.to_str().unwrap(), "--views", "all"]);
     check_error_line(&out, 1, &["--views", "render and demo"]);
+}
+
+#[test]
+fn dash_writes_the_png_to_standard_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("file.png");
+    let file = render(&png, &[]);
+    assert!(file.status.success());
+    let input = bunny();
+    let piped = zline(&["render", input.as_str(), "-o", "-", "--size", "64x48"]);
+    assert!(piped.status.success(), "{}", String::from_utf8_lossy(&piped.stderr));
+    assert_eq!(piped.stdout, std::fs::read(&png).unwrap(), "the same PNG bytes");
+    assert!(String::from_utf8_lossy(&piped.stderr).contains("wrote -"));
 }
