@@ -15,6 +15,7 @@ mod lighting_model;
 mod radiosity;
 mod raytrace;
 mod terrain;
+mod thumbnail;
 mod turntable;
 #[cfg(feature = "view")]
 mod view;
