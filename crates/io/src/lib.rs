@@ -1,8 +1,9 @@
 //! The zline loaders: files → the scene model of zline-scene.
 //!
 //! This is the one crate that reads files: OBJ+MTL (through tobj), glTF 2.0
-//! (through the `gltf` crate), STL (`stl_io`), PLY (`ply-rs-bw`), PNG and
-//! JPEG textures (through `image`) and TOML scene files. Every loader error is a [`SceneError`] whose one-line
+//! (through the `gltf` crate), STL (`stl_io`), PLY (`ply-rs-bw`), 3MF
+//! (`zip` and `quick-xml`), PNG and JPEG textures (through `image`) and
+//! TOML scene files. Every loader error is a [`SceneError`] whose one-line
 //! message names the file, the place and what is wrong; what a loader can
 //! draw around (a missing MTL file or texture, an unsupported glTF feature)
 //! is a warning instead. It knows nothing of rasterization, screens or
@@ -10,8 +11,9 @@
 //!
 //! Steps, one module each: `obj` (OBJ+MTL files and their textures), `gltf`
 //! (glTF and GLB files: nodes, materials, cameras, lights), `stl` and `ply`
-//! (single-mesh formats of CAD tools and scanners), `texture_file`
-//! (PNG/JPEG images → textures, shared by both loaders), `culling` (the
+//! (single-mesh formats of CAD tools and scanners), `threemf` (3MF, the
+//! 3D-printing format: objects, components, build items, colours),
+//! `texture_file` (PNG/JPEG images → textures, shared by both loaders), `culling` (the
 //! default back-face culling rule), `framing` (camera and lights for a bare
 //! model or glTF file), `scene_file` (TOML scenes; the format is documented
 //! on [`load_scene`], and `examples/scene.toml` shows every key), `heightfield` (elevation files: greyscale PNG and ESRI ASCII grids → a
@@ -37,6 +39,7 @@ mod scene_file;
 mod stl;
 mod stream;
 mod texture_file;
+mod threemf;
 
 pub use bump::apply_bump_map;
 pub use environment_file::{load_environment, read_panorama, write_panorama, MAX_PANORAMA_TEXELS, SKY_NAME};
@@ -57,3 +60,4 @@ pub use ply::load_ply;
 pub use scene_file::{load_scene, load_scene_with_options};
 pub use stl::load_stl;
 pub use stream::{load_bytes, read_stream, InputFormat, LoadedInput, STDIN_NAME};
+pub use threemf::{load_3mf, MAX_3MF_MESHES, MAX_ARCHIVE_ENTRIES, MAX_COMPONENT_DEPTH, MAX_PLACEMENTS};

@@ -34,6 +34,8 @@ pub enum InputFormat {
     Stl,
     /// PLY, ASCII or binary.
     Ply,
+    /// 3MF, a ZIP archive of XML parts.
+    ThreeMf,
     /// A TOML scene file.
     Scene,
 }
@@ -48,13 +50,14 @@ impl InputFormat {
             "glb" => InputFormat::Glb,
             "stl" => InputFormat::Stl,
             "ply" => InputFormat::Ply,
+            "3mf" => InputFormat::ThreeMf,
             "toml" => InputFormat::Scene,
             _ => return None,
         })
     }
 
-    /// The format of `bytes`, told from their content: GLB and PLY by their
-    /// magic words, binary STL by its size rule (84 + 50 bytes per
+    /// The format of `bytes`, told from their content: GLB, PLY and 3MF (a
+    /// ZIP archive) by their magic words, binary STL by its size rule (84 + 50 bytes per
     /// triangle) and ASCII STL by `solid` then `facet`/`endsolid`, glTF as
     /// a JSON object with an `"asset"` key; of the remaining text, a TOML
     /// scene has a `[table]` header or a `key = value` line before any OBJ
@@ -66,6 +69,9 @@ impl InputFormat {
         }
         if bytes.starts_with(b"ply\n") || bytes.starts_with(b"ply\r\n") {
             return Some(InputFormat::Ply);
+        }
+        if bytes.starts_with(b"PK\x03\x04") {
+            return Some(InputFormat::ThreeMf);
         }
         if crate::stl::looks_like_stl(bytes) {
             return Some(InputFormat::Stl);
@@ -98,6 +104,7 @@ impl InputFormat {
             InputFormat::Glb => "GLB",
             InputFormat::Stl => "STL",
             InputFormat::Ply => "PLY",
+            InputFormat::ThreeMf => "3MF",
             InputFormat::Scene => "scene file",
         }
     }
@@ -174,6 +181,7 @@ pub fn load_bytes(
         }
         InputFormat::Stl => (LoadedInput::Model(crate::stl::parse_stl(name, &bytes)?), vec![]),
         InputFormat::Ply => (LoadedInput::Model(crate::ply::parse_ply(name, &bytes)?), vec![]),
+        InputFormat::ThreeMf => (LoadedInput::Model(crate::threemf::parse_3mf(name, &bytes)?), vec![]),
         InputFormat::Scene => {
             let text = text(bytes);
             if text.len() as u64 > zline_scene::MAX_TEXT_FILE_BYTES {

@@ -37,7 +37,7 @@ use flags::{apply_camera, apply_environment, apply_fog, apply_model, apply_overr
 #[derive(Parser)]
 #[command(
     version,
-    about = "Render 3D models (OBJ, glTF, STL, PLY) and scene files to PNG images on the CPU, no GPU needed: \
+    about = "Render 3D models (OBJ, glTF, STL, PLY, 3MF) and scene files to PNG images on the CPU, no GPU needed: \
              z-buffer, flat, Gouraud and Phong shading, textures, fog, transparency, shadows."
 )]
 struct Cli {
@@ -47,9 +47,9 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render a model (OBJ, glTF, STL, PLY) or a TOML scene file to a PNG.
+    /// Render a model (OBJ, glTF, STL, PLY, 3MF) or a TOML scene file to a PNG.
     Render {
-        /// An `.obj`, `.gltf`, `.glb`, `.stl` or `.ply` model (framed automatically unless a
+        /// An `.obj`, `.gltf`, `.glb`, `.stl`, `.ply` or `.3mf` model (framed automatically unless a
         /// glTF file brings its own camera; a key and a fill light unless it
         /// brings lights) or a `.toml` scene file; `-` reads standard input
         /// (the format told from its bytes, files it names looked up in the
@@ -91,7 +91,7 @@ enum Command {
     /// Describe a model or scene file: triangles, vertices, bounds,
     /// materials, textures, lights, camera and warnings.
     Info {
-        /// An `.obj`, `.gltf`, `.glb`, `.stl` or `.ply` model or a `.toml`
+        /// An `.obj`, `.gltf`, `.glb`, `.stl`, `.ply` or `.3mf` model or a `.toml`
         /// scene file; `-` reads standard input.
         input: PathBuf,
         /// Print JSON (one object) for scripts instead of text.

@@ -26,7 +26,7 @@ const MAX_FRAMES: u32 = 3600;
 /// The options of `zline turntable` besides the common ones.
 #[derive(Args)]
 pub(crate) struct TurntableArgs {
-    /// An `.obj`, `.gltf`, `.glb`, `.stl` or `.ply` model or a `.toml`
+    /// An `.obj`, `.gltf`, `.glb`, `.stl`, `.ply` or `.3mf` model or a `.toml`
     /// scene file.
     input: PathBuf,
     /// Frames in the full turn: frame k is seen from 360·k/N degrees of

@@ -38,7 +38,7 @@ progressively when still: 1/8, 1/4, 1/2 of the resolution, then full.";
 /// `zline view`'s own options (the look flags are `render`'s).
 #[derive(Args)]
 pub(crate) struct ViewArgs {
-    /// An `.obj`, `.gltf`, `.glb`, `.stl` or `.ply` model or a `.toml`
+    /// An `.obj`, `.gltf`, `.glb`, `.stl`, `.ply` or `.3mf` model or a `.toml`
     /// scene file.
     input: PathBuf,
     /// As for `render`: read files the input names outside its folder.

@@ -56,6 +56,7 @@ impl ModelCache {
             Some("gltf" | "glb") => gltf_parts(path, options)?,
             Some("stl") => crate::stl::load_stl(path)?.into_iter().map(ModelPart::alone).collect(),
             Some("ply") => crate::ply::load_ply(path)?.into_iter().map(ModelPart::alone).collect(),
+            Some("3mf") => crate::threemf::load_3mf(path)?.into_iter().map(ModelPart::alone).collect(),
             _ => obj_parts(path, options)?,
         };
         self.loaded.insert(path.to_path_buf(), parts.clone());

@@ -14,6 +14,7 @@ mod scene_file;
 mod scene_materials;
 mod scene_raytrace;
 mod scene_shadows;
+mod threemf;
 
 use std::path::{Path, PathBuf};
 

@@ -1,5 +1,5 @@
 //! Reading the input of `render`, `info` and friends: a model (OBJ, glTF,
-//! GLB, STL, PLY) or a scene file, chosen by extension — one dispatch for
+//! GLB, STL, PLY, 3MF) or a scene file, chosen by extension — one dispatch for
 //! every command.
 
 use std::path::Path;
@@ -33,7 +33,7 @@ pub(crate) fn load(input: &Path, options: LoadOptions) -> Result<Loaded> {
         let bytes = zline::io::read_stream(std::io::stdin().lock(), name)?;
         let Some(format) = InputFormat::sniff(&bytes) else {
             bail!(
-                "{}: could not tell the format of the input; expected an OBJ, glTF, GLB, STL or PLY model or a TOML scene file",
+                "{}: could not tell the format of the input; expected an OBJ, glTF, GLB, STL, PLY or 3MF model or a TOML scene file",
                 name.display()
             );
         };
@@ -41,7 +41,7 @@ pub(crate) fn load(input: &Path, options: LoadOptions) -> Result<Loaded> {
     } else {
         let Some(format) = InputFormat::from_extension(input) else {
             bail!(
-                "{}: unsupported input; expected an .obj, .gltf, .glb, .stl or .ply model, a .toml scene file, or - for standard input",
+                "{}: unsupported input; expected an .obj, .gltf, .glb, .stl, .ply or .3mf model, a .toml scene file, or - for standard input",
                 input.display()
             );
         };
@@ -86,6 +86,7 @@ fn load_file(
         }
         InputFormat::Stl => (LoadedInput::Model(zline::io::load_stl(input)?), vec![]),
         InputFormat::Ply => (LoadedInput::Model(zline::io::load_ply(input)?), vec![]),
+        InputFormat::ThreeMf => (LoadedInput::Model(zline::io::load_3mf(input)?), vec![]),
         InputFormat::Scene => {
             (LoadedInput::Scene(Box::new(zline::io::load_scene_with_options(input, options)?)), vec![])
         }

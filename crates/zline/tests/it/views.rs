@@ -87,3 +87,18 @@ fn dash_writes_the_png_to_standard_output() {
     assert_eq!(piped.stdout, std::fs::read(&png).unwrap(), "the same PNG bytes");
     assert!(String::from_utf8_lossy(&piped.stderr).contains("wrote -"));
 }
+
+#[test]
+fn a_shipped_3mf_sample_renders_with_its_colours() {
+    // assets/3mf/assembly.3mf: a tetrahedron coloured per triangle,
+    // placed three times through components (one mirrored).
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("assembly.png");
+    let input = repo().join("assets/3mf/assembly.3mf");
+    let out = zline(&["render", input.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "96x96"]);
+    let img = check_png(&out, &png, (96, 96));
+    let ground = *img.get_pixel(0, 0);
+    let colours: std::collections::HashSet<[u8; 3]> =
+        img.pixels().filter(|p| **p != ground).map(|p| p.0).filter(|p| p[0].abs_diff(p[1]) > 40).collect();
+    assert!(colours.len() > 10, "coloured faces drawn: {}", colours.len());
+}
