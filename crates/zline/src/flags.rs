@@ -24,7 +24,7 @@ use crate::cli::common::Common;
 /// (a turntable's frames). The named view (`view`, else `--view`) comes
 /// first, the orbit and zoom flags after it, the projection last.
 pub(crate) fn apply_camera(scene: &mut Scene, common: &Common, framed: bool, turn: f32) {
-    aim(scene, common, common.view.map(Into::into), framed, turn);
+    aim(scene, common, common.view, framed, turn);
 }
 
 /// [`apply_camera`] from the named view `view`.

@@ -170,40 +170,6 @@ impl From<LightModel> for ModelChoice {
     }
 }
 
-/// `--view`: a side of the scene, along a world axis.
-#[derive(Clone, Copy, PartialEq, Eq, Debug, ValueEnum)]
-pub(crate) enum ViewName {
-    /// From +z.
-    Front,
-    /// From -z.
-    Back,
-    /// From -x.
-    Left,
-    /// From +x.
-    Right,
-    /// From +y (the front at the bottom).
-    Top,
-    /// From -y.
-    Bottom,
-    /// From (1, 1, 1).
-    Iso,
-}
-
-impl From<ViewName> for zline::views::NamedView {
-    fn from(v: ViewName) -> Self {
-        use zline::views::NamedView as N;
-        match v {
-            ViewName::Front => N::Front,
-            ViewName::Back => N::Back,
-            ViewName::Left => N::Left,
-            ViewName::Right => N::Right,
-            ViewName::Top => N::Top,
-            ViewName::Bottom => N::Bottom,
-            ViewName::Iso => N::Iso,
-        }
-    }
-}
-
 /// `--projection`.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, ValueEnum)]
 pub(crate) enum ProjectionName {

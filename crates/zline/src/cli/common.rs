@@ -13,7 +13,7 @@ use super::choices::{
 };
 use super::parse::{
     parse_angle, parse_color, parse_direction, parse_fog, parse_fov, parse_non_negative, parse_positive,
-    parse_size, parse_tolerance, parse_views,
+    parse_size, parse_tolerance, parse_view, parse_views,
 };
 
 /// The smallest `--shadow-map-size`, as the scene file's.
@@ -139,10 +139,11 @@ pub(crate) struct Common {
     /// The world's up direction (default: the scene's, +y for models).
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_direction, allow_hyphen_values = true, help_heading = "Camera")]
     pub(crate) up: Option<Vec3>,
-    /// Look from a named side (front: from +z, right: from +x, top: from
-    /// +y, iso: from (1, 1, 1)); a model is framed again along it.
-    #[arg(long, value_enum, help_heading = "Camera")]
-    pub(crate) view: Option<super::choices::ViewName>,
+    /// Look from a named side: front (from +z), back, left, right (from
+    /// +x), top (from +y), bottom or iso (from (1, 1, 1)); a model is framed
+    /// again along it.
+    #[arg(long, value_name = "front|back|left|right|top|bottom|iso", value_parser = parse_view, help_heading = "Camera")]
+    pub(crate) view: Option<zline::views::NamedView>,
     /// The camera's projection; ortho frames a model's tight box.
     #[arg(long, value_enum, help_heading = "Camera")]
     pub(crate) projection: Option<super::choices::ProjectionName>,

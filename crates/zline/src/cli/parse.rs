@@ -95,6 +95,14 @@ pub(crate) fn parse_direction(s: &str) -> Result<Vec3, String> {
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct ViewList(pub(crate) Vec<zline::views::NamedView>);
 
+/// `--view`: one view name.
+pub(crate) fn parse_view(s: &str) -> Result<zline::views::NamedView, String> {
+    parse_views(s).and_then(|list| match list.0[..] {
+        [one] if s.trim() != "all" => Ok(one),
+        _ => Err(format!("expected one view name, got '{s}'")),
+    })
+}
+
 /// A comma-separated list of view names, or `all`.
 pub(crate) fn parse_views(s: &str) -> Result<ViewList, String> {
     use zline::views::NamedView;
