@@ -97,9 +97,10 @@ pub(crate) struct ViewList(pub(crate) Vec<zline::views::NamedView>);
 
 /// `--view`: one view name.
 pub(crate) fn parse_view(s: &str) -> Result<zline::views::NamedView, String> {
-    parse_views(s).and_then(|list| match list.0[..] {
-        [one] if s.trim() != "all" => Ok(one),
-        _ => Err(format!("expected one view name, got '{s}'")),
+    use zline::views::NamedView;
+    NamedView::from_name(s.trim()).ok_or_else(|| {
+        let names = NamedView::ALL.map(NamedView::name).join(", ");
+        format!("no view named '{}' (the views: {names})", s.trim())
     })
 }
 
