@@ -134,7 +134,7 @@ pub(crate) fn floor_div(a: i64, b: i64) -> i64 {
 
 /// The first row (or column) whose sample coordinate is ≥ `v` (fixed point).
 #[inline]
-pub(crate) fn first_sample_at_or_after(v: i64) -> i64 {
+pub fn first_sample_at_or_after(v: i64) -> i64 {
     (v - SUBPIXEL_HALF + SUBPIXEL_ONE - 1) >> SUBPIXEL_BITS
 }
 

@@ -17,7 +17,7 @@ pub mod fixed;
 pub mod interpolate;
 
 pub use edge_table::{EdgeTable, Span};
-pub use fixed::{FixedPoint, Rect, MAX_WINDOW_COORD, SUBPIXEL_BITS, SUBPIXEL_ONE};
+pub use fixed::{first_sample_at_or_after, FixedPoint, Rect, MAX_WINDOW_COORD, SUBPIXEL_BITS, SUBPIXEL_ONE};
 pub use interpolate::{
     for_each_block, for_each_sample, AttributePlanes, DepthPlane, PlaneBasis, SampleBlock, LANES,
     REANCHOR_BLOCK,

@@ -17,6 +17,7 @@ use std::path::Path;
 pub mod check;
 pub mod info;
 pub mod layers;
+pub mod scan;
 pub mod view;
 #[cfg(feature = "view")]
 pub mod viewer;

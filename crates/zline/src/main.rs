@@ -78,6 +78,21 @@ enum Command {
         #[command(subcommand)]
         action: thumbnail::ThumbnailerAction,
     },
+    /// Scan conversion step by step: the edge table, the active edge list
+    /// row by row, the spans and the depth along them, for one triangle
+    /// in window space (the renderer's own fixed-point walk).
+    Scan {
+        /// The triangle: three vertices `x,y,z` in pixels (y down; z the
+        /// depth), e.g. `--triangle "0,0,0 0,4,0 4,0,1"`.
+        #[arg(long, value_name = "X,Y,Z X,Y,Z X,Y,Z", allow_hyphen_values = true)]
+        triangle: String,
+        /// The window, which clips the rows and columns (default 64x64).
+        #[arg(long, value_name = "WxH", value_parser = cli::parse::parse_size, default_value = "64x64")]
+        size: (u32, u32),
+        /// Print JSON for scripts instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Render a built-in scene (needs no files).
     Demo {
         /// Which built-in scene: the demo (shading modes, texture,
@@ -209,6 +224,26 @@ fn one_line(e: &anyhow::Error) -> String {
     line
 }
 
+/// `zline scan`: parses the triangle and prints its trace.
+fn scan(triangle: &str, (width, height): (u32, u32), json: bool) -> Result<()> {
+    let numbers: Vec<f32> = triangle
+        .split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|t| !t.is_empty())
+        .map(|t| t.parse::<f32>().map_err(|_| anyhow!("--triangle: '{t}' is not a number")))
+        .collect::<Result<_>>()?;
+    let [x0, y0, z0, x1, y1, z1, x2, y2, z2] = numbers[..] else {
+        bail!("--triangle takes three vertices x,y,z (9 numbers), got {} numbers", numbers.len());
+    };
+    let trace = zline::scan::trace([[x0, y0, z0], [x1, y1, z1], [x2, y2, z2]], width, height)
+        .map_err(|why| anyhow!("--triangle: {why}"))?;
+    if json {
+        println!("{}", serde_json::to_string_pretty(&trace)?);
+    } else {
+        print!("{}", trace.text());
+    }
+    Ok(())
+}
+
 /// Runs `zline render` (or any command) on an argument list, as the
 /// command line would: `check` and `thumbnail` render through it.
 fn render_argv(argv: Vec<std::ffi::OsString>) -> Result<()> {
@@ -227,6 +262,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Check(check) => return check_command::run(&check, &render_argv),
         Command::Thumbnail(thumbnail) => return thumbnail::run(&thumbnail, &render_argv),
         Command::Thumbnailer { action } => return thumbnail::thumbnailer(&action),
+        Command::Scan { triangle, size, json } => return scan(&triangle, size, json),
         Command::Render { input, allow_paths_outside, common } => {
             (Some(input), BuiltIn::Demo, allow_paths_outside, common, None)
         }

@@ -14,6 +14,7 @@ mod layers;
 mod lighting_model;
 mod radiosity;
 mod raytrace;
+mod scan;
 mod terrain;
 mod thumbnail;
 mod turntable;

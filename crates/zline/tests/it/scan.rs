@@ -1,0 +1,26 @@
+//! `zline scan`: the edge table and the active edge list of a triangle
+//! checked by hand, text and JSON, and bad triangles.
+
+use crate::{check_clean_error, zline};
+
+#[test]
+fn a_triangle_checked_by_hand_prints_its_edge_table_and_spans() {
+    let out = zline(&["scan", "--triangle", "0,0,0 0,4,0 4,0,1"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for line in [
+        "  long        0      4      0.0000   0.0000",
+        "  lower       0      4      3.5000  -1.0000",
+        "  y    0: AEL [long 0.0000, lower 3.5000]  span 0..3  z 0.125000 .. 0.625000",
+        "  y    3: AEL [long 0.0000, lower 0.5000]  no sample",
+    ] {
+        assert!(text.contains(line), "{line:?} in\n{text}");
+    }
+    let out = zline(&["scan", "--triangle", "0,0,0 0,4,0 4,0,1", "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["rows"][1]["span"], serde_json::json!([0, 2]));
+    assert_eq!(json["edges"][1]["inverse_slope"], -1.0);
+    check_clean_error(&zline(&["scan", "--triangle", "0,0,0 1,1,0"]), &["9 numbers"]);
+    check_clean_error(&zline(&["scan", "--triangle", "0,0,0 1,1,0 2,2,0"]), &["zero area"]);
+    check_clean_error(&zline(&["scan", "--triangle", "0,0,0 1,x,0 2,2,0"]), &["'x' is not a number"]);
+}
