@@ -82,13 +82,25 @@ enum Command {
     /// row by row, the spans and the depth along them, for one triangle
     /// in window space (the renderer's own fixed-point walk).
     Scan {
-        /// The triangle: three vertices `x,y,z` in pixels (y down; z the
-        /// depth), e.g. `--triangle "0,0,0 0,4,0 4,0,1"`.
+        /// A model or scene file whose triangle `--index` (of object
+        /// `--object`) to trace, seen by its camera (a model framed as
+        /// `render` frames it).
+        #[arg(conflicts_with = "triangle", required_unless_present = "triangle")]
+        input: Option<PathBuf>,
+        /// The input's object (default 0).
+        #[arg(long, default_value_t = 0, requires = "input")]
+        object: usize,
+        /// The input's triangle (default 0).
+        #[arg(long, default_value_t = 0, requires = "input")]
+        index: usize,
+        /// A triangle of its own: three vertices `x,y,z` in pixels (y down;
+        /// z the depth), e.g. `--triangle "0,0,0 0,4,0 4,0,1"`.
         #[arg(long, value_name = "X,Y,Z X,Y,Z X,Y,Z", allow_hyphen_values = true)]
-        triangle: String,
-        /// The window, which clips the rows and columns (default 64x64).
-        #[arg(long, value_name = "WxH", value_parser = cli::parse::parse_size, default_value = "64x64")]
-        size: (u32, u32),
+        triangle: Option<String>,
+        /// The window, which clips the rows and columns (default 64x64 for
+        /// --triangle, the scene's size for an input).
+        #[arg(long, value_name = "WxH", value_parser = cli::parse::parse_size)]
+        size: Option<(u32, u32)>,
         /// Print JSON for scripts instead of text.
         #[arg(long)]
         json: bool,
@@ -224,8 +236,8 @@ fn one_line(e: &anyhow::Error) -> String {
     line
 }
 
-/// `zline scan`: parses the triangle and prints its trace.
-fn scan(triangle: &str, (width, height): (u32, u32), json: bool) -> Result<()> {
+/// `--triangle`'s three vertices.
+fn parse_triangle(triangle: &str) -> Result<[[f32; 3]; 3]> {
     let numbers: Vec<f32> = triangle
         .split(|c: char| c == ',' || c.is_whitespace())
         .filter(|t| !t.is_empty())
@@ -234,8 +246,12 @@ fn scan(triangle: &str, (width, height): (u32, u32), json: bool) -> Result<()> {
     let [x0, y0, z0, x1, y1, z1, x2, y2, z2] = numbers[..] else {
         bail!("--triangle takes three vertices x,y,z (9 numbers), got {} numbers", numbers.len());
     };
-    let trace = zline::scan::trace([[x0, y0, z0], [x1, y1, z1], [x2, y2, z2]], width, height)
-        .map_err(|why| anyhow!("--triangle: {why}"))?;
+    Ok([[x0, y0, z0], [x1, y1, z1], [x2, y2, z2]])
+}
+
+/// `zline scan`: prints the trace of a window-space triangle.
+fn scan(vertices: [[f32; 3]; 3], (width, height): (u32, u32), json: bool) -> Result<()> {
+    let trace = zline::scan::trace(vertices, width, height).map_err(|why| anyhow!("the triangle: {why}"))?;
     if json {
         println!("{}", serde_json::to_string_pretty(&trace)?);
     } else {
@@ -262,7 +278,27 @@ fn run(cli: Cli) -> Result<()> {
         Command::Check(check) => return check_command::run(&check, &render_argv),
         Command::Thumbnail(thumbnail) => return thumbnail::run(&thumbnail, &render_argv),
         Command::Thumbnailer { action } => return thumbnail::thumbnailer(&action),
-        Command::Scan { triangle, size, json } => return scan(&triangle, size, json),
+        Command::Scan { input, object, index, triangle, size, json } => {
+            let (vertices, size) = match (&input, &triangle) {
+                (Some(input), _) => {
+                    let mut scene = load_input(input, LoadOptions::default())?;
+                    let framed = zline::view::is_framed(&scene);
+                    if let Some((w, h)) = size {
+                        (scene.settings.width, scene.settings.height) = (w, h);
+                        if framed {
+                            scene.camera =
+                                zline::io::model_camera(&scene.objects, w as f32 / h.max(1) as f32);
+                        }
+                    }
+                    let v = zline::scan::window_triangle(&scene, object, index)
+                        .map_err(|why| anyhow!("{}: {why}", input.display()))?;
+                    (v, (scene.settings.width, scene.settings.height))
+                }
+                (None, Some(triangle)) => (parse_triangle(triangle)?, size.unwrap_or((64, 64))),
+                (None, None) => bail!("give an input or --triangle"),
+            };
+            return scan(vertices, size, json);
+        }
         Command::Render { input, allow_paths_outside, common } => {
             (Some(input), BuiltIn::Demo, allow_paths_outside, common, None)
         }

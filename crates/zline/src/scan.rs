@@ -127,6 +127,43 @@ pub fn trace(vertices: [[f32; 3]; 3], width: u32, height: u32) -> Result<ScanTra
     Ok(ScanTrace { vertices: [px(top), px(mid), px(bottom)], edges, dzdx, rows })
 }
 
+/// Triangle `index` of object `object` of `scene`, taken to window space
+/// by the renderer's own mapping (`zline_pipeline::vertex::Projected`:
+/// the scene's camera, the divide by w, the viewport of its settings):
+/// three vertices (x, y, NC depth). `Err` says why there is none: no such
+/// triangle, or one the near or far plane clips (the trace shows
+/// triangles whole; the clipper would cut it into others).
+pub fn window_triangle(
+    scene: &zline_scene::Scene,
+    object: usize,
+    index: usize,
+) -> Result<[[f32; 3]; 3], String> {
+    use zline_pipeline::vertex::{Projected, Viewport};
+    let o = scene
+        .objects
+        .get(object)
+        .ok_or_else(|| format!("no object {object} (the scene has {})", scene.objects.len()))?;
+    let tri = o.mesh.triangles.get(index).ok_or_else(|| {
+        format!("object {object} has no triangle {index} ({} triangles)", o.mesh.triangles.len())
+    })?;
+    let (w, h) = (scene.settings.width, scene.settings.height);
+    let aspect = w.max(1) as f32 / h.max(1) as f32;
+    let clip_from_object =
+        scene.camera.clip_from_eye(aspect) * scene.camera.eye_from_world() * o.world_from_object;
+    let viewport = Viewport { width: w, height: h };
+    let mut out = [[0.0f32; 3]; 3];
+    for (k, &i) in tri.iter().enumerate() {
+        let clip = clip_from_object * o.mesh.positions[i as usize].extend(1.0);
+        let inside = clip.w > 0.0 && clip.z >= -clip.w && clip.z <= clip.w;
+        let projected = Projected::new(clip, viewport).filter(|_| inside).ok_or_else(|| {
+            format!("triangle {index} of object {object} crosses the near or far plane: the clipper cuts it, pick another")
+        })?;
+        let (x, y) = projected.fixed.to_f64();
+        out[k] = [x as f32, y as f32, projected.z as f32];
+    }
+    Ok(out)
+}
+
 impl ScanTrace {
     /// The trace as the text `zline scan` prints.
     pub fn text(&self) -> String {

@@ -24,3 +24,23 @@ fn a_triangle_checked_by_hand_prints_its_edge_table_and_spans() {
     check_clean_error(&zline(&["scan", "--triangle", "0,0,0 1,1,0 2,2,0"]), &["zero area"]);
     check_clean_error(&zline(&["scan", "--triangle", "0,0,0 1,x,0 2,2,0"]), &["'x' is not a number"]);
 }
+
+#[test]
+fn a_models_triangle_is_traced_where_the_camera_sees_it() {
+    let bunny = crate::repo().join("assets/ply/bunny_lowres.ply");
+    let path = bunny.to_str().unwrap();
+    let out = zline(&["scan", path, "--index", "100", "--size", "200x150", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // Inside the 200 × 150 window, with at least one covered span.
+    for v in json["vertices"].as_array().unwrap() {
+        let (x, y) = (v[0].as_f64().unwrap(), v[1].as_f64().unwrap());
+        assert!((0.0..200.0).contains(&x) && (0.0..150.0).contains(&y), "{v}");
+    }
+    assert!(json["rows"].as_array().unwrap().iter().any(|r| !r["span"].is_null()));
+    check_clean_error(
+        &zline(&["scan", path, "--index", "999999"]),
+        &["no triangle 999999", "6598 triangles"],
+    );
+    check_clean_error(&zline(&["scan", path, "--object", "3"]), &["no object 3"]);
+}
