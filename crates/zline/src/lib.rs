@@ -18,6 +18,7 @@ pub mod check;
 pub mod info;
 pub mod layers;
 pub mod scan;
+pub mod scan_page;
 pub mod view;
 #[cfg(feature = "view")]
 pub mod viewer;

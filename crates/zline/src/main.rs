@@ -104,6 +104,14 @@ enum Command {
         /// Print JSON for scripts instead of text.
         #[arg(long)]
         json: bool,
+        /// Also draw the trace: the pixel grid magnified, the covered
+        /// samples, the edges (PNG).
+        #[arg(long, value_name = "OUT.png")]
+        image: Option<PathBuf>,
+        /// Also write a self-contained HTML page that steps through the
+        /// trace row by row (←/→, or #step=N in its address).
+        #[arg(long, value_name = "OUT.html")]
+        html: Option<PathBuf>,
     },
     /// Render a built-in scene (needs no files).
     Demo {
@@ -250,8 +258,27 @@ fn parse_triangle(triangle: &str) -> Result<[[f32; 3]; 3]> {
 }
 
 /// `zline scan`: prints the trace of a window-space triangle.
-fn scan(vertices: [[f32; 3]; 3], (width, height): (u32, u32), json: bool) -> Result<()> {
+fn scan(
+    vertices: [[f32; 3]; 3],
+    (width, height): (u32, u32),
+    json: bool,
+    image: Option<&std::path::Path>,
+    html: Option<&std::path::Path>,
+) -> Result<()> {
     let trace = zline::scan::trace(vertices, width, height).map_err(|why| anyhow!("the triangle: {why}"))?;
+    if let Some(path) = image {
+        let picture = zline::scan_page::picture(&trace, usize::MAX)
+            .ok_or_else(|| anyhow!("{}: the triangle is too large to draw magnified", path.display()))?;
+        zline::save_image(&picture, path)
+            .with_context(|| format!("{}: cannot write the image", path.display()))?;
+        eprintln!("wrote {}", path.display());
+    }
+    if let Some(path) = html {
+        let page = zline::scan_page::page(&trace);
+        zline::write_atomically(path, |out| out.write_all(page.as_bytes()))
+            .with_context(|| format!("{}: cannot write the page", path.display()))?;
+        eprintln!("wrote {}", path.display());
+    }
     if json {
         println!("{}", serde_json::to_string_pretty(&trace)?);
     } else {
@@ -278,7 +305,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Check(check) => return check_command::run(&check, &render_argv),
         Command::Thumbnail(thumbnail) => return thumbnail::run(&thumbnail, &render_argv),
         Command::Thumbnailer { action } => return thumbnail::thumbnailer(&action),
-        Command::Scan { input, object, index, triangle, size, json } => {
+        Command::Scan { input, object, index, triangle, size, json, image, html } => {
             let (vertices, size) = match (&input, &triangle) {
                 (Some(input), _) => {
                     let mut scene = load_input(input, LoadOptions::default())?;
@@ -297,7 +324,7 @@ fn run(cli: Cli) -> Result<()> {
                 (None, Some(triangle)) => (parse_triangle(triangle)?, size.unwrap_or((64, 64))),
                 (None, None) => bail!("give an input or --triangle"),
             };
-            return scan(vertices, size, json);
+            return scan(vertices, size, json, image.as_deref(), html.as_deref());
         }
         Command::Render { input, allow_paths_outside, common } => {
             (Some(input), BuiltIn::Demo, allow_paths_outside, common, None)

@@ -44,3 +44,51 @@ fn a_models_triangle_is_traced_where_the_camera_sees_it() {
     );
     check_clean_error(&zline(&["scan", path, "--object", "3"]), &["no object 3"]);
 }
+
+/// A headless Chromium, when one is installed.
+fn chromium() -> Option<&'static str> {
+    ["chromium", "chromium-browser", "google-chrome"]
+        .into_iter()
+        .find(|c| std::process::Command::new(c).arg("--version").output().is_ok_and(|o| o.status.success()))
+}
+
+#[test]
+fn the_html_page_steps_through_the_same_rows_in_headless_chromium() {
+    let dir = tempfile::tempdir().unwrap();
+    let (html, png) = (dir.path().join("scan.html"), dir.path().join("scan.png"));
+    let triangle = "1.2,0.3,0.1 7.7,2.9,0.5 3.1,6.6,0.9";
+    let args = ["scan", "--triangle", triangle, "--size", "16x16", "--html", html.to_str().unwrap()];
+    let out = zline(&[&args[..], &["--image", png.to_str().unwrap()]].concat());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    // The drawing: 16 pixels a window pixel around the triangle's box.
+    let img = image::open(&png).unwrap();
+    assert_eq!((img.width() % 16, img.height() % 16), (0, 0));
+    let Some(browser) = chromium() else {
+        eprintln!("skipped: no headless Chromium (Debian's chromium) installed");
+        return;
+    };
+    // Each step k, opened as #step=k, shows row k − 1 as the text shows it.
+    let rows: Vec<&str> = text.lines().filter(|l| l.trim_start().starts_with("y ")).collect();
+    assert_eq!(rows.len(), 7);
+    for (k, row) in rows.iter().enumerate() {
+        let url = format!("file://{}#step={}", html.display(), k + 1);
+        let dom = std::process::Command::new(browser)
+            .args([
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--virtual-time-budget=2000",
+                "--dump-dom",
+                &url,
+            ])
+            .output()
+            .unwrap();
+        let dom = String::from_utf8_lossy(&dom.stdout);
+        let shown = dom.split("<div id=\"row\">").nth(1).and_then(|s| s.split("</div>").next()).unwrap_or("");
+        let want = row.trim_start().replace("AEL", "").split_whitespace().collect::<Vec<_>>().join(" ");
+        let got = shown.replace("AEL", "").split_whitespace().collect::<Vec<_>>().join(" ");
+        assert_eq!(got, want, "step {}", k + 1);
+        assert!(dom.contains(&format!("step {} of 7", k + 1)), "step {}", k + 1);
+    }
+}
