@@ -565,6 +565,7 @@ fn set_up(scene: &mut Scene, common: &Common) -> Result<()> {
     apply_overrides(&mut scene.settings, common);
     apply_fog(scene, common);
     apply_shadows(scene, common);
+    common.visibility.apply_scene(scene);
     check_samples(scene.settings.width, scene.settings.height, scene.settings.ssaa)?;
     Ok(())
 }

@@ -1,9 +1,10 @@
 //! The command line's hidden-surface and hidden-line options, flattened
 //! into the common options: `--visibility`, `--wireframe`,
-//! `--wireframe-only`, `--feature-angle`.
+//! `--wireframe-only`, `--feature-angle`, and two of the classroom's
+//! "what breaks without it" switches, `--no-culling` and `--shuffle`.
 
 use clap::{Args, ValueEnum};
-use zline::scene::{RenderSettings, Visibility, WireframeMode};
+use zline::scene::{RenderSettings, Scene, Visibility, WireframeMode};
 
 /// The options; each replaces the scene file's `[render]` key of the same
 /// name (underscores for dashes).
@@ -26,6 +27,14 @@ pub(crate) struct VisibilityArgs {
     /// DEGREES (0 to 180).
     #[arg(long, value_name = "DEGREES", value_parser = parse_angle)]
     feature_angle: Option<f32>,
+    /// What breaks without it: draw back faces too (no back-face culling
+    /// on any object).
+    #[arg(long)]
+    no_culling: bool,
+    /// What the z-buffer does not depend on: draw each mesh's triangles in
+    /// an order shuffled by SEED.
+    #[arg(long, value_name = "SEED")]
+    shuffle: Option<u64>,
 }
 
 /// The names are [`Visibility::name`]'s.
@@ -50,6 +59,18 @@ enum WireframeArg {
     HiddenDashed,
 }
 
+/// Fisher–Yates with a 64-bit xorshift seeded by `seed`: the same order
+/// for the same seed.
+fn shuffle<T>(items: &mut [T], seed: u64) {
+    let mut state = seed | 1;
+    for i in (1..items.len()).rev() {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        items.swap(i, (state % (i as u64 + 1)) as usize);
+    }
+}
+
 fn parse_angle(s: &str) -> Result<f32, String> {
     s.trim()
         .parse::<f32>()
@@ -59,6 +80,25 @@ fn parse_angle(s: &str) -> Result<f32, String> {
 }
 
 impl VisibilityArgs {
+    /// `--no-culling` and `--shuffle` on the scene's objects, each saying
+    /// in a line what the learner should see.
+    pub(crate) fn apply_scene(&self, scene: &mut Scene) {
+        if self.no_culling {
+            for object in &mut scene.objects {
+                object.cull_back_faces = false;
+            }
+            eprintln!("note: --no-culling: back faces are drawn too; a closed model looks the same (the z-buffer hides them) while more triangles are drawn");
+        }
+        if let Some(seed) = self.shuffle {
+            for (k, object) in scene.objects.iter_mut().enumerate() {
+                let mut mesh = (*object.mesh).clone();
+                shuffle(&mut mesh.triangles, seed ^ (k as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+                object.mesh = std::sync::Arc::new(mesh);
+            }
+            eprintln!("note: --shuffle: the triangles are drawn in another order; with the z-buffer the picture is the same (depth decides, not order) unless surfaces tie in depth, but the samples shaded change (the overdraw follows the order), and transparent surfaces blend in another order");
+        }
+    }
+
     /// Replaces the settings the options give.
     pub(crate) fn apply(&self, settings: &mut RenderSettings) {
         if let Some(v) = self.visibility {

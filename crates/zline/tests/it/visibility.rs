@@ -87,3 +87,36 @@ fn flags_and_keys_reach_the_settings_and_bad_values_are_errors() {
     let err = load_scene(&file).unwrap_err().to_string();
     assert!(err.contains("dotted") && err.contains("hidden-dashed") && err.contains("bad.toml"), "{err}");
 }
+
+#[test]
+fn the_z_buffer_does_not_depend_on_the_order_and_culling_only_saves_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let bunny = repo().join("assets/ply/bunny_lowres.ply");
+    let render = |name: &str, extra: &[&str]| {
+        let png = dir.path().join(name);
+        let mut args =
+            vec!["render", bunny.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "120x90"];
+        args.extend(extra);
+        let out = zline(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        (std::fs::read(&png).unwrap(), String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (plain, said) = render("plain.png", &[]);
+    // The `wrote` line's count: "…, 2739 drawn, …".
+    let drawn = |said: &str| {
+        let wrote = said.lines().find(|l| l.starts_with("wrote ")).unwrap();
+        wrote.split(" drawn").next().and_then(|s| s.rsplit(' ').next()).unwrap().to_string()
+    };
+    for seed in ["1", "7", "12345"] {
+        let (shuffled, note) = render(&format!("s{seed}.png"), &["--shuffle", seed]);
+        assert_eq!(shuffled, plain, "seed {seed}: the same PNG bytes");
+        assert!(note.contains("note: --shuffle"), "{note}");
+    }
+    // A closed model: the same picture with its back faces drawn, and
+    // more triangles drawn.
+    let (unculled, note) = render("unculled.png", &["--no-culling"]);
+    assert_eq!(unculled, plain);
+    assert!(note.contains("note: --no-culling"), "{note}");
+    let (a, b) = (drawn(&said).parse::<u64>().unwrap(), drawn(&note).parse::<u64>().unwrap());
+    assert!(b > a, "{a} drawn culled, {b} not");
+}
