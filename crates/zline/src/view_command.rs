@@ -26,6 +26,9 @@ Keys:
   M         shadows: none, planar (scenes with shadow planes), map
   + / -     supersampling of the still frame up/down (1..8)
   R         reset the camera
+  Z         hidden surfaces: z-buffer or painter's algorithm
+  C         back-face culling on/off
+  I         interpolation: perspective-correct or affine (screen-linear)
   H         hide/show the frame time
   S         screenshot: the full frame to -o with a number (zline-view-1.png, ...)
   Esc, Q    quit

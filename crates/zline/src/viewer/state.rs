@@ -91,6 +91,13 @@ pub enum Action {
     ToggleOverlay,
     /// Save the full frame to a PNG (S).
     Screenshot,
+    /// Hidden surfaces: the z-buffer or the painter's algorithm (Z).
+    ToggleVisibility,
+    /// Back-face culling as the scene says, or off on every object (C).
+    ToggleCulling,
+    /// Attribute interpolation: perspective-correct or screen-linear,
+    /// the affine classic (I).
+    ToggleInterpolation,
     /// Close the viewer (Esc, Q).
     Quit,
 }
@@ -156,6 +163,12 @@ pub struct Toggles {
     pub shadows: ShadowMode,
     /// Supersampling of full frames.
     pub ssaa: u32,
+    /// The hidden-surface method.
+    pub visibility: zline_scene::Visibility,
+    /// Back-face culling as the scene says (false: off everywhere).
+    pub culling: bool,
+    /// Attribute interpolation.
+    pub interpolation: zline_scene::Interpolation,
 }
 
 /// The viewer's state (see the module documentation).
@@ -197,6 +210,9 @@ impl ViewerState {
             wireframe: s.wireframe.mode,
             shadows: scene.shadows.mode,
             ssaa: s.ssaa.clamp(1, MAX_SSAA),
+            visibility: s.visibility,
+            culling: true,
+            interpolation: s.interpolation,
         };
         let fog = scene.fog.unwrap_or_else(|| fitted_fog(&scene));
         ViewerState {
@@ -300,6 +316,7 @@ impl ViewerState {
         (s.width, s.height, s.ssaa) = (request.width, request.height, request.ssaa);
         s.shading = self.toggles.shading;
         s.wireframe.mode = self.toggles.wireframe;
+        (s.visibility, s.interpolation) = (self.toggles.visibility, self.toggles.interpolation);
         scene.shadows.mode = self.toggles.shadows;
         scene.fog = self.toggles.fog.then_some(self.fog);
         if !self.toggles.textures {
@@ -307,7 +324,30 @@ impl ViewerState {
                 scene.objects.clone_from(objects);
             }
         }
+        if !self.toggles.culling {
+            for object in &mut scene.objects {
+                object.cull_back_faces = false;
+            }
+        }
         scene
+    }
+
+    /// What the learner should see after the last classroom toggle (Z, C,
+    /// I), for the overlay; `None` when they are as loaded.
+    pub fn hint(&self) -> Option<&'static str> {
+        let t = &self.toggles;
+        let s = &self.home.settings;
+        if t.visibility != s.visibility && t.visibility == zline_scene::Visibility::Painter {
+            Some("painter: sorted by farthest depth; wrong where triangles interpenetrate or overlap cyclically")
+        } else if !t.culling {
+            Some("culling off: a closed model looks the same, more triangles are drawn")
+        } else if t.interpolation != s.interpolation
+            && t.interpolation == zline_scene::Interpolation::ScreenLinear
+        {
+            Some("affine: textures swim and bend on triangles seen at an angle")
+        } else {
+            None
+        }
     }
 
     /// The current camera.
@@ -423,6 +463,21 @@ impl ViewerState {
                 self.toggles.textures = !self.toggles.textures;
             }
             Action::ToggleFog => self.toggles.fog = !self.toggles.fog,
+            Action::ToggleVisibility => {
+                use zline_scene::Visibility;
+                self.toggles.visibility = match self.toggles.visibility {
+                    Visibility::ZBuffer => Visibility::Painter,
+                    Visibility::Painter => Visibility::ZBuffer,
+                }
+            }
+            Action::ToggleCulling => self.toggles.culling = !self.toggles.culling,
+            Action::ToggleInterpolation => {
+                use zline_scene::Interpolation;
+                self.toggles.interpolation = match self.toggles.interpolation {
+                    Interpolation::PerspectiveCorrect => Interpolation::ScreenLinear,
+                    Interpolation::ScreenLinear => Interpolation::PerspectiveCorrect,
+                }
+            }
             Action::CycleWireframe => {
                 self.toggles.wireframe = match self.toggles.wireframe {
                     WireframeMode::None => WireframeMode::All,

@@ -57,6 +57,9 @@ pub fn action_for(key: Key) -> Option<Action> {
         Key::Minus | Key::NumPadMinus => Action::FewerSamples,
         Key::R => Action::ResetCamera,
         Key::H => Action::ToggleOverlay,
+        Key::Z => Action::ToggleVisibility,
+        Key::C => Action::ToggleCulling,
+        Key::I => Action::ToggleInterpolation,
         Key::S => Action::Screenshot,
         Key::Escape | Key::Q => Action::Quit,
         _ => return None,
@@ -169,7 +172,10 @@ impl Frames {
                 format!("{}x{} (1/{})", request.width, request.height, request.block)
             };
             let first = format!("{ms:.1} ms  {:.0} fps  {resolution}", 1e3 / ms.max(1e-3));
-            draw_text(&mut self.buffer, w, &[&first, &state.describe()]);
+            let describe = state.describe();
+            let mut lines = vec![first.as_str(), describe.as_str()];
+            lines.extend(state.hint());
+            draw_text(&mut self.buffer, w, &lines);
         }
     }
 
@@ -326,6 +332,9 @@ mod tests {
             (Key::Minus, Action::FewerSamples),
             (Key::R, Action::ResetCamera),
             (Key::H, Action::ToggleOverlay),
+            (Key::Z, Action::ToggleVisibility),
+            (Key::C, Action::ToggleCulling),
+            (Key::I, Action::ToggleInterpolation),
             (Key::S, Action::Screenshot),
             (Key::Escape, Action::Quit),
             (Key::Q, Action::Quit),

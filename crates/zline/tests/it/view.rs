@@ -153,6 +153,10 @@ fn each_key_changes_its_setting_and_nothing_else() {
     // A model has no shadow planes: none → map.
     check(Action::CycleShadows, Toggles { shadows: ShadowMode::Map, ..base });
     check(Action::MoreSamples, Toggles { ssaa: 2, ..base });
+    check(Action::ToggleVisibility, Toggles { visibility: zline::scene::Visibility::Painter, ..base });
+    check(Action::ToggleCulling, Toggles { culling: false, ..base });
+    let affine = zline::scene::Interpolation::ScreenLinear;
+    check(Action::ToggleInterpolation, Toggles { interpolation: affine, ..base });
     // The cycles come round; − stops at 1.
     let mut s = state.clone();
     for _ in 0..4 {
@@ -197,6 +201,34 @@ fn the_keys_reach_the_scene_rendered() {
     );
     state.handle(Event::Key(Action::ToggleTextures));
     assert!(textured(&state));
+    // The classroom's switches, each with its line on what to see; twice
+    // brings the scene back.
+    assert_eq!(state.hint(), None);
+    for (action, says) in [
+        (Action::ToggleVisibility, "painter"),
+        (Action::ToggleCulling, "culling off"),
+        (Action::ToggleInterpolation, "affine"),
+    ] {
+        let before = state.scene(&state.full_request());
+        state.handle(Event::Key(action));
+        assert!(state.hint().is_some_and(|h| h.contains(says)), "{action:?}: {:?}", state.hint());
+        let scene = state.scene(&state.full_request());
+        assert_ne!(
+            (
+                scene.settings.visibility,
+                scene.settings.interpolation,
+                scene.objects.iter().any(|o| o.cull_back_faces)
+            ),
+            (
+                before.settings.visibility,
+                before.settings.interpolation,
+                before.objects.iter().any(|o| o.cull_back_faces)
+            ),
+            "{action:?} reaches the scene"
+        );
+        state.handle(Event::Key(action));
+        assert_eq!(state.hint(), None, "{action:?} twice");
+    }
 }
 
 #[test]
