@@ -7,6 +7,7 @@ mod batch;
 mod camera;
 mod check;
 mod cli;
+mod course;
 mod formats;
 mod hard_cases;
 mod hostile;
