@@ -29,6 +29,7 @@ Keys:
   Z         hidden surfaces: z-buffer or painter's algorithm
   C         back-face culling on/off
   I         interpolation: perspective-correct or affine (screen-linear)
+  P         step mode: draw the first triangles only; . one more, , one fewer
   H         hide/show the frame time
   S         screenshot: the full frame to -o with a number (zline-view-1.png, ...)
   Esc, Q    quit

@@ -98,6 +98,13 @@ pub enum Action {
     /// Attribute interpolation: perspective-correct or screen-linear,
     /// the affine classic (I).
     ToggleInterpolation,
+    /// Step mode on or off: the frame draws only the first triangles, in
+    /// draw order (P).
+    ToggleStepMode,
+    /// Step mode: one triangle more (.).
+    StepForward,
+    /// Step mode: one triangle fewer (,).
+    StepBack,
     /// Close the viewer (Esc, Q).
     Quit,
 }
@@ -169,6 +176,9 @@ pub struct Toggles {
     pub culling: bool,
     /// Attribute interpolation.
     pub interpolation: zline_scene::Interpolation,
+    /// Step mode: how many triangles are drawn, in draw order (`None`:
+    /// all of them).
+    pub step: Option<usize>,
 }
 
 /// The viewer's state (see the module documentation).
@@ -213,6 +223,7 @@ impl ViewerState {
             visibility: s.visibility,
             culling: true,
             interpolation: s.interpolation,
+            step: None,
         };
         let fog = scene.fog.unwrap_or_else(|| fitted_fog(&scene));
         ViewerState {
@@ -329,15 +340,37 @@ impl ViewerState {
                 object.cull_back_faces = false;
             }
         }
+        if let Some(mut left) = self.toggles.step {
+            for object in &mut scene.objects {
+                let keep = left.min(object.mesh.triangles.len());
+                if keep < object.mesh.triangles.len() {
+                    let mut mesh = (*object.mesh).clone();
+                    mesh.triangles.truncate(keep);
+                    object.mesh = Arc::new(mesh);
+                }
+                left -= keep;
+            }
+        }
         scene
     }
 
+    /// The triangles of the home scene.
+    fn triangle_count(&self) -> usize {
+        self.home.objects.iter().map(|o| o.mesh.triangles.len()).sum()
+    }
+
     /// What the learner should see after the last classroom toggle (Z, C,
-    /// I), for the overlay; `None` when they are as loaded.
-    pub fn hint(&self) -> Option<&'static str> {
+    /// I, P), for the overlay; `None` when they are as loaded.
+    pub fn hint(&self) -> Option<String> {
         let t = &self.toggles;
         let s = &self.home.settings;
-        if t.visibility != s.visibility && t.visibility == zline_scene::Visibility::Painter {
+        if let Some(n) = t.step {
+            return Some(format!(
+                "step mode: the first {n} of {} triangles, in draw order (. next, , back, P off)",
+                self.triangle_count()
+            ));
+        }
+        let line = if t.visibility != s.visibility && t.visibility == zline_scene::Visibility::Painter {
             Some("painter: sorted by farthest depth; wrong where triangles interpenetrate or overlap cyclically")
         } else if !t.culling {
             Some("culling off: a closed model looks the same, more triangles are drawn")
@@ -347,7 +380,8 @@ impl ViewerState {
             Some("affine: textures swim and bend on triangles seen at an angle")
         } else {
             None
-        }
+        };
+        line.map(String::from)
     }
 
     /// The current camera.
@@ -471,6 +505,14 @@ impl ViewerState {
                 }
             }
             Action::ToggleCulling => self.toggles.culling = !self.toggles.culling,
+            Action::ToggleStepMode => {
+                self.toggles.step = if self.toggles.step.is_some() { None } else { Some(1) };
+            }
+            Action::StepForward => {
+                let all = self.triangle_count();
+                self.toggles.step = self.toggles.step.map(|n| (n + 1).min(all));
+            }
+            Action::StepBack => self.toggles.step = self.toggles.step.map(|n| n.saturating_sub(1)),
             Action::ToggleInterpolation => {
                 use zline_scene::Interpolation;
                 self.toggles.interpolation = match self.toggles.interpolation {

@@ -60,6 +60,9 @@ pub fn action_for(key: Key) -> Option<Action> {
         Key::Z => Action::ToggleVisibility,
         Key::C => Action::ToggleCulling,
         Key::I => Action::ToggleInterpolation,
+        Key::P => Action::ToggleStepMode,
+        Key::Period => Action::StepForward,
+        Key::Comma => Action::StepBack,
         Key::S => Action::Screenshot,
         Key::Escape | Key::Q => Action::Quit,
         _ => return None,
@@ -172,9 +175,9 @@ impl Frames {
                 format!("{}x{} (1/{})", request.width, request.height, request.block)
             };
             let first = format!("{ms:.1} ms  {:.0} fps  {resolution}", 1e3 / ms.max(1e-3));
-            let describe = state.describe();
+            let (describe, hint) = (state.describe(), state.hint());
             let mut lines = vec![first.as_str(), describe.as_str()];
-            lines.extend(state.hint());
+            lines.extend(hint.as_deref());
             draw_text(&mut self.buffer, w, &lines);
         }
     }
@@ -335,6 +338,9 @@ mod tests {
             (Key::Z, Action::ToggleVisibility),
             (Key::C, Action::ToggleCulling),
             (Key::I, Action::ToggleInterpolation),
+            (Key::P, Action::ToggleStepMode),
+            (Key::Period, Action::StepForward),
+            (Key::Comma, Action::StepBack),
             (Key::S, Action::Screenshot),
             (Key::Escape, Action::Quit),
             (Key::Q, Action::Quit),

@@ -228,7 +228,25 @@ fn the_keys_reach_the_scene_rendered() {
         );
         state.handle(Event::Key(action));
         assert_eq!(state.hint(), None, "{action:?} twice");
+    } // Step mode: the first triangles only, in draw order.
+    let count = |s: &ViewerState| {
+        s.scene(&s.full_request()).objects.iter().map(|o| o.mesh.triangles.len()).sum::<usize>()
+    };
+    let all = count(&state);
+    state.handle(Event::Key(Action::ToggleStepMode));
+    assert_eq!(count(&state), 1);
+    for _ in 0..4 {
+        state.handle(Event::Key(Action::StepForward));
     }
+    state.handle(Event::Key(Action::StepBack));
+    assert_eq!(count(&state), 4);
+    assert!(
+        state.hint().is_some_and(|h| h.contains(&format!("first 4 of {all} triangles"))),
+        "{:?}",
+        state.hint()
+    );
+    state.handle(Event::Key(Action::ToggleStepMode));
+    assert_eq!((count(&state), state.hint()), (all, None));
 }
 
 #[test]
