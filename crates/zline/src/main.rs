@@ -24,6 +24,7 @@ mod check_command;
 mod flags;
 mod job;
 mod progress;
+mod scan_command;
 mod sheet;
 mod terrain;
 mod thumbnail;
@@ -81,38 +82,7 @@ enum Command {
     /// Scan conversion step by step: the edge table, the active edge list
     /// row by row, the spans and the depth along them, for one triangle
     /// in window space (the renderer's own fixed-point walk).
-    Scan {
-        /// A model or scene file whose triangle `--index` (of object
-        /// `--object`) to trace, seen by its camera (a model framed as
-        /// `render` frames it).
-        #[arg(conflicts_with = "triangle", required_unless_present = "triangle")]
-        input: Option<PathBuf>,
-        /// The input's object (default 0).
-        #[arg(long, default_value_t = 0, requires = "input")]
-        object: usize,
-        /// The input's triangle (default 0).
-        #[arg(long, default_value_t = 0, requires = "input")]
-        index: usize,
-        /// A triangle of its own: three vertices `x,y,z` in pixels (y down;
-        /// z the depth), e.g. `--triangle "0,0,0 0,4,0 4,0,1"`.
-        #[arg(long, value_name = "X,Y,Z X,Y,Z X,Y,Z", allow_hyphen_values = true)]
-        triangle: Option<String>,
-        /// The window, which clips the rows and columns (default 64x64 for
-        /// --triangle, the scene's size for an input).
-        #[arg(long, value_name = "WxH", value_parser = cli::parse::parse_size)]
-        size: Option<(u32, u32)>,
-        /// Print JSON for scripts instead of text.
-        #[arg(long)]
-        json: bool,
-        /// Also draw the trace: the pixel grid magnified, the covered
-        /// samples, the edges (PNG).
-        #[arg(long, value_name = "OUT.png")]
-        image: Option<PathBuf>,
-        /// Also write a self-contained HTML page that steps through the
-        /// trace row by row (←/→, or #step=N in its address).
-        #[arg(long, value_name = "OUT.html")]
-        html: Option<PathBuf>,
-    },
+    Scan(scan_command::ScanArgs),
     /// Render a built-in scene (needs no files).
     Demo {
         /// Which built-in scene: the demo (shading modes, texture,
@@ -244,49 +214,6 @@ fn one_line(e: &anyhow::Error) -> String {
     line
 }
 
-/// `--triangle`'s three vertices.
-fn parse_triangle(triangle: &str) -> Result<[[f32; 3]; 3]> {
-    let numbers: Vec<f32> = triangle
-        .split(|c: char| c == ',' || c.is_whitespace())
-        .filter(|t| !t.is_empty())
-        .map(|t| t.parse::<f32>().map_err(|_| anyhow!("--triangle: '{t}' is not a number")))
-        .collect::<Result<_>>()?;
-    let [x0, y0, z0, x1, y1, z1, x2, y2, z2] = numbers[..] else {
-        bail!("--triangle takes three vertices x,y,z (9 numbers), got {} numbers", numbers.len());
-    };
-    Ok([[x0, y0, z0], [x1, y1, z1], [x2, y2, z2]])
-}
-
-/// `zline scan`: prints the trace of a window-space triangle.
-fn scan(
-    vertices: [[f32; 3]; 3],
-    (width, height): (u32, u32),
-    json: bool,
-    image: Option<&std::path::Path>,
-    html: Option<&std::path::Path>,
-) -> Result<()> {
-    let trace = zline::scan::trace(vertices, width, height).map_err(|why| anyhow!("the triangle: {why}"))?;
-    if let Some(path) = image {
-        let picture = zline::scan_page::picture(&trace, usize::MAX)
-            .ok_or_else(|| anyhow!("{}: the triangle is too large to draw magnified", path.display()))?;
-        zline::save_image(&picture, path)
-            .with_context(|| format!("{}: cannot write the image", path.display()))?;
-        eprintln!("wrote {}", path.display());
-    }
-    if let Some(path) = html {
-        let page = zline::scan_page::page(&trace);
-        zline::write_atomically(path, |out| out.write_all(page.as_bytes()))
-            .with_context(|| format!("{}: cannot write the page", path.display()))?;
-        eprintln!("wrote {}", path.display());
-    }
-    if json {
-        println!("{}", serde_json::to_string_pretty(&trace)?);
-    } else {
-        print!("{}", trace.text());
-    }
-    Ok(())
-}
-
 /// Runs `zline render` (or any command) on an argument list, as the
 /// command line would: `check` and `thumbnail` render through it.
 fn render_argv(argv: Vec<std::ffi::OsString>) -> Result<()> {
@@ -305,27 +232,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Check(check) => return check_command::run(&check, &render_argv),
         Command::Thumbnail(thumbnail) => return thumbnail::run(&thumbnail, &render_argv),
         Command::Thumbnailer { action } => return thumbnail::thumbnailer(&action),
-        Command::Scan { input, object, index, triangle, size, json, image, html } => {
-            let (vertices, size) = match (&input, &triangle) {
-                (Some(input), _) => {
-                    let mut scene = load_input(input, LoadOptions::default())?;
-                    let framed = zline::view::is_framed(&scene);
-                    if let Some((w, h)) = size {
-                        (scene.settings.width, scene.settings.height) = (w, h);
-                        if framed {
-                            scene.camera =
-                                zline::io::model_camera(&scene.objects, w as f32 / h.max(1) as f32);
-                        }
-                    }
-                    let v = zline::scan::window_triangle(&scene, object, index)
-                        .map_err(|why| anyhow!("{}: {why}", input.display()))?;
-                    (v, (scene.settings.width, scene.settings.height))
-                }
-                (None, Some(triangle)) => (parse_triangle(triangle)?, size.unwrap_or((64, 64))),
-                (None, None) => bail!("give an input or --triangle"),
-            };
-            return scan(vertices, size, json, image.as_deref(), html.as_deref());
-        }
+        Command::Scan(scan) => return scan_command::run(&scan),
         Command::Render { input, allow_paths_outside, common } => {
             (Some(input), BuiltIn::Demo, allow_paths_outside, common, None)
         }
