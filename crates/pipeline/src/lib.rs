@@ -30,6 +30,7 @@ pub mod layers;
 pub mod lines;
 pub mod lod;
 mod normal_map;
+pub mod object_ids;
 mod render;
 pub mod resolve;
 pub mod setup;
@@ -42,4 +43,5 @@ pub mod volume;
 
 pub use image::Image;
 pub use layers::{render_depth, render_normals, DepthImage, DepthRange};
+pub use object_ids::{render_object_ids, ObjectIds};
 pub use render::{render, RenderOptions, RenderStats, Renderer};

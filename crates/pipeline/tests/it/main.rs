@@ -17,6 +17,7 @@ mod lit_square;
 mod lod;
 mod normal_image;
 mod normal_map;
+mod object_ids;
 mod painter;
 mod shadows;
 mod ssaa;

@@ -1,7 +1,7 @@
 //! The command line's extra outputs, flattened into the common options:
 //! `--transparent` (RGBA output with alpha = coverage), `--depth-image`
-//! (the z-buffer as a 16-bit PNG) and `--normal-image` (eye-space normals
-//! as RGB).
+//! (the z-buffer as a 16-bit PNG), `--normal-image` (eye-space normals
+//! as RGB) and `--id-image` (which object each pixel shows).
 
 use std::path::{Path, PathBuf};
 
@@ -35,6 +35,13 @@ pub(crate) struct LayerArgs {
     /// (0, 0, 0), or transparent with --transparent.
     #[arg(long, value_name = "PATH.png")]
     normal_image: Option<PathBuf>,
+    /// Also write which object each pixel shows as an RGB PNG: the index of
+    /// the nearest opaque object at the pixel's centre plus one, as
+    /// R + 256·G + 65536·B (objects in the order `zline info` lists them),
+    /// 0 where none is; transparent objects are left out, as in the depth
+    /// image.
+    #[arg(long, value_name = "PATH.png")]
+    id_image: Option<PathBuf>,
 }
 
 impl LayerArgs {
@@ -66,8 +73,12 @@ impl LayerArgs {
     /// Refuses the options where only one image per render is written
     /// (`turntable`, `batch`).
     pub(crate) fn refuse(&self, command: &str) -> Result<()> {
-        if self.transparent || self.depth_image.is_some() || self.normal_image.is_some() {
-            bail!("--transparent, --depth-image and --normal-image are options of render, demo and terrain, not of {command}");
+        if self.transparent
+            || self.depth_image.is_some()
+            || self.normal_image.is_some()
+            || self.id_image.is_some()
+        {
+            bail!("--transparent, --depth-image, --normal-image and --id-image are options of render, demo and terrain, not of {command}");
         }
         Ok(())
     }
@@ -81,7 +92,8 @@ impl LayerArgs {
 
     fn extra(&self) -> impl Iterator<Item = (&'static str, &PathBuf)> {
         let depth = self.depth_image.as_ref().map(|p| ("--depth-image", p));
-        depth.into_iter().chain(self.normal_image.as_ref().map(|p| ("--normal-image", p)))
+        let normals = self.normal_image.as_ref().map(|p| ("--normal-image", p));
+        depth.into_iter().chain(normals).chain(self.id_image.as_ref().map(|p| ("--id-image", p)))
     }
 
     /// Renders the image, and the depth image when asked for (in the same
@@ -102,8 +114,8 @@ impl LayerArgs {
         (image, stats, Some(depth))
     }
 
-    /// Writes the depth image and renders and writes the normals image,
-    /// each with a line on stderr.
+    /// Writes the depth image and renders and writes the normals and ID
+    /// images, each with a line on stderr.
     pub(crate) fn write(
         &self,
         scene: &Scene,
@@ -125,6 +137,20 @@ impl LayerArgs {
             zline::save_image(&normals, path)
                 .with_context(|| format!("{}: cannot write the normal image", path.display()))?;
             eprintln!("wrote {} (eye-space normals, RGB = (n + 1)/2)", path.display());
+        }
+        if let Some(path) = &self.id_image {
+            let (mut image, mut ids) = (Image::empty(), zline::pipeline::ObjectIds::default());
+            pool.install(|| {
+                Renderer::default().render_object_ids_into(scene, options, &mut image, &mut ids)
+            })?;
+            zline::save_image(&image, path)
+                .with_context(|| format!("{}: cannot write the ID image", path.display()))?;
+            let shown = ids.ids.iter().filter(|&&i| i >= 0).collect::<std::collections::BTreeSet<_>>().len();
+            eprintln!(
+                "wrote {} (object IDs, RGB = index + 1: {shown} of {} objects seen)",
+                path.display(),
+                scene.objects.len()
+            );
         }
         Ok(())
     }

@@ -1,4 +1,4 @@
-//! `--transparent`, `--depth-image` and `--normal-image`: what the files
+//! `--transparent`, `--depth-image`, `--normal-image` and `--id-image`: what the files
 //! hold, and the usage errors.
 
 use zline::io::load_scene;
@@ -50,6 +50,30 @@ fn demo_writes_rgba_depth_and_normals() {
     let normal = image::open(&normals).unwrap();
     assert_eq!(normal.color(), image::ColorType::Rgb8);
     assert_eq!(normal.to_rgb8().get_pixel(0, 0).0, [0, 0, 0]);
+}
+
+#[test]
+fn the_id_image_is_the_libraries_object_ids() {
+    let dir = tempfile::tempdir().unwrap();
+    let (out, ids) = (dir.path().join("a.png"), dir.path().join("ids.png"));
+    let run =
+        zline(&["demo", "-o", out.to_str().unwrap(), "--size", "80x60", "--id-image", ids.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    let mut scene = zline::scenes::demo_scene();
+    (scene.settings.width, scene.settings.height) = (80, 60);
+    let (want, _) = zline::pipeline::render_object_ids(&scene, &RenderOptions::default()).unwrap();
+    let png = image::open(&ids).unwrap();
+    assert_eq!(png.color(), image::ColorType::Rgb8);
+    let got: Vec<i32> = png
+        .to_rgb8()
+        .pixels()
+        .map(|p| i32::from(p[0]) + 256 * i32::from(p[1]) + 65536 * i32::from(p[2]) - 1)
+        .collect();
+    assert_eq!(got, want.ids);
+    let seen = want.ids.iter().filter(|&&i| i >= 0).collect::<std::collections::BTreeSet<_>>().len();
+    assert!(seen > 3, "{seen}");
+    assert!(stderr.contains(&format!("{seen} of {} objects seen", scene.objects.len())), "{stderr}");
 }
 
 #[test]
