@@ -89,6 +89,9 @@ fn moved(scene: &Scene, pixels: f32) -> Scene {
             2.0 * forward.length() * (fovy_degrees.to_radians() * 0.5).tan() / s.settings.height as f32
         }
         Projection::Orthographic { height, .. } => height / s.settings.height as f32,
+        Projection::Frustum { bottom, top, near, .. } => {
+            forward.length() * (top - bottom) / near / s.settings.height as f32
+        }
     };
     let shift = Mat4::from_translation(right * per_pixel * pixels);
     for o in &mut s.objects {

@@ -24,7 +24,7 @@
 //! Both are the same for any thread count and tile size, as the image is.
 
 use rayon::prelude::*;
-use zline_scene::{LightingSides, Projection, Scene, ShadowMode, Visibility, Wireframe};
+use zline_scene::{LightingSides, Scene, ShadowMode, Visibility, Wireframe};
 
 use crate::image::Image;
 use crate::render::{RenderOptions, RenderStats, Renderer};
@@ -103,10 +103,8 @@ struct EyeDepth {
 
 impl EyeDepth {
     fn new(scene: &Scene) -> EyeDepth {
-        let (perspective, near, far) = match scene.camera.projection {
-            Projection::Perspective { near, far, .. } => (true, near, far),
-            Projection::Orthographic { near, far, .. } => (false, near, far),
-        };
+        let (perspective, (near, far)) =
+            (scene.camera.projection.is_perspective(), scene.camera.projection.near_far());
         let encoding = match scene.settings.depth {
             zline_scene::DepthMode::Normalized => DepthEncoding::Normalized,
             zline_scene::DepthMode::ReversedFloat => {

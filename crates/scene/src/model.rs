@@ -174,6 +174,42 @@ pub enum Projection {
         /// Distance to the far plane (> near).
         far: f32,
     },
+    /// `glFrustum(left, right, bottom, top, near, far)`: a perspective view
+    /// volume whose sides are given where they cut the near plane (eye
+    /// space), not necessarily centred on the view axis: a camera's
+    /// intrinsics (focal lengths and principal point), or an off-axis view.
+    /// The frustum fixes its own aspect ratio; the image's is not used.
+    Frustum {
+        /// x of the left side at the near plane (< right).
+        left: f32,
+        /// x of the right side at the near plane.
+        right: f32,
+        /// y of the bottom side at the near plane (< top).
+        bottom: f32,
+        /// y of the top side at the near plane.
+        top: f32,
+        /// Distance to the near plane (> 0).
+        near: f32,
+        /// Distance to the far plane (> near).
+        far: f32,
+    },
+}
+
+impl Projection {
+    /// True for the projections through a centre (perspective and
+    /// frustum), false for the parallel one.
+    pub fn is_perspective(&self) -> bool {
+        !matches!(self, Projection::Orthographic { .. })
+    }
+
+    /// The distances to the near and far planes.
+    pub fn near_far(&self) -> (f32, f32) {
+        match *self {
+            Projection::Perspective { near, far, .. }
+            | Projection::Orthographic { near, far, .. }
+            | Projection::Frustum { near, far, .. } => (near, far),
+        }
+    }
 }
 
 /// A look-at camera.
@@ -206,6 +242,9 @@ impl Camera {
                 let (h, w) = (height / 2.0, height * aspect / 2.0);
                 Mat4::orthographic_rh_gl(-w, w, -h, h, near, far)
             }
+            Projection::Frustum { left, right, bottom, top, near, far } => {
+                frustum_rh_gl(left, right, bottom, top, near, far)
+            }
         }
     }
 }
@@ -219,7 +258,7 @@ impl Camera {
     /// b = 2fn/(f − n); orthographic: w = 1, a = 2/(f − n), b = 2f/(f − n).
     pub fn reversed_depth_coefficients(&self) -> (f64, f64) {
         match self.projection {
-            Projection::Perspective { near, far, .. } => {
+            Projection::Perspective { near, far, .. } | Projection::Frustum { near, far, .. } => {
                 let (n, f) = (f64::from(near), f64::from(far));
                 (2.0 * n / (f - n), 2.0 * f * (n / (f - n)))
             }
@@ -262,6 +301,20 @@ fn perspective_rh_gl(fovy_radians: f32, aspect: f32, near: f32, far: f32) -> Mat
         Vec4::new(f / aspect, 0.0, 0.0, 0.0),
         Vec4::new(0.0, f, 0.0, 0.0),
         Vec4::new(0.0, 0.0, (near + far) * inv_length, -1.0),
+        Vec4::new(0.0, 0.0, (2.0 * near) * (far * inv_length), 0.0),
+    )
+}
+
+/// `glFrustum` with OpenGL's NC depth range, its depth terms as in
+/// [`perspective_rh_gl`] (the same bits for a centred frustum's depth).
+fn frustum_rh_gl(left: f32, right: f32, bottom: f32, top: f32, near: f32, far: f32) -> Mat4 {
+    use glam::Vec4;
+    let inv_length = 1.0 / (near - far);
+    let (w, h) = (right - left, top - bottom);
+    Mat4::from_cols(
+        Vec4::new(2.0 * near / w, 0.0, 0.0, 0.0),
+        Vec4::new(0.0, 2.0 * near / h, 0.0, 0.0),
+        Vec4::new((right + left) / w, (top + bottom) / h, (near + far) * inv_length, -1.0),
         Vec4::new(0.0, 0.0, (2.0 * near) * (far * inv_length), 0.0),
     )
 }
@@ -562,5 +615,30 @@ mod tests {
         assert!(huge.is_finite(), "{huge}");
         let nc = huge.project_point3(Vec3::new(0.0, 0.0, -1e30));
         assert!((nc.z + 1.0).abs() < 1e-5, "near plane maps to z = -1, got {nc}");
+    }
+
+    #[test]
+    fn a_frustum_is_glfrustum() {
+        let camera = |projection| Camera { eye: Vec3::ZERO, target: Vec3::NEG_Z, up: Vec3::Y, projection };
+        // Centred, it is gluPerspective's volume.
+        let (near, far, fovy) = (0.5f32, 50.0, 40f32);
+        let t = near * (fovy / 2.0).to_radians().tan();
+        let centred = Projection::Frustum { left: -1.5 * t, right: 1.5 * t, bottom: -t, top: t, near, far };
+        let perspective = Projection::Perspective { fovy_degrees: fovy, near, far };
+        let (a, b) = (camera(centred).clip_from_eye(9.0), camera(perspective).clip_from_eye(1.5));
+        assert!(a.abs_diff_eq(b, 1e-5), "{a} vs {b}");
+        // Off axis: each side's corner at the near plane goes to the NC
+        // cube's, and depth is as in the centred one.
+        let (l, r, bo, to) = (-0.2f32, 0.6f32, -0.1f32, 0.3f32);
+        let m = camera(Projection::Frustum { left: l, right: r, bottom: bo, top: to, near, far })
+            .clip_from_eye(1.0);
+        for (x, y, want) in [(l, bo, Vec3::new(-1.0, -1.0, -1.0)), (r, to, Vec3::new(1.0, 1.0, -1.0))] {
+            let nc = m.project_point3(Vec3::new(x, y, -near));
+            assert!(nc.abs_diff_eq(want, 1e-5), "{nc} vs {want}");
+        }
+        // A point on the far plane, along the left side's ray.
+        let nc = m.project_point3(Vec3::new(l * far / near, 0.0, -far));
+        assert!((nc.x + 1.0).abs() < 1e-5 && (nc.z - 1.0).abs() < 1e-4, "{nc}");
+        assert!(Projection::Frustum { left: l, right: r, bottom: bo, top: to, near, far }.is_perspective());
     }
 }

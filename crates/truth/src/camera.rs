@@ -50,6 +50,15 @@ pub(crate) fn clip_from_eye(camera: &Camera, aspect: f64) -> DMat4 {
             let w = h * aspect;
             DMat4::orthographic_rh_gl(-w, w, -h, h, f64::from(near), f64::from(far))
         }
+        Projection::Frustum { left, right, bottom, top, near, far } => {
+            let [l, r, b, t, n, f] = [left, right, bottom, top, near, far].map(f64::from);
+            DMat4::from_cols(
+                DVec4::new(2.0 * n / (r - l), 0.0, 0.0, 0.0),
+                DVec4::new(0.0, 2.0 * n / (t - b), 0.0, 0.0),
+                DVec4::new((r + l) / (r - l), (t + b) / (t - b), (n + f) / (n - f), -1.0),
+                DVec4::new(0.0, 0.0, 2.0 * n * f / (n - f), 0.0),
+            )
+        }
     }
 }
 

@@ -192,6 +192,7 @@ impl ModelInfo {
             projection: match scene.camera.projection {
                 zline_scene::Projection::Perspective { .. } => "perspective",
                 zline_scene::Projection::Orthographic { .. } => "orthographic",
+                zline_scene::Projection::Frustum { .. } => "frustum",
             },
         });
         ModelInfo {

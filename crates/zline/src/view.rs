@@ -67,7 +67,7 @@ impl ViewChange {
         );
         let fovy = match camera.projection {
             Projection::Perspective { fovy_degrees, .. } => Some(fovy_degrees),
-            Projection::Orthographic { .. } => None,
+            Projection::Orthographic { .. } | Projection::Frustum { .. } => None,
         };
         let refit = match (framed, fovy) {
             (true, Some(fovy)) => zline_io::fit_camera(&scene.objects, back, camera.up, fovy, aspect),
@@ -83,7 +83,7 @@ impl ViewChange {
         }
         if let Some(z) = self.zoom.filter(|z| z.is_finite() && *z > 0.0) {
             match &mut camera.projection {
-                Projection::Perspective { .. } => {
+                Projection::Perspective { .. } | Projection::Frustum { .. } => {
                     camera.eye = camera.target + (camera.eye - camera.target) / z
                 }
                 Projection::Orthographic { height, .. } => *height /= z,
@@ -145,6 +145,16 @@ pub fn hug(camera: &mut Camera, scene: &Scene) {
     }
     match &mut camera.projection {
         Projection::Perspective { near: n, far: f, .. } => (*n, *f) = (near, far),
+        // The sides are given at the near plane: they scale with it.
+        Projection::Frustum { left, right, bottom, top, near: n, far: f } => {
+            let k = near / *n;
+            if k.is_finite() && k > 0.0 {
+                for side in [left, right, bottom, top] {
+                    *side *= k;
+                }
+                (*n, *f) = (near, far);
+            }
+        }
         Projection::Orthographic { near: n, far: f, .. } => (*n, *f) = ((d - 1.1 * radius).min(near), far),
     }
 }

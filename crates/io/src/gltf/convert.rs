@@ -39,6 +39,10 @@ pub(super) fn projection_is_valid(projection: &Projection) -> bool {
         Projection::Orthographic { height, near, far } => {
             ok(height) && near.is_finite() && near >= 0.0 && far.is_finite() && far > near
         }
+        Projection::Frustum { left, right, bottom, top, near, far } => {
+            let sides = [left, right, bottom, top].iter().all(|x| x.is_finite());
+            sides && left < right && bottom < top && ok(near) && far.is_finite() && far > near
+        }
     }
 }
 

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use glam::{Mat4, Vec3};
 use zline_raster::Rect;
-use zline_scene::{DepthMode, Object, Projection, Scene, ShadowMode, TextureMap, Visibility};
+use zline_scene::{DepthMode, Object, Scene, ShadowMode, TextureMap, Visibility};
 use zline_shading::{
     Filter, LightingModel, Material, PreparedLights, PreparedMaterial, ShadingMode, Texture,
 };
@@ -205,15 +205,13 @@ impl Frame {
         let depth = match s.depth {
             DepthMode::ReversedFloat => {
                 let (a, b) = scene.camera.reversed_depth_coefficients();
-                let perspective = matches!(scene.camera.projection, Projection::Perspective { .. });
+                let perspective = scene.camera.projection.is_perspective();
                 DepthEncoding::Reversed { a, b, perspective }
             }
             DepthMode::Normalized => DepthEncoding::Normalized,
         };
-        let viewer = match scene.camera.projection {
-            Projection::Perspective { .. } => Viewer::AtOrigin,
-            Projection::Orthographic { .. } => Viewer::AlongMinusZ,
-        };
+        let viewer =
+            if scene.camera.projection.is_perspective() { Viewer::AtOrigin } else { Viewer::AlongMinusZ };
         let eye_from_world = scene.camera.eye_from_world();
         // The adaptive bounds assume the ambient light is the same in every
         // direction: an environment map leaves the frame at full evaluation.

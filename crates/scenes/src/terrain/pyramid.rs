@@ -57,14 +57,19 @@ pub struct ViewError {
 impl ViewError {
     /// The bound for `camera` drawing a `width × height` image.
     pub fn new(camera: &Camera, width: u32, height: u32, tolerance: f32) -> ViewError {
-        let (scale, tan_y, orthographic) = match camera.projection {
+        let aspect = width as f32 / height as f32;
+        let (scale, tan_x, tan_y, orthographic) = match camera.projection {
             Projection::Perspective { fovy_degrees, .. } => {
                 let tan_y = (fovy_degrees.to_radians() / 2.0).tan();
-                (height as f32 / (2.0 * tan_y), tan_y, false)
+                (height as f32 / (2.0 * tan_y), tan_y * aspect, tan_y, false)
             }
-            Projection::Orthographic { height: h, .. } => (height as f32 / h, 0.0, true),
+            Projection::Orthographic { height: h, .. } => (height as f32 / h, 0.0, 0.0, true),
+            // The widest side's slope on each axis.
+            Projection::Frustum { left, right, bottom, top, near, .. } => {
+                let tan = |a: f32, b: f32| a.abs().max(b.abs()) / near;
+                (height as f32 * near / (top - bottom), tan(left, right), tan(bottom, top), false)
+            }
         };
-        let tan_x = tan_y * width as f32 / height as f32;
         ViewError {
             eye: camera.eye,
             forward: (camera.target - camera.eye).normalize_or(Vec3::NEG_Z),

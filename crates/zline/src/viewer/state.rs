@@ -587,6 +587,9 @@ impl ViewerState {
                 2.0 * (c.target - c.eye).length() * (fovy_degrees.to_radians() / 2.0).tan()
             }
             Projection::Orthographic { height, .. } => height,
+            Projection::Frustum { bottom, top, near, .. } => {
+                (c.target - c.eye).length() * (top - bottom) / near
+            }
         };
         let per_pixel = view_height / self.window.1 as f32;
         let shift = (-right * dx + up * dy) * per_pixel;
