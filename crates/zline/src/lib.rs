@@ -17,6 +17,7 @@ use std::path::Path;
 pub mod check;
 pub mod info;
 pub mod layers;
+pub mod load;
 pub mod scan;
 pub mod scan_page;
 pub mod view;
