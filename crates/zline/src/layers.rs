@@ -1,9 +1,70 @@
 //! Encoding the extra outputs of a render: the depth image as a 16-bit
 //! greyscale PNG ([`encode_depth_png`]; `zline::save_depth_png` writes it).
 //! The normals image and a transparent image are `Image`s, written by
-//! `zline::save_image`.
+//! `zline::save_image`; the overdraw count becomes one by
+//! [`overdraw_heat_map`].
 
-use zline_pipeline::{DepthImage, DepthRange};
+use zline_pipeline::{DepthImage, DepthRange, Image, Overdraw};
+use zline_raster::TieRule;
+
+/// The heat map's colours for 0, 1, …, 8 fragments a sample (8 and more
+/// the last): black, dark blue, cyan, green, yellow, orange, red, magenta,
+/// white.
+pub const HEAT: [[u8; 3]; 9] = [
+    [0, 0, 0],
+    [30, 40, 150],
+    [40, 200, 220],
+    [60, 190, 70],
+    [230, 220, 50],
+    [240, 140, 30],
+    [220, 40, 30],
+    [200, 60, 200],
+    [255, 255, 255],
+];
+
+/// The overdraw as a heat map: each pixel's fragments a sample (its count
+/// over its samples, rounded to the nearest whole number) as [`HEAT`]'s
+/// colour.
+pub fn overdraw_heat_map(o: &Overdraw) -> Image {
+    let samples = o.samples.max(1);
+    let pixels = o
+        .counts
+        .iter()
+        .map(|&c| {
+            let level = ((c + samples / 2) / samples).min(HEAT.len() as u32 - 1) as usize;
+            let [r, g, b] = HEAT[level];
+            u32::from_le_bytes([r, g, b, 255])
+        })
+        .collect();
+    Image { width: o.width, height: o.height, pixels, transparent: false }
+}
+
+/// A line on the overdraw: its mean and largest fragments a pixel, what
+/// the rule shows, and (given the same frame's count under the top-left
+/// rule) how many fragments the rule changed.
+pub fn describe_overdraw(o: &Overdraw, rule: TieRule, top_left: Option<&Overdraw>) -> String {
+    let drawn = o.counts.iter().filter(|&&c| c > 0).count().max(1);
+    let mean = o.total() as f64 / o.samples.max(1) as f64 / drawn as f64;
+    let max = o.counts.iter().max().copied().unwrap_or(0) as f64 / o.samples.max(1) as f64;
+    let what = match rule {
+        TieRule::TopLeft => "the top-left rule: each sample of a shared edge drawn once",
+        TieRule::Closed => {
+            "closed triangles, no top-left rule: samples on shared edges drawn twice (the mesh's edges light up a step brighter)"
+        }
+        TieRule::Open => {
+            "open triangles, no top-left rule: samples on shared edges drawn by neither triangle (black cracks along the mesh's edges)"
+        }
+    };
+    let changed = top_left.filter(|_| rule != TieRule::TopLeft).map_or(String::new(), |t| {
+        let (gained, lost) = o.counts.iter().zip(&t.counts).fold((0u64, 0u64), |(g, l), (&a, &b)| {
+            (g + u64::from(a.saturating_sub(b)), l + u64::from(b.saturating_sub(a)))
+        });
+        format!("; {gained} fragments more and {lost} fewer than under the top-left rule (samples exactly on an edge)")
+    });
+    format!(
+        "overdraw under {what}; {mean:.2} fragments a drawn pixel on average, at most {max}{changed}; colours: black 0, dark blue 1, cyan 2, green 3, yellow 4, orange 5, red 6, magenta 7, white 8 or more"
+    )
+}
 
 /// The keyword of the depth PNG's tEXt chunk that states its mapping.
 pub const DEPTH_TEXT_KEYWORD: &str = "zline:depth";

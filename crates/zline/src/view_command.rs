@@ -30,6 +30,7 @@ Keys:
   C         back-face culling on/off
   I         interpolation: perspective-correct or affine (screen-linear)
   P         step mode: draw the first triangles only; . one more, , one fewer
+  O         overdraw heat map: top-left rule, closed triangles, open, off
   H         hide/show the frame time
   S         screenshot: the full frame to -o with a number (zline-view-1.png, ...)
   Esc, Q    quit
@@ -58,6 +59,13 @@ pub(crate) struct ViewArgs {
     /// `zline render` draws with the same flags.
     #[arg(long, value_name = "FILE")]
     save_first_frame: Option<PathBuf>,
+    /// Keys pressed before the first frame, as if typed, separated by
+    /// spaces, `N*KEY` for N presses: e.g. `--keys "P 299*."` opens in
+    /// step mode at the 300th triangle, `--keys "O O"` with the overdraw
+    /// map of closed triangles (the keys of `zline view --help` but S, Esc
+    /// and Q). Also with --save-first-frame.
+    #[arg(long, value_name = "KEYS", allow_hyphen_values = true)]
+    keys: Option<String>,
 }
 
 /// `-o` of `zline view`: where S saves screenshots.
@@ -95,12 +103,33 @@ pub(crate) fn run(args: &ViewArgs, job: &Job<'_>, trace: &crate::cli::trace::Tra
     if traced.is_some() {
         state.refine_progressively();
     }
+    for token in args.keys.iter().flat_map(|k| k.split_whitespace()) {
+        let (count, name) = match token.split_once('*') {
+            Some((n, name)) => {
+                let n = n.parse::<u32>().ok().filter(|n| (1..=100_000).contains(n));
+                (n.ok_or_else(|| anyhow!("--keys: {token:?}: the count before * must be 1 to 100000"))?, name)
+            }
+            None => (1, token),
+        };
+        let action = zline::viewer::state::Action::from_key_name(name).ok_or_else(|| {
+            anyhow!("--keys: {name:?} is not a key of zline view (see zline view --help; S, Esc and Q are not taken)")
+        })?;
+        for _ in 0..count {
+            state.handle(zline::viewer::state::Event::Key(action));
+        }
+    }
     if let Some(path) = &args.save_first_frame {
         let scene = state.scene(&state.full_request());
         let options = job.options;
-        let image = match &traced {
-            Some(t) => job.pool.install(|| zline::ray_traced_image(&scene, t)).0,
-            None => job.pool.install(|| zline::pipeline::render(&scene, &options)).0,
+        // As the window draws it: the overdraw map over either renderer.
+        let image = match (state.toggles().overdraw, &traced) {
+            (Some(rule), _) => {
+                let (counts, _) =
+                    job.pool.install(|| zline::pipeline::render_overdraw(&scene, &options, rule));
+                zline::layers::overdraw_heat_map(&counts)
+            }
+            (None, Some(t)) => job.pool.install(|| zline::ray_traced_image(&scene, t)).0,
+            (None, None) => job.pool.install(|| zline::pipeline::render(&scene, &options)).0,
         };
         zline::save_image(&image, path)
             .with_context(|| format!("{}: cannot write the image", path.display()))?;

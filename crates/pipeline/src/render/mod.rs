@@ -4,6 +4,7 @@
 //! setup per object), binning, and [`Renderer::draw_tiles`] (the tiles in
 //! parallel, each: opaque pass → fog → transparency pass → resolve).
 
+pub(crate) mod overdraw;
 mod tiles;
 
 use rayon::prelude::*;
@@ -115,6 +116,9 @@ pub struct Renderer {
     lines: Lines,
     /// This frame is the normals frame (`Renderer::render_normals_into`).
     pub(crate) normals: bool,
+    /// This frame counts overdraw under this rule instead of drawing
+    /// (`Renderer::render_overdraw_into`).
+    overdraw: Option<zline_raster::TieRule>,
     /// With the adaptive mode, per object of the last frame: the
     /// simplified level drawn (`crate::lod`), `None` for the full mesh.
     levels: Vec<Option<usize>>,
@@ -310,6 +314,13 @@ impl Renderer {
         stats.binning = start.elapsed();
 
         let start = Instant::now();
+        if let Some(rule) = self.overdraw {
+            let size = (frame.width, frame.height, frame.n);
+            self.count_tiles(&grid, size, rule, &mut image.pixels);
+            (image.width, image.height) = (frame.width, frame.height);
+            stats.raster = start.elapsed();
+            return stats;
+        }
         stats.fragments = self.draw_tiles(scene, &frame, &grid, (image, depth));
         stats.raster = start.elapsed();
         stats

@@ -301,6 +301,24 @@ impl KernelTables {
         };
     }
 
+    /// The edge table of primitive `index` of `kernel`'s table.
+    pub(crate) fn edges(&self, kernel: Kernel, index: u32) -> &zline_raster::EdgeTable {
+        let i = index as usize;
+        match kernel {
+            Kernel::Flat => &self.flat[i].edges,
+            Kernel::Gouraud { .. } => &self.gouraud[i].edges,
+            Kernel::Phong(_) => &self.phong[i].edges,
+            Kernel::ColoredPhong(_) => &self.colored_phong[i].edges,
+            Kernel::Textured { lighting, .. } => match lighting {
+                TexturedLighting::Flat => &self.textured_flat[i].edges,
+                TexturedLighting::Gouraud => &self.textured_gouraud[i].edges,
+                TexturedLighting::Phong => &self.textured_phong[i].edges,
+                TexturedLighting::ColoredPhong => &self.textured_colored_phong[i].edges,
+            },
+            Kernel::Perturbed { .. } => &self.perturbed[i].edges,
+        }
+    }
+
     fn clear(&mut self) {
         self.flat.clear();
         self.gouraud.clear();

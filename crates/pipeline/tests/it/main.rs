@@ -18,6 +18,7 @@ mod lod;
 mod normal_image;
 mod normal_map;
 mod object_ids;
+mod overdraw;
 mod painter;
 mod shadows;
 mod ssaa;

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{anyhow, bail, Context, Result};
 use clap::Args;
 use zline::pipeline::{DepthImage, Image, RenderOptions, RenderStats, Renderer};
+use zline::raster::TieRule;
 use zline::scene::{RenderSettings, Scene};
 
 /// The options.
@@ -42,6 +43,26 @@ pub(crate) struct LayerArgs {
     /// image.
     #[arg(long, value_name = "PATH.png")]
     id_image: Option<PathBuf>,
+    /// Also write the overdraw as a heat map PNG: per pixel, how many
+    /// fragments the triangles made there (every covered sample, before the
+    /// depth test), black 0, blue 1, … red 7, white 8 or more; the mean and
+    /// largest are printed.
+    #[arg(long, value_name = "PATH.png")]
+    overdraw: Option<PathBuf>,
+    /// Which samples on a triangle's edge --overdraw counts as covered:
+    /// top-left (the renderer's rule, SPEC §3: a shared edge drawn once),
+    /// closed (every edge sample: shared edges drawn twice) or open (none:
+    /// shared edges drawn by neither). "What breaks without the top-left
+    /// rule", shown on the real mesh.
+    #[arg(long, value_name = "RULE", default_value = "top-left", value_parser = parse_tie_rule, requires = "overdraw")]
+    tie_rule: TieRule,
+}
+
+fn parse_tie_rule(s: &str) -> Result<TieRule, String> {
+    TieRule::ALL
+        .into_iter()
+        .find(|r| r.name() == s)
+        .ok_or_else(|| format!("expected top-left, closed or open, got {s:?}"))
 }
 
 impl LayerArgs {
@@ -73,12 +94,9 @@ impl LayerArgs {
     /// Refuses the options where only one image per render is written
     /// (`turntable`, `batch`).
     pub(crate) fn refuse(&self, command: &str) -> Result<()> {
-        if self.transparent
-            || self.depth_image.is_some()
-            || self.normal_image.is_some()
-            || self.id_image.is_some()
-        {
-            bail!("--transparent, --depth-image, --normal-image and --id-image are options of render, demo and terrain, not of {command}");
+        let extra = self.depth_image.is_some() || self.normal_image.is_some() || self.id_image.is_some();
+        if self.transparent || extra || self.overdraw.is_some() {
+            bail!("--transparent, --depth-image, --normal-image, --id-image and --overdraw are options of render, demo and terrain, not of {command}");
         }
         Ok(())
     }
@@ -93,7 +111,8 @@ impl LayerArgs {
     fn extra(&self) -> impl Iterator<Item = (&'static str, &PathBuf)> {
         let depth = self.depth_image.as_ref().map(|p| ("--depth-image", p));
         let normals = self.normal_image.as_ref().map(|p| ("--normal-image", p));
-        depth.into_iter().chain(normals).chain(self.id_image.as_ref().map(|p| ("--id-image", p)))
+        let ids = self.id_image.as_ref().map(|p| ("--id-image", p));
+        depth.into_iter().chain(normals).chain(ids).chain(self.overdraw.as_ref().map(|p| ("--overdraw", p)))
     }
 
     /// Renders the image, and the depth image when asked for (in the same
@@ -151,6 +170,15 @@ impl LayerArgs {
                 path.display(),
                 scene.objects.len()
             );
+        }
+        if let Some(path) = &self.overdraw {
+            let count = |rule| pool.install(|| zline::pipeline::render_overdraw(scene, options, rule).0);
+            let o = count(self.tie_rule);
+            let top_left = (self.tie_rule != TieRule::TopLeft).then(|| count(TieRule::TopLeft));
+            zline::save_image(&zline::layers::overdraw_heat_map(&o), path)
+                .with_context(|| format!("{}: cannot write the overdraw image", path.display()))?;
+            let line = zline::layers::describe_overdraw(&o, self.tie_rule, top_left.as_ref());
+            eprintln!("wrote {} ({line})", path.display());
         }
         Ok(())
     }

@@ -105,6 +105,9 @@ pub enum Action {
     StepForward,
     /// Step mode: one triangle fewer (,).
     StepBack,
+    /// The overdraw heat map instead of the image: under the top-left rule
+    /// → closed triangles → open triangles → off (O).
+    CycleOverdraw,
     /// Close the viewer (Esc, Q).
     Quit,
 }
@@ -179,6 +182,38 @@ pub struct Toggles {
     /// Step mode: how many triangles are drawn, in draw order (`None`:
     /// all of them).
     pub step: Option<usize>,
+    /// The overdraw heat map under this rule instead of the image.
+    pub overdraw: Option<zline_raster::TieRule>,
+}
+
+impl Action {
+    /// The action of a key named as `zline view --help` lists it (`P`,
+    /// `.`, `+`, …; letters in either case), for `zline view --keys`;
+    /// `None` for a key that does nothing. Screenshot and quit are not
+    /// named: a script has `--save-first-frame` and `--exit-after-frames`.
+    pub fn from_key_name(name: &str) -> Option<Action> {
+        Some(match name.to_ascii_uppercase().as_str() {
+            "1" => Action::Shading(ShadingMode::Flat),
+            "2" => Action::Shading(ShadingMode::Gouraud),
+            "3" => Action::Shading(ShadingMode::Phong),
+            "T" => Action::ToggleTextures,
+            "F" => Action::ToggleFog,
+            "W" => Action::CycleWireframe,
+            "M" => Action::CycleShadows,
+            "+" | "=" => Action::MoreSamples,
+            "-" => Action::FewerSamples,
+            "R" => Action::ResetCamera,
+            "H" => Action::ToggleOverlay,
+            "Z" => Action::ToggleVisibility,
+            "C" => Action::ToggleCulling,
+            "I" => Action::ToggleInterpolation,
+            "P" => Action::ToggleStepMode,
+            "." => Action::StepForward,
+            "," => Action::StepBack,
+            "O" => Action::CycleOverdraw,
+            _ => return None,
+        })
+    }
 }
 
 /// The viewer's state (see the module documentation).
@@ -224,6 +259,7 @@ impl ViewerState {
             culling: true,
             interpolation: s.interpolation,
             step: None,
+            overdraw: None,
         };
         let fog = scene.fog.unwrap_or_else(|| fitted_fog(&scene));
         ViewerState {
@@ -364,6 +400,20 @@ impl ViewerState {
     pub fn hint(&self) -> Option<String> {
         let t = &self.toggles;
         let s = &self.home.settings;
+        if let Some(rule) = t.overdraw {
+            use zline_raster::TieRule;
+            return Some(String::from(match rule {
+                TieRule::TopLeft => {
+                    "overdraw (O): fragments a pixel, dark blue 1, cyan 2, green 3, yellow 4, red 6"
+                }
+                TieRule::Closed => {
+                    "overdraw without the top-left rule, closed: edges through sample centres drawn twice"
+                }
+                TieRule::Open => {
+                    "overdraw without the top-left rule, open: edges through sample centres drawn by neither"
+                }
+            }));
+        }
         if let Some(n) = t.step {
             return Some(format!(
                 "step mode: the first {n} of {} triangles, in draw order (. next, , back, P off)",
@@ -513,6 +563,15 @@ impl ViewerState {
                 self.toggles.step = self.toggles.step.map(|n| (n + 1).min(all));
             }
             Action::StepBack => self.toggles.step = self.toggles.step.map(|n| n.saturating_sub(1)),
+            Action::CycleOverdraw => {
+                use zline_raster::TieRule;
+                self.toggles.overdraw = match self.toggles.overdraw {
+                    None => Some(TieRule::TopLeft),
+                    Some(TieRule::TopLeft) => Some(TieRule::Closed),
+                    Some(TieRule::Closed) => Some(TieRule::Open),
+                    Some(TieRule::Open) => None,
+                };
+            }
             Action::ToggleInterpolation => {
                 use zline_scene::Interpolation;
                 self.toggles.interpolation = match self.toggles.interpolation {

@@ -63,6 +63,7 @@ pub fn action_for(key: Key) -> Option<Action> {
         Key::P => Action::ToggleStepMode,
         Key::Period => Action::StepForward,
         Key::Comma => Action::StepBack,
+        Key::O => Action::CycleOverdraw,
         Key::S => Action::Screenshot,
         Key::Escape | Key::Q => Action::Quit,
         _ => return None,
@@ -154,7 +155,8 @@ impl Frames {
     ) -> Duration {
         let scene = state.scene(request);
         let t = Instant::now();
-        draw(&scene, options, pool, &mut self.renderer, &mut self.image);
+        let overdraw = state.toggles().overdraw;
+        draw((&scene, overdraw), options, pool, &mut self.renderer, &mut self.image);
         t.elapsed()
     }
 
@@ -272,14 +274,20 @@ fn input(window: &Window, state: &mut ViewerState, mouse: &mut Option<(f32, f32)
 }
 
 /// Draws `scene` into `image`: rasterized, or ray-traced when the options
-/// say so.
+/// say so, or its overdraw heat map under a tie rule.
 fn draw(
-    scene: &Scene,
+    (scene, overdraw): (&Scene, Option<zline_raster::TieRule>),
     options: &ViewOptions,
     pool: &rayon::ThreadPool,
     renderer: &mut Renderer,
     image: &mut Image,
 ) {
+    if let Some(rule) = overdraw {
+        let mut counts = zline_pipeline::Overdraw::default();
+        pool.install(|| renderer.render_overdraw_into(scene, &options.render, rule, &mut counts));
+        *image = crate::layers::overdraw_heat_map(&counts);
+        return;
+    }
     match &options.trace {
         Some(trace) => *image = pool.install(|| crate::ray_traced_image(scene, trace)).0,
         None => {
@@ -299,7 +307,7 @@ fn screenshot(
     let path = numbered(&options.screenshot);
     let scene = state.scene(&state.full_request());
     let mut image = Image::empty();
-    draw(&scene, options, pool, renderer, &mut image);
+    draw((&scene, state.toggles().overdraw), options, pool, renderer, &mut image);
     crate::save_image(&image, &path)
         .with_context(|| format!("{}: cannot write the screenshot", path.display()))?;
     Ok(path)
@@ -341,6 +349,7 @@ mod tests {
             (Key::P, Action::ToggleStepMode),
             (Key::Period, Action::StepForward),
             (Key::Comma, Action::StepBack),
+            (Key::O, Action::CycleOverdraw),
             (Key::S, Action::Screenshot),
             (Key::Escape, Action::Quit),
             (Key::Q, Action::Quit),

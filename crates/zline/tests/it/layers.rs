@@ -77,6 +77,44 @@ fn the_id_image_is_the_libraries_object_ids() {
 }
 
 #[test]
+fn overdraw_shows_what_the_top_left_rule_prevents() {
+    let dir = tempfile::tempdir().unwrap();
+    let (out, heat) = (dir.path().join("a.png"), dir.path().join("heat.png"));
+    let scene = repo().join("docs/course/scenes/pixel_grid.toml");
+    let run_rule = |rule: &str| {
+        let run = zline(&[
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--overdraw",
+            heat.to_str().unwrap(),
+            "--tie-rule",
+            rule,
+        ]);
+        let stderr = String::from_utf8_lossy(&run.stderr).into_owned();
+        assert!(run.status.success(), "{stderr}");
+        let png = image::open(&heat).unwrap().to_rgb8();
+        assert_eq!(png.dimensions(), (64, 64));
+        let level = |l: usize| png.pixels().filter(|p| p.0 == zline::layers::HEAT[l]).count();
+        (stderr, [level(0), level(1), level(2)])
+    };
+    // The 8 × 8 cells' diagonals run through 8 sample centres each: 512
+    // samples on shared edges, drawn once, twice or never.
+    let (_, levels) = run_rule("top-left");
+    assert_eq!(levels, [0, 64 * 64, 0]);
+    let (stderr, levels) = run_rule("closed");
+    assert_eq!(levels, [0, 64 * 64 - 512, 512]);
+    assert!(stderr.contains("512 fragments more and 0 fewer"), "{stderr}");
+    let (stderr, levels) = run_rule("open");
+    assert_eq!(levels, [512, 64 * 64 - 512, 0]);
+    assert!(stderr.contains("0 fragments more and 512 fewer"), "{stderr}");
+    // --tie-rule is an option of --overdraw.
+    let run = zline(&["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap(), "--tie-rule", "open"]);
+    assert_eq!(run.status.code(), Some(2));
+}
+
+#[test]
 fn transparent_jpeg_and_non_png_layers_are_refused_before_rendering() {
     let dir = tempfile::tempdir().unwrap();
     let jpg = dir.path().join("a.jpg");

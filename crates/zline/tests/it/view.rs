@@ -247,6 +247,17 @@ fn the_keys_reach_the_scene_rendered() {
     );
     state.handle(Event::Key(Action::ToggleStepMode));
     assert_eq!((count(&state), state.hint()), (all, None));
+    // O: the overdraw heat map under each tie rule, then the image again.
+    use zline::raster::TieRule;
+    for (rule, says) in
+        [(TieRule::TopLeft, "overdraw (O)"), (TieRule::Closed, "twice"), (TieRule::Open, "neither")]
+    {
+        state.handle(Event::Key(Action::CycleOverdraw));
+        assert_eq!(state.toggles().overdraw, Some(rule));
+        assert!(state.hint().is_some_and(|h| h.contains(says)), "{rule:?}: {:?}", state.hint());
+    }
+    state.handle(Event::Key(Action::CycleOverdraw));
+    assert_eq!((state.toggles().overdraw, state.hint()), (None, None));
 }
 
 #[test]
@@ -403,6 +414,51 @@ fn under_xvfb_the_window_shows_the_frame() {
         // the rest is the frame exactly.
         let share = 100.0 * capture.matching;
         assert!(capture.matching > 0.8, "{extra:?}: only {share:.1} % of the screen is the frame");
+    }
+}
+
+#[test]
+fn keys_given_on_the_command_line_reach_the_first_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let spot = repo().join("assets/obj/spot/spot.obj");
+    let spot = spot.to_str().unwrap();
+    let path = |name: &str| dir.path().join(name).to_str().unwrap().to_owned();
+    let run = |args: &[&str]| {
+        let out = zline(args);
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        image::open(args.last().unwrap()).unwrap().to_rgb8()
+    };
+    let size = ["--size", "160x120"];
+    // The overdraw map of closed triangles (O twice) is render's --overdraw
+    // --tie-rule closed.
+    let (viewed, drawn) = (path("view.png"), path("heat.png"));
+    let shown = run(&["view", spot, size[0], size[1], "--keys", "O O", "--save-first-frame", &viewed]);
+    let out = zline(&[
+        "render",
+        spot,
+        size[0],
+        size[1],
+        "-o",
+        &path("x.png"),
+        "--tie-rule",
+        "closed",
+        "--overdraw",
+        &drawn,
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(shown, image::open(&drawn).unwrap().to_rgb8());
+    // Step mode at the 300th triangle: more drawn than at the 3rd, less
+    // than the whole model.
+    let drawn_pixels = |keys: &str| {
+        let img = run(&["view", spot, size[0], size[1], "--keys", keys, "--save-first-frame", &viewed]);
+        let background = *img.get_pixel(0, 0);
+        img.pixels().filter(|p| **p != background).count()
+    };
+    let (few, some, all) = (drawn_pixels("P 2*."), drawn_pixels("P 299*."), drawn_pixels("1"));
+    assert!(few < some && some < all, "{few} {some} {all}");
+    for (keys, says) in [("Q", "not a key"), ("0*.", "count before *"), ("P 100001*.", "count before *")] {
+        let out = zline(&["view", spot, "--keys", keys, "--save-first-frame", &viewed]);
+        crate::check_clean_error(&out, &["--keys", says]);
     }
 }
 
