@@ -16,6 +16,7 @@ use std::path::Path;
 
 pub mod check;
 pub mod info;
+pub mod inspect;
 pub mod layers;
 pub mod load;
 pub mod scan;

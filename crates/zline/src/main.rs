@@ -22,6 +22,7 @@ use zline::scene::{Scene, MAX_SAMPLES, MAX_THREADS};
 mod batch;
 mod check_command;
 mod flags;
+mod inspect_command;
 mod job;
 mod progress;
 mod scan_command;
@@ -79,6 +80,12 @@ enum Command {
         #[command(subcommand)]
         action: thumbnail::ThumbnailerAction,
     },
+    /// The pixel inspector: every fragment that touched pixel X,Y of the
+    /// render, in draw order, with the edge table's span, the depth test,
+    /// the colours before and after, fog, the resolve and the 8-bit result
+    /// (checked against the rendered image). Render flags go after `--`,
+    /// e.g. `zline inspect bunny.ply --pixel 320,240 -- --ssaa 2`.
+    Inspect(inspect_command::InspectArgs),
     /// Scan conversion step by step: the edge table, the active edge list
     /// row by row, the spans and the depth along them, for one triangle
     /// in window space (the renderer's own fixed-point walk).
@@ -233,6 +240,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Thumbnail(thumbnail) => return thumbnail::run(&thumbnail, &render_argv),
         Command::Thumbnailer { action } => return thumbnail::thumbnailer(&action),
         Command::Scan(scan) => return scan_command::run(&scan),
+        Command::Inspect(inspect) => return inspect_command::run(&inspect, &render_argv),
         Command::Render { input, allow_paths_outside, common } => {
             (Some(input), BuiltIn::Demo, allow_paths_outside, common, None)
         }

@@ -4,6 +4,7 @@
 //! setup per object), binning, and [`Renderer::draw_tiles`] (the tiles in
 //! parallel, each: opaque pass → fog → transparency pass → resolve).
 
+pub(crate) mod inspect;
 pub(crate) mod overdraw;
 mod tiles;
 
@@ -119,6 +120,9 @@ pub struct Renderer {
     /// This frame counts overdraw under this rule instead of drawing
     /// (`Renderer::render_overdraw_into`).
     overdraw: Option<zline_raster::TieRule>,
+    /// The pixel the inspector follows this frame (`Renderer::inspect`):
+    /// setup then records each primitive's triangle.
+    probe: Option<(u32, u32)>,
     /// With the adaptive mode, per object of the last frame: the
     /// simplified level drawn (`crate::lod`), `None` for the full mesh.
     levels: Vec<Option<usize>>,
@@ -490,7 +494,7 @@ impl Renderer {
         let transforms =
             ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, object.world_from_object);
         let out = (&mut self.vertices, &mut self.chunks, &mut self.used);
-        setup_mesh(mesh, (&transforms, lights), &ctx, pass, out);
+        setup_mesh(mesh, (&transforms, lights), &ctx, (pass, self.probe.is_some()), out);
         mesh.triangles.len()
     }
 
@@ -540,7 +544,7 @@ impl Renderer {
             };
             let transforms = ObjectTransforms::new(frame.clip_from_eye, frame.eye_from_world, Mat4::IDENTITY);
             let out = (&mut self.vertices, &mut self.chunks, &mut self.used);
-            setup_mesh(&mesh, (&transforms, None), &ctx, PassKind::Shadow { bit }, out);
+            setup_mesh(&mesh, (&transforms, None), &ctx, (PassKind::Shadow { bit }, false), out);
         }
         self.shadow_mesh = Some(mesh);
     }
@@ -565,12 +569,14 @@ impl Renderer {
 }
 
 /// Transforms `mesh` (`vertices`) and sets up its triangles in parallel
-/// chunks appended after `chunks[..used]`, all in `pass`.
+/// chunks appended after `chunks[..used]`, all in `pass`; with `sources`
+/// (the pixel inspector), each chunk records which triangle made each
+/// primitive.
 fn setup_mesh(
     mesh: &zline_scene::Mesh,
     (transforms, lights): (&ObjectTransforms, Option<VertexLights<'_>>),
     ctx: &SetupContext<'_>,
-    pass: PassKind,
+    (pass, sources): (PassKind, bool),
     (vertices, chunks, used): (&mut Vec<ClipVertex>, &mut Vec<PrimitiveChunk>, &mut usize),
 ) {
     let screen = Screen { viewport: ctx.viewport, volume: ctx.volume };
@@ -583,11 +589,15 @@ fn setup_mesh(
         chunks.resize_with(*used, PrimitiveChunk::default);
     }
     let tris = mesh.triangles.par_chunks(chunk);
-    chunks[first..*used].par_iter_mut().zip(tris).for_each(|(out, tris)| {
+    chunks[first..*used].par_iter_mut().zip(tris).enumerate().for_each(|(k, (out, tris))| {
         out.reset(pass);
+        (out.object, out.first_triangle) = (ctx.material.1, (k * chunk) as u32);
         for t in tris {
             if let Some(tri) = gather(vertices, t) {
                 setup_triangle(tri, ctx, out);
+            }
+            if sources {
+                out.triangle_ends.push(out.draws.len() as u32);
             }
         }
     });

@@ -39,29 +39,7 @@ impl Renderer {
         let band_len = width as usize * tile_size as usize;
         let threads = self.prepare_band_buffers(grid, coverage);
         let buffers = &self.buffers[..threads];
-        let t = &self.tables;
-        let shade = ShadeContext {
-            lighting: &t.lighting,
-            materials: &t.materials,
-            textures: &t.textures,
-            surfaces: &t.surfaces,
-            maps: self.maps_drawn.then_some(&self.maps),
-            normals: self.normals,
-        };
-        let (vw, vh) = (frame.viewport.width, frame.viewport.height);
-        let clear = match frame.depth {
-            DepthEncoding::Normalized => DEPTH_CLEAR,
-            DepthEncoding::Reversed { .. } => DEPTH_CLEAR_REVERSED,
-        };
-        // A transparent background is black (the colour planes then hold
-        // premultiplied colour: `crate::coverage`) with alpha 0.
-        let (background_color, background) = match coverage {
-            false => {
-                let shown = scene.settings.tone_mapping.apply(scene.background);
-                (scene.background, quantize_rgba(shown.extend(1.0)))
-            }
-            true => (Vec3::ZERO, 0),
-        };
+        let clear = frame_clear(frame);
         let depth_bands = match depth {
             Some(d) => {
                 d.clear();
@@ -70,27 +48,7 @@ impl Renderer {
             }
             None => Either::Right((0..image.pixels.len().div_ceil(band_len)).into_par_iter().map(|_| None)),
         };
-        let wireframe = scene.settings.wireframe;
-        let passes = TilePasses {
-            grid,
-            bins: &self.bins,
-            chunks: &self.chunks[..self.used],
-            shade,
-            fog: scene.fog.map(|f| FogPass::new(f, frame.clip_from_eye, vw, vh, frame.depth)),
-            lines: wireframe.drawn().then_some(&self.lines),
-            lines_only: wireframe.only,
-            painter: scene.settings.visibility == Visibility::Painter,
-            export_depth: matches!(depth_bands, Either::Left(_)),
-            clear,
-            background: (background_color, background),
-            sky: scene.environment.as_ref().filter(|e| e.background && !coverage).map(|e| {
-                let size = (vw, vh, t.lighting.ceiling());
-                SkyView::new(e, (frame.eye_from_world, frame.clip_from_eye), frame.viewer, size)
-            }),
-            coverage,
-            tone: scene.settings.tone_mapping,
-            size: (width, n),
-        };
+        let passes = self.tile_passes(scene, frame, grid, matches!(depth_bands, Either::Left(_)));
         image
             .pixels
             .par_chunks_mut(band_len)
@@ -109,6 +67,57 @@ impl Renderer {
                     .sum::<u64>()
             })
             .sum()
+    }
+
+    /// What every tile of the frame draws with ([`TilePasses`]).
+    pub(super) fn tile_passes<'a>(
+        &'a self,
+        scene: &Scene,
+        frame: &Frame,
+        grid: &'a TileGrid,
+        export_depth: bool,
+    ) -> TilePasses<'a> {
+        let coverage = scene.settings.transparent_background;
+        let t = &self.tables;
+        let shade = ShadeContext {
+            lighting: &t.lighting,
+            materials: &t.materials,
+            textures: &t.textures,
+            surfaces: &t.surfaces,
+            maps: self.maps_drawn.then_some(&self.maps),
+            normals: self.normals,
+        };
+        let (vw, vh) = (frame.viewport.width, frame.viewport.height);
+        // A transparent background is black (the colour planes then hold
+        // premultiplied colour: `crate::coverage`) with alpha 0.
+        let (background_color, background) = match coverage {
+            false => {
+                let shown = scene.settings.tone_mapping.apply(scene.background);
+                (scene.background, quantize_rgba(shown.extend(1.0)))
+            }
+            true => (Vec3::ZERO, 0),
+        };
+        let wireframe = scene.settings.wireframe;
+        TilePasses {
+            grid,
+            bins: &self.bins,
+            chunks: &self.chunks[..self.used],
+            shade,
+            fog: scene.fog.map(|f| FogPass::new(f, frame.clip_from_eye, vw, vh, frame.depth)),
+            lines: wireframe.drawn().then_some(&self.lines),
+            lines_only: wireframe.only,
+            painter: scene.settings.visibility == Visibility::Painter,
+            export_depth,
+            clear: frame_clear(frame),
+            background: (background_color, background),
+            sky: scene.environment.as_ref().filter(|e| e.background && !coverage).map(|e| {
+                let size = (vw, vh, t.lighting.ceiling());
+                SkyView::new(e, (frame.eye_from_world, frame.clip_from_eye), frame.viewer, size)
+            }),
+            coverage,
+            tone: scene.settings.tone_mapping,
+            size: (frame.width, frame.n),
+        }
     }
 
     /// One set of tile buffers per thread, each reserved for this frame's
@@ -132,30 +141,38 @@ impl Renderer {
     }
 }
 
+/// The depth buffer's clear value for the frame's encoding.
+pub(super) fn frame_clear(frame: &Frame) -> f32 {
+    match frame.depth {
+        DepthEncoding::Normalized => DEPTH_CLEAR,
+        DepthEncoding::Reversed { .. } => DEPTH_CLEAR_REVERSED,
+    }
+}
+
 /// What every tile of a frame draws with: the bins, the primitives, the
 /// shading context and the frame's choices of passes.
-struct TilePasses<'a> {
-    grid: &'a TileGrid,
-    bins: &'a Bins,
-    chunks: &'a [PrimitiveChunk],
-    shade: ShadeContext<'a>,
-    fog: Option<FogPass>,
-    lines: Option<&'a Lines>,
+pub(super) struct TilePasses<'a> {
+    pub(super) grid: &'a TileGrid,
+    pub(super) bins: &'a Bins,
+    pub(super) chunks: &'a [PrimitiveChunk],
+    pub(super) shade: ShadeContext<'a>,
+    pub(super) fog: Option<FogPass>,
+    pub(super) lines: Option<&'a Lines>,
     /// `--wireframe-only`: the surfaces only decide which lines are hidden.
-    lines_only: bool,
-    painter: bool,
-    export_depth: bool,
+    pub(super) lines_only: bool,
+    pub(super) painter: bool,
+    pub(super) export_depth: bool,
     /// The depth buffer's far value.
-    clear: f32,
+    pub(super) clear: f32,
     /// The background as a colour and as a quantized pixel.
-    background: (Vec3, u32),
+    pub(super) background: (Vec3, u32),
     /// The environment drawn behind the scene, when it is.
-    sky: Option<SkyView>,
-    coverage: bool,
+    pub(super) sky: Option<SkyView>,
+    pub(super) coverage: bool,
     /// The frame's tone mapping, for the resolve.
-    tone: zline_shading::ToneMapping,
+    pub(super) tone: zline_shading::ToneMapping,
     /// The image width and the supersampling factor.
-    size: (u32, u32),
+    pub(super) size: (u32, u32),
 }
 
 impl TilePasses<'_> {

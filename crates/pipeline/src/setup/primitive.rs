@@ -303,19 +303,28 @@ impl KernelTables {
 
     /// The edge table of primitive `index` of `kernel`'s table.
     pub(crate) fn edges(&self, kernel: Kernel, index: u32) -> &zline_raster::EdgeTable {
+        self.coverage(kernel, index).0
+    }
+
+    /// The edge table and depth plane of primitive `index` of `kernel`'s
+    /// table.
+    pub(crate) fn coverage(&self, kernel: Kernel, index: u32) -> (&zline_raster::EdgeTable, &DepthPlane) {
+        fn of<S>(p: &Primitive<S>) -> (&zline_raster::EdgeTable, &DepthPlane) {
+            (&p.edges, &p.depth)
+        }
         let i = index as usize;
         match kernel {
-            Kernel::Flat => &self.flat[i].edges,
-            Kernel::Gouraud { .. } => &self.gouraud[i].edges,
-            Kernel::Phong(_) => &self.phong[i].edges,
-            Kernel::ColoredPhong(_) => &self.colored_phong[i].edges,
+            Kernel::Flat => of(&self.flat[i]),
+            Kernel::Gouraud { .. } => of(&self.gouraud[i]),
+            Kernel::Phong(_) => of(&self.phong[i]),
+            Kernel::ColoredPhong(_) => of(&self.colored_phong[i]),
             Kernel::Textured { lighting, .. } => match lighting {
-                TexturedLighting::Flat => &self.textured_flat[i].edges,
-                TexturedLighting::Gouraud => &self.textured_gouraud[i].edges,
-                TexturedLighting::Phong => &self.textured_phong[i].edges,
-                TexturedLighting::ColoredPhong => &self.textured_colored_phong[i].edges,
+                TexturedLighting::Flat => of(&self.textured_flat[i]),
+                TexturedLighting::Gouraud => of(&self.textured_gouraud[i]),
+                TexturedLighting::Phong => of(&self.textured_phong[i]),
+                TexturedLighting::ColoredPhong => of(&self.textured_colored_phong[i]),
             },
-            Kernel::Perturbed { .. } => &self.perturbed[i].edges,
+            Kernel::Perturbed { .. } => of(&self.perturbed[i]),
         }
     }
 
@@ -383,6 +392,14 @@ pub struct PrimitiveChunk {
     pub pass: PassKind,
     /// The kernels' data.
     pub tables: KernelTables,
+    /// The object whose triangles these are (its index in the scene).
+    pub object: u32,
+    /// The mesh's index of the chunk's first triangle.
+    pub first_triangle: u32,
+    /// Only when the pixel inspector asks (empty otherwise): per triangle
+    /// of the chunk, `draws.len()` after it was set up, so that draw `d`
+    /// came from the first triangle whose end is above `d`.
+    pub triangle_ends: Vec<u32>,
 }
 
 impl PrimitiveChunk {
@@ -391,6 +408,7 @@ impl PrimitiveChunk {
         self.draws.clear();
         self.bounds.clear();
         self.tables.clear();
+        self.triangle_ends.clear();
         self.pass = pass;
     }
 

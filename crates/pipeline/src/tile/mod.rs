@@ -175,6 +175,12 @@ impl TileTarget {
     /// C_behind.
     #[inline(always)]
     pub(crate) fn materialize_background<S: Level>(&mut self) {
+        // Once per tile: the samples it fills may then be blended over, and
+        // a second fill would erase that (the pixel inspector runs a pass
+        // one primitive per call).
+        if self.colors_valid {
+            return;
+        }
         if self.sky_drawn {
             self.fill_undrawn::<S>(
                 #[inline(always)]
@@ -327,7 +333,10 @@ pub(super) fn apart<S: Level, R>(kernel: impl FnOnce() -> R) -> R {
 /// in draw order (chunk, then index: the bin's order), so every tile sorts
 /// alike. An unstable sort with the draw order as the tie-break gives the
 /// stable sort's order without its scratch allocation.
-fn back_to_front(order: &mut Vec<(f32, PrimitiveRef)>, keyed: impl Iterator<Item = (f32, PrimitiveRef)>) {
+pub(crate) fn back_to_front(
+    order: &mut Vec<(f32, PrimitiveRef)>,
+    keyed: impl Iterator<Item = (f32, PrimitiveRef)>,
+) {
     order.clear();
     order.extend(keyed);
     order.sort_unstable_by(

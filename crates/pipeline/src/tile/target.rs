@@ -181,6 +181,24 @@ impl TileTarget {
     }
 
     /// The background behind sample `i`.
+    /// Sample (x, y)'s stored depth, its colour (the background's where
+    /// nothing was drawn yet) and its alpha (1 without the coverage plane):
+    /// what the pixel inspector reads between primitives.
+    pub(crate) fn sample_state(&self, x: i32, y: i32) -> (f32, Vec3, f32) {
+        let i = self.index(x, y);
+        let depth = sample(&self.depth, i);
+        let drawn = self.colors_valid || depth < self.far;
+        let [r, g, b] = &self.rgb;
+        let color =
+            if drawn { Vec3::new(sample(r, i), sample(g, i), sample(b, i)) } else { self.background_at(i) };
+        let alpha = match (self.coverage, self.colors_valid) {
+            (true, true) => sample(&self.alpha, i),
+            (true, false) => f32::from(u8::from(depth < self.far)),
+            (false, _) => 1.0,
+        };
+        (depth, color, alpha)
+    }
+
     #[inline]
     pub(crate) fn background_at(&self, i: usize) -> Vec3 {
         if self.sky_drawn {

@@ -56,6 +56,25 @@ pub(crate) struct LayerArgs {
     /// rule", shown on the real mesh.
     #[arg(long, value_name = "RULE", default_value = "top-left", value_parser = parse_tie_rule, requires = "overdraw")]
     tie_rule: TieRule,
+    /// Follow pixel X,Y through the frame (the pixel inspector) and print
+    /// every fragment that touched it, in draw order: its object and
+    /// triangle, window vertices, the edge table's span and the top-left
+    /// rule's verdict, the depth and the depth test, the colour before and
+    /// after, then fog, the resolve and the 8-bit result, checked against
+    /// the image written. To standard output (so not with `-o -`).
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    inspect: Option<(u32, u32)>,
+    /// With --inspect: the report as JSON.
+    #[arg(long, requires = "inspect")]
+    inspect_json: bool,
+}
+
+fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
+    let (x, y) =
+        s.split_once(',').ok_or_else(|| format!("expected X,Y (pixel column and row), got {s:?}"))?;
+    let parse =
+        |v: &str| v.trim().parse::<u32>().map_err(|_| format!("expected X,Y in whole pixels, got {s:?}"));
+    Ok((parse(x)?, parse(y)?))
 }
 
 fn parse_tie_rule(s: &str) -> Result<TieRule, String> {
@@ -80,6 +99,9 @@ impl LayerArgs {
             )
             .exit();
         }
+        if self.inspect.is_some() && zline::is_stdout(output) {
+            bail!("--inspect prints its report on standard output: write the image to a file, not -o -");
+        }
         for (flag, path) in self.extra() {
             let png =
                 path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("png"));
@@ -95,8 +117,8 @@ impl LayerArgs {
     /// (`turntable`, `batch`).
     pub(crate) fn refuse(&self, command: &str) -> Result<()> {
         let extra = self.depth_image.is_some() || self.normal_image.is_some() || self.id_image.is_some();
-        if self.transparent || extra || self.overdraw.is_some() {
-            bail!("--transparent, --depth-image, --normal-image, --id-image and --overdraw are options of render, demo and terrain, not of {command}");
+        if self.transparent || extra || self.overdraw.is_some() || self.inspect.is_some() {
+            bail!("--transparent, --depth-image, --normal-image, --id-image, --overdraw and --inspect are options of render, demo and terrain, not of {command}");
         }
         Ok(())
     }
@@ -170,6 +192,19 @@ impl LayerArgs {
                 path.display(),
                 scene.objects.len()
             );
+        }
+        if let Some(pixel) = self.inspect {
+            let mut image = Image::empty();
+            let trace = pool.install(|| Renderer::default().inspect(scene, options, pixel, &mut image))?;
+            let report = if self.inspect_json {
+                zline::inspect::json(&trace, scene)
+            } else {
+                zline::inspect::text(&trace, scene)
+            };
+            println!("{}", report.trim_end());
+            if !trace.matches() {
+                bail!("the inspector's pixel differs from the rendered image's: please report this");
+            }
         }
         if let Some(path) = &self.overdraw {
             let count = |rule| pool.install(|| zline::pipeline::render_overdraw(scene, options, rule).0);

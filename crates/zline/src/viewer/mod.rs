@@ -7,11 +7,13 @@
 //!   window: tested headless.
 //! - `window`: the minifb window (X11, libX11 loaded at run time) that
 //!   feeds the state machine and presents its frames.
+//! - `keys`: keys named on the command line (`--keys`) as actions.
 //! - `overlay`: nearest-neighbour upscaling and the frame-time text.
 //! - `xwd` and `capture`: a real screenshot under Xvfb, read back from the
 //!   X server's framebuffer (`cargo xtask view-screenshot` and the tests).
 
 pub mod capture;
+pub mod keys;
 pub mod overlay;
 pub mod state;
 pub mod window;

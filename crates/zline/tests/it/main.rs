@@ -11,6 +11,7 @@ mod course;
 mod formats;
 mod hard_cases;
 mod hostile;
+mod inspect;
 mod layers;
 mod lighting_model;
 mod radiosity;
