@@ -1,9 +1,94 @@
 //! `zline inspect` and `render --inspect X,Y`: the pixel inspector's
 //! report (`zline_pipeline::PixelTrace`) as text for a learner, or as JSON.
 
+use glam::{Mat4, Vec3};
 use serde::Serialize;
-use zline_pipeline::{FragmentTrace, Outcome, Pass, PixelTrace};
+use zline_pipeline::{FragmentTrace, Outcome, Pass, PixelTrace, SampleAttributes};
 use zline_scene::Scene;
+use zline_shading::{Light, LightingModel};
+
+/// One light's share at a sample: SPEC §5's terms with that light alone.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LightTerm {
+    /// The light's index in the scene.
+    pub light: usize,
+    /// Its kind: point, spot or directional.
+    pub kind: &'static str,
+    /// f_att (1 for a directional light), times the spot's falloff.
+    pub attenuation: f32,
+    /// N·L (before the max with 0).
+    pub n_dot_l: f32,
+    /// f·Il·kd·max(0, N·L).
+    pub diffuse: [f32; 3],
+    /// f·Il·ks·max(0, N·H)^ns (Cook–Torrance: its specular lobe).
+    pub specular: [f32; 3],
+}
+
+/// SPEC §5 at a sample of object `object`: the ambient term ka·Ia (plus
+/// the emission ke) and each light's terms, from the interpolated eye-space
+/// position and the renormalized normal, with the object's material (a
+/// texel or vertex colour, which multiplies ka and kd, is not applied;
+/// shadows are not evaluated). `None` where the kernel interpolates no
+/// normal (flat and Gouraud shading lit at the centroid or the vertices).
+pub fn lighting_terms(scene: &Scene, object: u32, a: &SampleAttributes) -> Option<(Vec3, Vec<LightTerm>)> {
+    let (normal, point) = (a.normal?.normalize_or_zero(), a.eye?);
+    let material = scene.objects.get(object as usize)?.material().sanitized();
+    let view = scene.camera.eye_from_world();
+    let eye = if scene.camera.projection.is_perspective() { Vec3::ZERO } else { point + Vec3::Z };
+    let alone = |ambient: Vec3, lights: Vec<Light>| {
+        LightingModel { ambient, lights, environment: None }.shade_parts(&material, point, normal, eye)
+    };
+    let ambient = alone(scene.ambient, vec![]);
+    let base = ambient.ambient_diffuse + ambient.specular;
+    let terms = scene
+        .lights
+        .iter()
+        .enumerate()
+        .map(|(k, light)| {
+            let l = to_eye(light, &view);
+            let parts = alone(Vec3::ZERO, vec![l]);
+            let (kind, to_light, attenuation) = match l {
+                Light::Point { position, attenuation, .. } => {
+                    ("point", position - point, attenuation.factor(position.distance(point)))
+                }
+                Light::Spot { position, direction, attenuation, cone, .. } => {
+                    let to = position - point;
+                    let cos = (-to.normalize_or_zero()).dot(direction.normalize_or_zero());
+                    ("spot", to, attenuation.factor(to.length()) * cone.factor(cos))
+                }
+                Light::Directional { direction, .. } => ("directional", -direction, 1.0),
+            };
+            LightTerm {
+                light: k,
+                kind,
+                attenuation,
+                n_dot_l: normal.dot(to_light.normalize_or_zero()),
+                diffuse: parts.ambient_diffuse.to_array(),
+                specular: (parts.specular - material.ke).to_array(),
+            }
+        })
+        .collect();
+    Some((base, terms))
+}
+
+/// A world-space light in eye space.
+fn to_eye(light: &Light, view: &Mat4) -> Light {
+    match *light {
+        Light::Point { position, color, attenuation } => {
+            Light::Point { position: view.transform_point3(position), color, attenuation }
+        }
+        Light::Spot { position, direction, color, attenuation, cone } => Light::Spot {
+            position: view.transform_point3(position),
+            direction: view.transform_vector3(direction),
+            color,
+            attenuation,
+            cone,
+        },
+        Light::Directional { direction, color } => {
+            Light::Directional { direction: view.transform_vector3(direction), color }
+        }
+    }
+}
 
 fn rgb(c: glam::Vec3) -> String {
     format!("({:.6}, {:.6}, {:.6})", c.x, c.y, c.z)
@@ -77,7 +162,58 @@ fn fragment_text(out: &mut String, k: usize, f: &FragmentTrace, scene: &Scene, f
         "    depth: z = {:.6} (NC depth, stepped along the span by dz/dx = {:.4e}); {test}",
         f.z, f.dzdx
     );
+    attributes_text(out, f, scene);
     let _ = writeln!(out, "    colour: {} -> {}", rgb(f.before.1), rgb(f.after.1));
+}
+
+fn attributes_text(out: &mut String, f: &FragmentTrace, scene: &Scene) {
+    use std::fmt::Write;
+    let a = &f.attributes;
+    let mut parts = Vec::new();
+    if let Some(n) = a.normal {
+        parts.push(format!(
+            "normal {} (|n| {:.4} before renormalizing)",
+            rgb(n.normalize_or_zero()),
+            n.length()
+        ));
+    }
+    if let Some(p) = a.eye {
+        parts.push(format!("eye-space position {}", rgb(p)));
+    }
+    if let Some(uv) = a.uv {
+        parts.push(format!("texture coordinates ({:.6}, {:.6})", uv.x, uv.y));
+    }
+    if let Some(c) = a.vertex_color {
+        parts.push(format!("vertex colour {}", rgb(c)));
+    }
+    if let Some(c) = a.gouraud {
+        parts.push(format!("Gouraud colour {} (lit at the vertices, interpolated)", rgb(c)));
+    }
+    if let Some((ad, s)) = a.lit_parts {
+        parts.push(format!("lit once: ambient+diffuse {} (times the texel), specular {}", rgb(ad), rgb(s)));
+    }
+    if let Some(c) = a.flat {
+        parts.push(format!("flat colour {} (lit once at the centroid)", rgb(c)));
+    }
+    for p in parts {
+        let _ = writeln!(out, "    {p}");
+    }
+    if let Some((base, terms)) = lighting_terms(scene, f.object, a) {
+        let _ =
+            writeln!(out, "    lighting (SPEC §5, before texels and shadows): ke + ka·Ia = {}", rgb(base));
+        for t in terms {
+            let _ = writeln!(
+                out,
+                "      light {} ({}): N·L {:.4}, attenuation {:.4}, diffuse {}, specular {}",
+                t.light,
+                t.kind,
+                t.n_dot_l,
+                t.attenuation,
+                rgb(Vec3::from(t.diffuse)),
+                rgb(Vec3::from(t.specular))
+            );
+        }
+    }
 }
 
 /// The report as text: per sample, each fragment in the order drawn, then
@@ -160,6 +296,13 @@ struct FragmentJson {
     color_before: [f32; 3],
     color_after: [f32; 3],
     outcome: &'static str,
+    normal: Option<[f32; 3]>,
+    eye_position: Option<[f32; 3]>,
+    texture_coordinates: Option<[f32; 2]>,
+    vertex_color: Option<[f32; 3]>,
+    gouraud_color: Option<[f32; 3]>,
+    ambient: Option<[f32; 3]>,
+    lights: Option<Vec<LightTerm>>,
 }
 
 #[derive(Serialize)]
@@ -211,6 +354,13 @@ pub fn json(trace: &PixelTrace, scene: &Scene) -> String {
                     color_before: f.before.1.to_array(),
                     color_after: f.after.1.to_array(),
                     outcome: outcome_name(f.outcome),
+                    normal: f.attributes.normal.map(|n| n.normalize_or_zero().to_array()),
+                    eye_position: f.attributes.eye.map(|v| v.to_array()),
+                    texture_coordinates: f.attributes.uv.map(|v| v.to_array()),
+                    vertex_color: f.attributes.vertex_color.map(|v| v.to_array()),
+                    gouraud_color: f.attributes.gouraud.map(|v| v.to_array()),
+                    ambient: lighting_terms(scene, f.object, &f.attributes).map(|(b, _)| b.to_array()),
+                    lights: lighting_terms(scene, f.object, &f.attributes).map(|(_, t)| t),
                 })
                 .collect(),
             after_opaque: (s.after_opaque.0, s.after_opaque.1.to_array()),

@@ -22,15 +22,15 @@
 //! evaluation the kernels use (`zline_raster::for_each_sample`, the scalar
 //! twin of their blocks), and the depth test's verdict.
 
-use glam::Vec3;
-use zline_raster::{covers, for_each_sample, AttributePlanes, Rect, Span, TieRule};
+use glam::{Vec2, Vec3};
+use zline_raster::{covers, for_each_sample, AttributePlanes, DepthPlane, Rect, Span, TieRule};
 use zline_scene::Scene;
 
 use super::tiles::TilePasses;
 use super::{Frame, RenderOptions, Renderer};
 use crate::bin::{OpaqueRef, PrimitiveRef, TileGrid};
 use crate::image::Image;
-use crate::setup::{Kernel, PassKind, PrimitiveChunk};
+use crate::setup::{layout, Kernel, KernelTables, PassKind, PrimitiveChunk, TexturedLighting};
 use crate::tile::TileTarget;
 
 /// The pass that drew a fragment.
@@ -91,6 +91,115 @@ pub struct FragmentTrace {
     pub after: (f32, Vec3),
     /// What it did.
     pub outcome: Outcome,
+    /// The primitive's interpolated values at the sample.
+    pub attributes: SampleAttributes,
+}
+
+/// What a primitive's attribute planes give at one sample, evaluated as
+/// the kernels evaluate them (incrementally along the span) and divided by
+/// the 1/w plane as they divide (v / q; q = 1 screen-linear). Each is
+/// present only where the primitive's kernel interpolates it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SampleAttributes {
+    /// The eye-space normal, as interpolated (before renormalizing).
+    pub normal: Option<Vec3>,
+    /// The eye-space position.
+    pub eye: Option<Vec3>,
+    /// The texture coordinates (s, t).
+    pub uv: Option<Vec2>,
+    /// A vertex colour, interpolated.
+    pub vertex_color: Option<Vec3>,
+    /// Gouraud shading's lit colour, interpolated from the vertices.
+    pub gouraud: Option<Vec3>,
+    /// The lighting parts a textured flat or Gouraud kernel multiplies
+    /// with the texel: (ambient + diffuse, specular).
+    pub lit_parts: Option<(Vec3, Vec3)>,
+    /// Flat shading's colour, lit once at the centroid.
+    pub flat: Option<Vec3>,
+}
+
+/// The planes of one primitive at sample `x` of `span`, over q.
+fn planes_at<const N: usize>(
+    depth: &DepthPlane,
+    planes: &AttributePlanes<N>,
+    span: Span,
+    x: i32,
+) -> [f32; N] {
+    let mut values = [0.0; N];
+    for_each_sample(depth, planes, span, |sx, _, v| {
+        if sx == x {
+            values = *v;
+        }
+    });
+    let q = values.first().copied().unwrap_or(1.0);
+    values.map(|v| v / q)
+}
+
+fn vec3(v: &[f32], at: usize) -> Vec3 {
+    Vec3::new(v[at], v[at + 1], v[at + 2])
+}
+
+/// The attributes of primitive `index` of `kernel` at sample `x` of `span`.
+fn attributes_of(t: &KernelTables, kernel: Kernel, index: u32, span: Span, x: i32) -> SampleAttributes {
+    use layout::{gouraud, phong, textured};
+    let i = index as usize;
+    let mut a = SampleAttributes::default();
+    let phong_like = |a: &mut SampleAttributes, v: &[f32], normal: usize, eye: usize| {
+        (a.normal, a.eye) = (Some(vec3(v, normal)), Some(vec3(v, eye)));
+    };
+    match kernel {
+        Kernel::Flat => a.flat = Some(t.flat[i].shader.color),
+        Kernel::Gouraud { .. } => {
+            let p = &t.gouraud[i];
+            a.gouraud = Some(vec3(&planes_at(&p.depth, &p.shader.planes, span, x), gouraud::COLOR));
+        }
+        Kernel::Phong(_) => {
+            let p = &t.phong[i];
+            phong_like(&mut a, &planes_at(&p.depth, &p.shader.planes, span, x), phong::NORMAL, phong::EYE);
+        }
+        Kernel::ColoredPhong(_) => {
+            let p = &t.colored_phong[i];
+            let v = planes_at(&p.depth, &p.shader.planes, span, x);
+            phong_like(&mut a, &v, phong::NORMAL, phong::EYE);
+            a.vertex_color = Some(vec3(&v, phong::COLOR));
+        }
+        Kernel::Textured { lighting, .. } => {
+            let uv = |v: &[f32]| Some(Vec2::new(v[textured::S], v[textured::T]));
+            match lighting {
+                TexturedLighting::Flat => {
+                    let p = &t.textured_flat[i];
+                    a.uv = uv(&planes_at(&p.depth, &p.shader.planes, span, x));
+                    a.lit_parts = Some((p.shader.ambient_diffuse, p.shader.specular));
+                }
+                TexturedLighting::Gouraud => {
+                    let p = &t.textured_gouraud[i];
+                    let v = planes_at(&p.depth, &p.shader.planes, span, x);
+                    a.uv = uv(&v);
+                    a.lit_parts = Some((vec3(&v, textured::AMBIENT_DIFFUSE), vec3(&v, textured::SPECULAR)));
+                }
+                TexturedLighting::Phong => {
+                    let p = &t.textured_phong[i];
+                    let v = planes_at(&p.depth, &p.shader.planes, span, x);
+                    a.uv = uv(&v);
+                    phong_like(&mut a, &v, textured::NORMAL, textured::EYE);
+                }
+                TexturedLighting::ColoredPhong => {
+                    let p = &t.textured_colored_phong[i];
+                    let v = planes_at(&p.depth, &p.shader.planes, span, x);
+                    a.uv = uv(&v);
+                    phong_like(&mut a, &v, textured::NORMAL, textured::EYE);
+                    a.vertex_color = Some(vec3(&v, textured::COLOR));
+                }
+            }
+        }
+        Kernel::Perturbed { .. } => {
+            let p = &t.perturbed[i];
+            let v = planes_at(&p.depth, &p.shader.planes, span, x);
+            a.uv = Some(Vec2::new(v[layout::perturbed::S], v[layout::perturbed::T]));
+            phong_like(&mut a, &v, layout::perturbed::NORMAL, layout::perturbed::EYE);
+        }
+    }
+    a
 }
 
 /// One sample of the pixel and every fragment at it.
@@ -399,6 +508,7 @@ impl Probe<'_> {
                 before: b,
                 after: a,
                 outcome,
+                attributes: attributes_of(&chunk.tables, d.kernel, d.index, span, x),
             });
         }
     }

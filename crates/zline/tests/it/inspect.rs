@@ -85,3 +85,41 @@ fn inspect_usage_errors_are_clean() {
     assert_ne!(out.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&out.stderr).contains("X,Y"), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// The reported lighting terms add up to the colour the kernel wrote: on an
+/// untextured, unshadowed Phong model without fog, every written
+/// fragment's colour is clamp(ke + ka·Ia + Σ diffuse + specular) within
+/// f32 rounding (the kernels evaluate the same formulas eight lanes at a
+/// time, in another order).
+#[test]
+fn the_lighting_terms_add_up_to_the_written_colour() {
+    use zline::pipeline::{Outcome, RenderOptions, Renderer};
+    let mut scene =
+        zline::load::load(&repo().join("assets/ply/bunny_lowres.ply"), Default::default()).unwrap().scene;
+    (scene.settings.width, scene.settings.height) = (96, 72);
+    scene.settings.shading = zline::shading::ShadingMode::Phong;
+    scene.camera = zline::io::model_camera(&scene.objects, 96.0 / 72.0);
+    let mut renderer = Renderer::default();
+    let mut checked = 0;
+    for y in (2..72).step_by(4) {
+        for x in (2..96).step_by(4) {
+            let mut image = zline::pipeline::Image::empty();
+            let trace = renderer.inspect(&scene, &RenderOptions::default(), (x, y), &mut image).unwrap();
+            for f in trace.samples.iter().flat_map(|s| &s.fragments).filter(|f| f.outcome == Outcome::Written)
+            {
+                let (base, terms) = zline::inspect::lighting_terms(&scene, f.object, &f.attributes).unwrap();
+                let sum = terms
+                    .iter()
+                    .fold(base, |c, t| c + glam::Vec3::from(t.diffuse) + glam::Vec3::from(t.specular));
+                let want = sum.clamp(glam::Vec3::ZERO, glam::Vec3::ONE);
+                assert!(
+                    (f.after.1 - want).abs().max_element() < 2e-5,
+                    "({x}, {y}): kernel {} vs terms {want}",
+                    f.after.1
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 100, "{checked}");
+}
