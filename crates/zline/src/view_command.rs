@@ -31,6 +31,7 @@ Keys:
   I         interpolation: perspective-correct or affine (screen-linear)
   P         step mode: draw the first triangles only; . one more, , one fewer
   O         overdraw heat map: top-left rule, closed triangles, open, off
+  click     the pixel inspector on the pixel clicked: its report on stdout, a line over the frame
   H         hide/show the frame time
   S         screenshot: the full frame to -o with a number (zline-view-1.png, ...)
   Esc, Q    quit
@@ -66,6 +67,11 @@ pub(crate) struct ViewArgs {
     /// and Q). Also with --save-first-frame.
     #[arg(long, value_name = "KEYS", allow_hyphen_values = true)]
     keys: Option<String>,
+    /// A click on window pixel X,Y before the first frame, after --keys:
+    /// the pixel inspector's report on standard output and its line over
+    /// the frame, as a click in the window gives.
+    #[arg(long, value_name = "X,Y")]
+    click: Option<String>,
 }
 
 /// `-o` of `zline view`: where S saves screenshots.
@@ -118,6 +124,13 @@ pub(crate) fn run(args: &ViewArgs, job: &Job<'_>, trace: &crate::cli::trace::Tra
             state.handle(zline::viewer::state::Event::Key(action));
         }
     }
+    if let Some(click) = &args.click {
+        let pixel = click
+            .split_once(',')
+            .and_then(|(x, y)| Some((x.trim().parse::<u32>().ok()?, y.trim().parse::<u32>().ok()?)))
+            .ok_or_else(|| anyhow!("--click: expected X,Y in window pixels, got {click:?}"))?;
+        state.handle(zline::viewer::state::Event::Click(pixel.0, pixel.1));
+    }
     if let Some(path) = &args.save_first_frame {
         let scene = state.scene(&state.full_request());
         let options = job.options;
@@ -134,6 +147,13 @@ pub(crate) fn run(args: &ViewArgs, job: &Job<'_>, trace: &crate::cli::trace::Tra
         zline::save_image(&image, path)
             .with_context(|| format!("{}: cannot write the image", path.display()))?;
         eprintln!("wrote {} ({}x{})", path.display(), image.width, image.height);
+        // --click without a window: the report alone.
+        if let Some(pixel) = state.take_inspection() {
+            let mut renderer = zline::pipeline::Renderer::default();
+            let mut frame = zline::pipeline::Image::empty();
+            let trace = job.pool.install(|| renderer.inspect(&scene, &options, pixel, &mut frame))?;
+            println!("{}", zline::inspect::text(&trace, &scene).trim_end());
+        }
         return Ok(());
     }
     let title = args

@@ -132,6 +132,9 @@ pub enum Event {
     Wheel(f32),
     /// A key's action.
     Key(Action),
+    /// A left click (press and release without moving) on window pixel
+    /// (x, y): the pixel inspector follows it.
+    Click(u32, u32),
     /// The window's drawable area is now this many pixels.
     Resize(u32, u32),
     /// The clock: the time since the viewer started.
@@ -208,6 +211,8 @@ pub struct ViewerState {
     /// Seconds per sample of the last frames, newest last.
     costs: Vec<f64>,
     screenshot: bool,
+    /// The pixel a click asked the inspector to follow, until taken.
+    inspect: Option<(u32, u32)>,
     quit: bool,
     /// Halve the block frame by frame when still (module doc).
     progressive: bool,
@@ -245,6 +250,7 @@ impl ViewerState {
             shown: None,
             costs: Vec::new(),
             screenshot: false,
+            inspect: None,
             quit: false,
             progressive: false,
             home: scene,
@@ -271,6 +277,12 @@ impl ViewerState {
                 }
             }
             Event::Key(action) => self.act(action),
+            Event::Click(x, y) => {
+                let (w, h) = self.window;
+                self.inspect = Some((x.min(w - 1), y.min(h - 1)));
+                // The frame is drawn again, with the inspector's line over it.
+                self.version += 1;
+            }
             Event::Resize(w, h) => {
                 let size = (w.max(1), h.max(1));
                 if size != self.window {
@@ -432,6 +444,12 @@ impl ViewerState {
     /// True once Esc or Q asked to close.
     pub fn quit(&self) -> bool {
         self.quit
+    }
+
+    /// Once after a click: the pixel the caller runs the inspector on
+    /// (the full frame's pixel under the cursor).
+    pub fn take_inspection(&mut self) -> Option<(u32, u32)> {
+        self.inspect.take()
     }
 
     /// True once after S: the caller saves the full frame.

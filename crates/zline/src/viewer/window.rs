@@ -95,15 +95,24 @@ pub fn run(state: &mut ViewerState, options: &ViewOptions, pool: &rayon::ThreadP
     window.set_target_fps(0);
     let presses = Presses::default();
     window.set_input_callback(Box::new(presses.clone()));
-    let mut frames =
-        Frames { renderer: Renderer::default(), image: Image::empty(), buffer: Vec::new(), presented: 0 };
+    let mut frames = Frames {
+        renderer: Renderer::default(),
+        image: Image::empty(),
+        buffer: Vec::new(),
+        presented: 0,
+        inspected: None,
+    };
+    let mut click = Click::default();
     let start = Instant::now();
     let mut mouse: Option<(f32, f32)> = None;
     let mut last_time: Option<Duration> = None;
     while window.is_open() && !state.quit() {
         // The clock first: input events are stamped with it.
         state.handle(Event::Tick(start.elapsed()));
-        input(&window, state, &mut mouse, &presses);
+        input(&window, state, (&mut mouse, &mut click), &presses);
+        if let Some(pixel) = state.take_inspection() {
+            frames.inspected = Some(inspect(state, options, pool, &mut frames.renderer, pixel));
+        }
         if state.take_screenshot() {
             // A failed save is reported; the window stays.
             match screenshot(state, options, pool, &mut frames.renderer) {
@@ -143,6 +152,8 @@ struct Frames {
     image: Image,
     buffer: Vec<u32>,
     presented: u64,
+    /// The last click's summary, over the frame.
+    inspected: Option<String>,
 }
 
 impl Frames {
@@ -180,6 +191,7 @@ impl Frames {
             let (describe, hint) = (state.describe(), state.hint());
             let mut lines = vec![first.as_str(), describe.as_str()];
             lines.extend(hint.as_deref());
+            lines.extend(self.inspected.as_deref());
             draw_text(&mut self.buffer, w, &lines);
         }
     }
@@ -244,8 +256,48 @@ impl InputCallback for Presses {
     }
 }
 
+/// A left press followed from its start: released where it began, it is a
+/// click.
+#[derive(Default)]
+struct Click {
+    start: Option<(f32, f32)>,
+    moved: bool,
+}
+
+/// Runs the pixel inspector on the full frame's `pixel`: the report on
+/// stdout, a line for the overlay returned.
+fn inspect(
+    state: &ViewerState,
+    options: &ViewOptions,
+    pool: &rayon::ThreadPool,
+    renderer: &mut Renderer,
+    pixel: (u32, u32),
+) -> String {
+    let scene = state.scene(&state.full_request());
+    let mut image = Image::empty();
+    match pool.install(|| renderer.inspect(&scene, &options.render, pixel, &mut image)) {
+        Ok(trace) => {
+            println!("{}", crate::inspect::text(&trace, &scene).trim_end());
+            let fragments: usize = trace.samples.iter().map(|s| s.fragments.len()).sum();
+            let last = trace.samples.iter().flat_map(|s| s.fragments.last()).last();
+            let what = last.map_or_else(
+                || "background".to_string(),
+                |f| format!("last object {} triangle {}", f.object, f.triangle.map_or("?".into(), |t| t.to_string())),
+            );
+            let [r, g, b, _] = trace.resolved;
+            format!("inspect ({}, {}): {fragments} fragments, {what} -> {r} {g} {b} (report on stdout)", pixel.0, pixel.1)
+        }
+        Err(e) => format!("inspect: {e}"),
+    }
+}
+
 /// Mouse and keys since the last poll, as events.
-fn input(window: &Window, state: &mut ViewerState, mouse: &mut Option<(f32, f32)>, presses: &Presses) {
+fn input(
+    window: &Window,
+    state: &mut ViewerState,
+    (mouse, click): (&mut Option<(f32, f32)>, &mut Click),
+    presses: &Presses,
+) {
     let (w, h) = window.get_size();
     state.handle(Event::Resize(w as u32, h as u32));
     let position = window.get_mouse_pos(MouseMode::Pass);
@@ -263,6 +315,18 @@ fn input(window: &Window, state: &mut ViewerState, mouse: &mut Option<(f32, f32)
         state.handle(Event::Drag { button, dx: x - x0, dy: y - y0, shift });
     }
     *mouse = position;
+    // A left press released where it started (within 2 pixels) is a click.
+    match (button, click.start, position) {
+        (Some(Button::Left), None, Some(p)) if !shift => *click = Click { start: Some(p), moved: false },
+        (Some(Button::Left), Some((x0, y0)), Some((x, y))) => click.moved |= (x - x0).abs().max((y - y0).abs()) > 2.0,
+        (None, Some((x, y)), _) => {
+            if !click.moved && x >= 0.0 && y >= 0.0 {
+                state.handle(Event::Click(x as u32, y as u32));
+            }
+            *click = Click::default();
+        }
+        _ => {}
+    }
     if let Some((_, notches)) = window.get_scroll_wheel() {
         state.handle(Event::Wheel(notches));
     }

@@ -258,6 +258,14 @@ fn the_keys_reach_the_scene_rendered() {
     }
     state.handle(Event::Key(Action::CycleOverdraw));
     assert_eq!((state.toggles().overdraw, state.hint()), (None, None));
+    // A click asks for the inspector once, at a pixel inside the window,
+    // and draws the frame again (with the inspector's line).
+    let before = state.frame_to_render();
+    state.handle(Event::Click(5000, 7));
+    let (w, _) = state.window();
+    assert_eq!(state.take_inspection(), Some((w - 1, 7)));
+    assert_eq!(state.take_inspection(), None);
+    assert!(state.frame_to_render().is_some() || before.is_some());
 }
 
 #[test]
@@ -456,6 +464,13 @@ fn keys_given_on_the_command_line_reach_the_first_frame() {
     };
     let (few, some, all) = (drawn_pixels("P 2*."), drawn_pixels("P 299*."), drawn_pixels("1"));
     assert!(few < some && some < all, "{few} {some} {all}");
+    // --click: the inspector's report, checked against the frame.
+    let out = zline(&["view", spot, size[0], size[1], "--click", "80,60", "--save-first-frame", &viewed]);
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && report.contains("pixel (80, 60) of 160x120"), "{report}");
+    assert!(report.contains("the rendered image's pixel is the same"), "{report}");
+    let out = zline(&["view", spot, "--click", "80;60", "--save-first-frame", &viewed]);
+    crate::check_clean_error(&out, &["--click", "X,Y"]);
     for (keys, says) in [("Q", "not a key"), ("0*.", "count before *"), ("P 100001*.", "count before *")] {
         let out = zline(&["view", spot, "--keys", keys, "--save-first-frame", &viewed]);
         crate::check_clean_error(&out, &["--keys", says]);
