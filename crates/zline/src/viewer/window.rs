@@ -111,7 +111,7 @@ pub fn run(state: &mut ViewerState, options: &ViewOptions, pool: &rayon::ThreadP
         state.handle(Event::Tick(start.elapsed()));
         input(&window, state, (&mut mouse, &mut click), &presses);
         if let Some(pixel) = state.take_inspection() {
-            frames.inspected = Some(inspect(state, options, pool, &mut frames.renderer, pixel));
+            frames.inspected = Some((pixel, inspect(state, options, pool, &mut frames.renderer, pixel)));
         }
         if state.take_screenshot() {
             // A failed save is reported; the window stays.
@@ -152,8 +152,8 @@ struct Frames {
     image: Image,
     buffer: Vec<u32>,
     presented: u64,
-    /// The last click's summary, over the frame.
-    inspected: Option<String>,
+    /// The last click's pixel and summary, over the frame.
+    inspected: Option<((u32, u32), String)>,
 }
 
 impl Frames {
@@ -180,6 +180,17 @@ impl Frames {
         took: Duration,
     ) {
         upscale(&self.image, request.block, w, h, &mut self.buffer);
+        if let Some(((x, y), _)) = self.inspected {
+            // A yellow cross around the inspected pixel, the pixel left shown.
+            for d in 2..6i64 {
+                for (dx, dy) in [(d, 0), (-d, 0), (0, d), (0, -d)] {
+                    let (px, py) = (i64::from(x) + dx, i64::from(y) + dy);
+                    if (0..w as i64).contains(&px) && (0..h as i64).contains(&py) {
+                        self.buffer[py as usize * w + px as usize] = 0x00ff_e040;
+                    }
+                }
+            }
+        }
         if state.overlay() {
             let ms = took.as_secs_f64() * 1e3;
             let resolution = if request.block == 1 {
@@ -191,7 +202,7 @@ impl Frames {
             let (describe, hint) = (state.describe(), state.hint());
             let mut lines = vec![first.as_str(), describe.as_str()];
             lines.extend(hint.as_deref());
-            lines.extend(self.inspected.as_deref());
+            lines.extend(self.inspected.as_ref().map(|(_, line)| line.as_str()));
             draw_text(&mut self.buffer, w, &lines);
         }
     }
@@ -282,10 +293,11 @@ fn inspect(
             let last = trace.samples.iter().flat_map(|s| s.fragments.last()).last();
             let what = last.map_or_else(
                 || "background".to_string(),
-                |f| format!("last object {} triangle {}", f.object, f.triangle.map_or("?".into(), |t| t.to_string())),
+                |f| format!("obj {} tri {}", f.object, f.triangle.map_or("?".into(), |t| t.to_string())),
             );
             let [r, g, b, _] = trace.resolved;
-            format!("inspect ({}, {}): {fragments} fragments, {what} -> {r} {g} {b} (report on stdout)", pixel.0, pixel.1)
+            let s = if fragments == 1 { "" } else { "s" };
+            format!("inspect ({},{}): {fragments} fragment{s}, {what} = {r} {g} {b}", pixel.0, pixel.1)
         }
         Err(e) => format!("inspect: {e}"),
     }
@@ -318,7 +330,9 @@ fn input(
     // A left press released where it started (within 2 pixels) is a click.
     match (button, click.start, position) {
         (Some(Button::Left), None, Some(p)) if !shift => *click = Click { start: Some(p), moved: false },
-        (Some(Button::Left), Some((x0, y0)), Some((x, y))) => click.moved |= (x - x0).abs().max((y - y0).abs()) > 2.0,
+        (Some(Button::Left), Some((x0, y0)), Some((x, y))) => {
+            click.moved |= (x - x0).abs().max((y - y0).abs()) > 2.0
+        }
         (None, Some((x, y)), _) => {
             if !click.moved && x >= 0.0 && y >= 0.0 {
                 state.handle(Event::Click(x as u32, y as u32));
