@@ -129,13 +129,14 @@ struct Server {
 }
 
 impl Server {
-    /// Starts Xvfb on the first display number from 90 with no lock file
-    /// and waits for its socket.
+    /// Starts Xvfb on the first display number from 90 that no running
+    /// server holds and waits for its socket. A lock file whose process is
+    /// gone (a server killed before it could clean up) does not hold its
+    /// number: Xvfb replaces such a stale lock itself.
     fn start(xvfb: &Path, fbdir: &Path, (w, h): (u32, u32)) -> Result<Server> {
         for display in 90..190 {
-            if Path::new(&format!("/tmp/.X{display}-lock")).exists()
-                || Path::new(&format!("/tmp/.X11-unix/X{display}")).exists()
-            {
+            let lock = PathBuf::from(format!("/tmp/.X{display}-lock"));
+            if lock.exists() && lock_is_live(&lock) {
                 continue;
             }
             let mut child = Command::new(xvfb)
@@ -164,9 +165,31 @@ impl Server {
         bail!("could not start Xvfb on any display from :90 to :189")
     }
 
+    /// Asks the server to end (SIGTERM, so that it removes its lock file
+    /// and socket), and kills it when it has not within two seconds.
     fn stop(&mut self) {
+        let asked = Command::new("kill").arg(self.child.id().to_string()).stderr(Stdio::null()).status();
+        if asked.is_ok_and(|s| s.success()) {
+            let start = Instant::now();
+            while start.elapsed() < Duration::from_secs(2) {
+                if matches!(self.child.try_wait(), Ok(Some(_))) {
+                    return;
+                }
+                std::thread::sleep(Duration::from_millis(10));
+            }
+        }
         let _ = self.child.kill();
         let _ = self.child.wait();
+    }
+}
+
+/// True when the X lock file `lock` names a process that still runs (or
+/// cannot be read, which is taken as held).
+fn lock_is_live(lock: &Path) -> bool {
+    let Ok(text) = std::fs::read_to_string(lock) else { return true };
+    match text.trim().parse::<u32>() {
+        Ok(pid) => Path::new(&format!("/proc/{pid}")).exists(),
+        Err(_) => true,
     }
 }
 
