@@ -39,6 +39,21 @@ pub fn overdraw_heat_map(o: &Overdraw) -> Image {
     Image { width: o.width, height: o.height, pixels, transparent: false }
 }
 
+/// The depth image as grey pixels: the 16-bit PNG's values
+/// ([`DepthImage::to_gray16`]: nearest drawn 65535, farthest 1, nothing 0)
+/// rounded to 8 bits, so `--depth-image`'s picture.
+pub fn depth_as_image(depth: &DepthImage) -> Image {
+    let (grey, _) = depth.to_gray16();
+    let pixels = grey
+        .iter()
+        .map(|&v| {
+            let g = ((u32::from(v) * 255 + 32767) / 65535) as u8;
+            u32::from_le_bytes([g, g, g, 255])
+        })
+        .collect();
+    Image { width: depth.width, height: depth.height, pixels, transparent: false }
+}
+
 /// A line on the overdraw: its mean and largest fragments a pixel, what
 /// the rule shows, and (given the same frame's count under the top-left
 /// rule) how many fragments the rule changed.

@@ -19,6 +19,7 @@ pub mod info;
 pub mod inspect;
 pub mod layers;
 pub mod load;
+pub mod order;
 pub mod scan;
 pub mod scan_page;
 pub mod view;

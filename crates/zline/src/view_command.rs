@@ -30,7 +30,10 @@ Keys:
   C         back-face culling on/off
   I         interpolation: perspective-correct or affine (screen-linear)
   P         step mode: draw the first triangles only; . one more, , one fewer
+  ] / [     step mode: the last triangle one scanline further / back
   O         overdraw heat map: top-left rule, closed triangles, open, off
+  D         the depth buffer as an image (near white, far dark)
+  X         each mesh's triangles in a shuffled order, or their own
   click     the pixel inspector on the pixel clicked: its report on stdout, a line over the frame
   H         hide/show the frame time
   S         screenshot: the full frame to -o with a number (zline-view-1.png, ...)
@@ -134,16 +137,22 @@ pub(crate) fn run(args: &ViewArgs, job: &Job<'_>, trace: &crate::cli::trace::Tra
     if let Some(path) = &args.save_first_frame {
         let scene = state.scene(&state.full_request());
         let options = job.options;
-        // As the window draws it: the overdraw map over either renderer.
-        let image = match (state.toggles().overdraw, &traced) {
-            (Some(rule), _) => {
-                let (counts, _) =
-                    job.pool.install(|| zline::pipeline::render_overdraw(&scene, &options, rule));
-                zline::layers::overdraw_heat_map(&counts)
-            }
-            (None, Some(t)) => job.pool.install(|| zline::ray_traced_image(&scene, t)).0,
-            (None, None) => job.pool.install(|| zline::pipeline::render(&scene, &options)).0,
-        };
+        // As the window draws it.
+        let mut image = zline::pipeline::Image::empty();
+        let mut renderer = zline::pipeline::Renderer::default();
+        let how = (&options, traced.as_ref());
+        zline::viewer::window::draw((&scene, state.toggles()), how, &job.pool, &mut renderer, &mut image);
+        if let Some((row, previous)) = state.scanline_step(&state.full_request()) {
+            let mut below = zline::pipeline::Image::empty();
+            zline::viewer::window::draw(
+                (&previous, state.toggles()),
+                how,
+                &job.pool,
+                &mut renderer,
+                &mut below,
+            );
+            zline::viewer::window::scanline_compose(&mut image, &below, row);
+        }
         zline::save_image(&image, path)
             .with_context(|| format!("{}: cannot write the image", path.display()))?;
         eprintln!("wrote {} ({}x{})", path.display(), image.width, image.height);

@@ -59,18 +59,6 @@ enum WireframeArg {
     HiddenDashed,
 }
 
-/// Fisher–Yates with a 64-bit xorshift seeded by `seed`: the same order
-/// for the same seed.
-fn shuffle<T>(items: &mut [T], seed: u64) {
-    let mut state = seed | 1;
-    for i in (1..items.len()).rev() {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        items.swap(i, (state % (i as u64 + 1)) as usize);
-    }
-}
-
 fn parse_angle(s: &str) -> Result<f32, String> {
     s.trim()
         .parse::<f32>()
@@ -90,11 +78,7 @@ impl VisibilityArgs {
             eprintln!("note: --no-culling: back faces are drawn too; a closed model looks the same (the z-buffer hides them) while more triangles are drawn");
         }
         if let Some(seed) = self.shuffle {
-            for (k, object) in scene.objects.iter_mut().enumerate() {
-                let mut mesh = (*object.mesh).clone();
-                shuffle(&mut mesh.triangles, seed ^ (k as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
-                object.mesh = std::sync::Arc::new(mesh);
-            }
+            zline::order::shuffle_triangles(scene, seed);
             eprintln!("note: --shuffle: the triangles are drawn in another order; with the z-buffer the picture is the same (depth decides, not order) unless surfaces tie in depth, but the samples shaded change (the overdraw follows the order), and transparent surfaces blend in another order");
         }
     }

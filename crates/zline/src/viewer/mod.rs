@@ -8,6 +8,7 @@
 //! - `window`: the minifb window (X11, libX11 loaded at run time) that
 //!   feeds the state machine and presents its frames.
 //! - `keys`: keys named on the command line (`--keys`) as actions.
+//! - `scene_edits`: the scene changes the keys make that need no state.
 //! - `overlay`: nearest-neighbour upscaling and the frame-time text.
 //! - `xwd` and `capture`: a real screenshot under Xvfb, read back from the
 //!   X server's framebuffer (`cargo xtask view-screenshot` and the tests).
@@ -15,6 +16,7 @@
 pub mod capture;
 pub mod keys;
 pub mod overlay;
+mod scene_edits;
 pub mod state;
 pub mod window;
 pub mod xwd;

@@ -30,13 +30,11 @@
 //!   [`MAX_BLOCK`] for a new view) down to the full frame, so a coarse
 //!   picture comes at once and sharpens.
 
-use std::sync::Arc;
 use std::time::Duration;
 
 use glam::Vec3;
 use zline_scene::{
-    Camera, Fog, FogCoordinate, FogMode, Object, Projection, Scene, ShadingMode, ShadowMode, WireframeMode,
-    MAX_SAMPLES, MAX_SSAA,
+    Camera, Fog, Object, Projection, Scene, ShadingMode, ShadowMode, WireframeMode, MAX_SAMPLES, MAX_SSAA,
 };
 
 use crate::view::{hug, ViewChange};
@@ -67,50 +65,9 @@ pub enum Button {
     Right,
 }
 
-/// What a key does. The window maps keys to actions (`viewer::window`,
-/// listed in `zline view --help`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Action {
-    /// Shading for objects without their own: flat, Gouraud or Phong (1, 2, 3).
-    Shading(ShadingMode),
-    /// Textures on or off (T).
-    ToggleTextures,
-    /// Fog on or off (F); a scene without fog gets one fitted to its size.
-    ToggleFog,
-    /// Wireframe: none → all → hidden removed → hidden dashed → none (W).
-    CycleWireframe,
-    /// Shadows: none → planar (when the scene has shadow planes) → map → none (M).
-    CycleShadows,
-    /// One more supersampling step per pixel side (+).
-    MoreSamples,
-    /// One fewer (−).
-    FewerSamples,
-    /// The home camera back (R).
-    ResetCamera,
-    /// The frame-time text on or off (H).
-    ToggleOverlay,
-    /// Save the full frame to a PNG (S).
-    Screenshot,
-    /// Hidden surfaces: the z-buffer or the painter's algorithm (Z).
-    ToggleVisibility,
-    /// Back-face culling as the scene says, or off on every object (C).
-    ToggleCulling,
-    /// Attribute interpolation: perspective-correct or screen-linear,
-    /// the affine classic (I).
-    ToggleInterpolation,
-    /// Step mode on or off: the frame draws only the first triangles, in
-    /// draw order (P).
-    ToggleStepMode,
-    /// Step mode: one triangle more (.).
-    StepForward,
-    /// Step mode: one triangle fewer (,).
-    StepBack,
-    /// The overdraw heat map instead of the image: under the top-left rule
-    /// → closed triangles → open triangles → off (O).
-    CycleOverdraw,
-    /// Close the viewer (Esc, Q).
-    Quit,
-}
+pub use super::keys::Action;
+pub use super::scene_edits::magnification;
+use super::scene_edits::{fitted_fog, truncate, untextured};
 
 /// One input to the state machine.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -187,6 +144,13 @@ pub struct Toggles {
     pub step: Option<usize>,
     /// The overdraw heat map under this rule instead of the image.
     pub overdraw: Option<zline_raster::TieRule>,
+    /// The depth buffer shown instead of the colours.
+    pub depth_view: bool,
+    /// Each mesh's triangles drawn in a shuffled order.
+    pub shuffled: bool,
+    /// Step mode: the last triangle drawn only down to this pixel row of
+    /// the full frame (`None`: whole).
+    pub scanline: Option<u32>,
 }
 
 /// The viewer's state (see the module documentation).
@@ -235,6 +199,9 @@ impl ViewerState {
             interpolation: s.interpolation,
             step: None,
             overdraw: None,
+            depth_view: false,
+            shuffled: false,
+            scanline: None,
         };
         let fog = scene.fog.unwrap_or_else(|| fitted_fog(&scene));
         ViewerState {
@@ -339,6 +306,11 @@ impl ViewerState {
     /// The scene to render for `request`: the home scene with the current
     /// camera, the toggled settings and the request's size.
     pub fn scene(&self, request: &FrameRequest) -> Scene {
+        self.scene_at(request, self.toggles.step)
+    }
+
+    /// [`Self::scene`] with the first `step` triangles (all for `None`).
+    fn scene_at(&self, request: &FrameRequest, step: Option<usize>) -> Scene {
         let mut scene = self.home.clone();
         scene.camera = self.camera;
         let s = &mut scene.settings;
@@ -358,25 +330,52 @@ impl ViewerState {
                 object.cull_back_faces = false;
             }
         }
-        if let Some(mut left) = self.toggles.step {
-            for object in &mut scene.objects {
-                let keep = left.min(object.mesh.triangles.len());
-                if keep < object.mesh.triangles.len() {
-                    let mut mesh = (*object.mesh).clone();
-                    mesh.triangles.truncate(keep);
-                    object.mesh = Arc::new(mesh);
-                }
-                left -= keep;
-            }
+        if self.toggles.shuffled {
+            crate::order::shuffle_triangles(&mut scene, 1);
         }
+        truncate(&mut scene, step);
         scene
+    }
+
+    /// With a scanline in step mode: the row (in `request`'s pixels) down
+    /// to which the last triangle is drawn, and the scene without it; the
+    /// frame shows `scene` above and on the row and this one below it
+    /// (exact: the z-buffer lets a triangle change only its own samples).
+    pub fn scanline_step(&self, request: &FrameRequest) -> Option<(u32, Scene)> {
+        let (k, row) = (self.toggles.step?, self.toggles.scanline?);
+        Some((row / request.block.max(1), self.scene_at(request, Some(k.saturating_sub(1)))))
+    }
+
+    /// The first pixel row the step mode's last triangle can cover, where
+    /// `]` starts (0 when it cannot be projected).
+    fn last_triangle_top(&self) -> u32 {
+        let scene = self.scene(&self.full_request());
+        let Some(mut left) = self.toggles.step else { return 0 };
+        let aspect = self.window.0 as f32 / self.window.1.max(1) as f32;
+        let clip_from_world = scene.camera.clip_from_eye(aspect) * scene.camera.eye_from_world();
+        for o in &scene.objects {
+            let n = o.mesh.triangles.len();
+            if left <= n && left > 0 {
+                let t = o.mesh.triangles[left - 1];
+                let ys = t.map(|i| {
+                    let p = clip_from_world * o.world_from_object * o.mesh.positions[i as usize].extend(1.0);
+                    (1.0 - p.y / p.w) / 2.0 * self.window.1 as f32
+                });
+                let top = ys.iter().copied().fold(f32::INFINITY, f32::min);
+                return if top.is_finite() { top.max(0.0) as u32 } else { 0 };
+            }
+            left = left.saturating_sub(n);
+        }
+        0
     }
 
     /// The triangles of the home scene.
     fn triangle_count(&self) -> usize {
         self.home.objects.iter().map(|o| o.mesh.triangles.len()).sum()
     }
+}
 
+impl ViewerState {
     /// What the learner should see after the last classroom toggle (Z, C,
     /// I, P), for the overlay; `None` when they are as loaded.
     pub fn hint(&self) -> Option<String> {
@@ -396,14 +395,27 @@ impl ViewerState {
                 }
             }));
         }
+        if t.depth_view {
+            return Some(
+                "depth buffer: eye depth, near white to far dark, nothing black: what the z-buffer compares"
+                    .into(),
+            );
+        }
+        if let (Some(n), Some(row)) = (t.step, t.scanline) {
+            return Some(format!(
+                "step mode: triangle {n} drawn down to scanline {row} (] next row, [ back)"
+            ));
+        }
         if let Some(n) = t.step {
             return Some(format!(
-                "step mode: the first {n} of {} triangles, in draw order (. next, , back, P off)",
+                "step mode: the first {n} of {} triangles, in draw order (. next, , back, ] by scanline, P off)",
                 self.triangle_count()
             ));
         }
         let line = if t.visibility != s.visibility && t.visibility == zline_scene::Visibility::Painter {
             Some("painter: sorted by farthest depth; wrong where triangles interpenetrate or overlap cyclically")
+        } else if t.shuffled {
+            Some("shuffled order: the same picture with the z-buffer; with the painter's algorithm too (it sorts)")
         } else if !t.culling {
             Some("culling off: a closed model looks the same, more triangles are drawn")
         } else if t.interpolation != s.interpolation
@@ -549,8 +561,25 @@ impl ViewerState {
             Action::StepForward => {
                 let all = self.triangle_count();
                 self.toggles.step = self.toggles.step.map(|n| (n + 1).min(all));
+                self.toggles.scanline = None;
             }
-            Action::StepBack => self.toggles.step = self.toggles.step.map(|n| n.saturating_sub(1)),
+            Action::StepBack => {
+                self.toggles.step = self.toggles.step.map(|n| n.saturating_sub(1));
+                self.toggles.scanline = None;
+            }
+            Action::ScanlineForward | Action::ScanlineBack => {
+                let last = self.window.1.saturating_sub(1);
+                self.toggles.scanline = match (self.toggles.step, self.toggles.scanline, action) {
+                    (None | Some(0), ..) => None,
+                    (Some(_), None, Action::ScanlineForward) => Some(self.last_triangle_top()),
+                    (Some(_), Some(r), Action::ScanlineForward) if r >= last => None,
+                    (Some(_), Some(r), Action::ScanlineForward) => Some(r + 1),
+                    (Some(_), Some(r), _) => Some(r.saturating_sub(1)),
+                    (Some(_), None, _) => Some(last),
+                };
+            }
+            Action::ToggleDepthView => self.toggles.depth_view = !self.toggles.depth_view,
+            Action::ToggleShuffle => self.toggles.shuffled = !self.toggles.shuffled,
             Action::CycleOverdraw => {
                 use zline_raster::TieRule;
                 self.toggles.overdraw = match self.toggles.overdraw {
@@ -659,54 +688,4 @@ impl ViewerState {
         ViewChange { zoom: Some(clamped), ..ViewChange::default() }.apply(&mut scene, self.aspect(), false);
         self.camera = scene.camera;
     }
-}
-
-/// How much `camera` magnifies against `home`: the ratio of their eye
-/// distances (perspective) or view heights (orthographic).
-pub fn magnification(camera: &Camera, home: &Camera) -> f32 {
-    match (camera.projection, home.projection) {
-        (Projection::Orthographic { height, .. }, Projection::Orthographic { height: home, .. }) => {
-            home / height
-        }
-        _ => (home.eye - home.target).length() / (camera.eye - camera.target).length(),
-    }
-}
-
-/// The objects with no diffuse map (their meshes copied once).
-fn untextured(objects: &[Object]) -> Vec<Object> {
-    objects
-        .iter()
-        .map(|o| {
-            let mesh = if o.mesh.diffuse_map.is_some() {
-                Arc::new(zline_scene::Mesh { diffuse_map: None, ..(*o.mesh).clone() })
-            } else {
-                o.mesh.clone()
-            };
-            Object { mesh, ..o.clone() }
-        })
-        .collect()
-}
-
-/// A linear fog in the background's colour for a scene without one: clear
-/// at the near side of the scene's bounding sphere seen from the home eye,
-/// full two radii behind its far side.
-fn fitted_fog(scene: &Scene) -> Fog {
-    let (mut min, mut max) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-    for o in &scene.objects {
-        for p in &o.mesh.positions {
-            let w = o.world_from_object.transform_point3(*p);
-            if w.is_finite() {
-                (min, max) = (min.min(w), max.max(w));
-            }
-        }
-    }
-    let (center, radius) = ((min + max) / 2.0, (max - min).length() / 2.0);
-    let d = (scene.camera.eye - center).length();
-    let (start, end) = ((d - radius).max(0.0), d + 3.0 * radius);
-    let mode = if start.is_finite() && end.is_finite() && start < end {
-        FogMode::Linear { start, end }
-    } else {
-        FogMode::Exponential { density: 0.1 }
-    };
-    Fog { mode, color: scene.background, coordinate: FogCoordinate::EyePlane }
 }

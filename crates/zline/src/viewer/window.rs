@@ -64,6 +64,10 @@ pub fn action_for(key: Key) -> Option<Action> {
         Key::Period => Action::StepForward,
         Key::Comma => Action::StepBack,
         Key::O => Action::CycleOverdraw,
+        Key::D => Action::ToggleDepthView,
+        Key::X => Action::ToggleShuffle,
+        Key::RightBracket => Action::ScanlineForward,
+        Key::LeftBracket => Action::ScanlineBack,
         Key::S => Action::Screenshot,
         Key::Escape | Key::Q => Action::Quit,
         _ => return None,
@@ -166,8 +170,13 @@ impl Frames {
     ) -> Duration {
         let scene = state.scene(request);
         let t = Instant::now();
-        let overdraw = state.toggles().overdraw;
-        draw((&scene, overdraw), options, pool, &mut self.renderer, &mut self.image);
+        let how = (&options.render, options.trace.as_ref());
+        draw((&scene, state.toggles()), how, pool, &mut self.renderer, &mut self.image);
+        if let Some((row, previous)) = state.scanline_step(request) {
+            let mut below = Image::empty();
+            draw((&previous, state.toggles()), how, pool, &mut self.renderer, &mut below);
+            scanline_compose(&mut self.image, &below, row);
+        }
         t.elapsed()
     }
 
@@ -180,6 +189,13 @@ impl Frames {
         took: Duration,
     ) {
         upscale(&self.image, request.block, w, h, &mut self.buffer);
+        if let Some(row) = state.toggles().scanline.filter(|_| state.toggles().step.is_some()) {
+            // The scanline reached, as a red line.
+            let y = row as usize;
+            if y < h {
+                self.buffer[y * w..(y + 1) * w].iter_mut().step_by(2).for_each(|p| *p = 0x00ff_3030);
+            }
+        }
         if let Some(((x, y), _)) = self.inspected {
             // A yellow cross around the inspected pixel, the pixel left shown.
             for d in 2..6i64 {
@@ -264,6 +280,19 @@ impl InputCallback for Presses {
             held.push(key);
             pressed.push(key);
         }
+    }
+}
+
+/// The step mode's frame at a scanline: `image` (the last triangle drawn)
+/// on rows up to `row`, `below` (without it) under them. Exact: the
+/// z-buffer lets a triangle change only the samples it covers.
+pub fn scanline_compose(image: &mut Image, below: &Image, row: u32) {
+    if below.width != image.width || below.height != image.height {
+        return;
+    }
+    let start = (row as usize + 1) * image.width as usize;
+    if start < image.pixels.len() {
+        image.pixels[start..].copy_from_slice(&below.pixels[start..]);
     }
 }
 
@@ -352,24 +381,31 @@ fn input(
 }
 
 /// Draws `scene` into `image`: rasterized, or ray-traced when the options
-/// say so, or its overdraw heat map under a tie rule.
-fn draw(
-    (scene, overdraw): (&Scene, Option<zline_raster::TieRule>),
-    options: &ViewOptions,
+/// say so, or the overdraw heat map or the depth buffer when the toggles
+/// ask.
+pub fn draw(
+    (scene, toggles): (&Scene, crate::viewer::state::Toggles),
+    (options, trace): (&RenderOptions, Option<&zline_scene::trace_options::TraceOptions>),
     pool: &rayon::ThreadPool,
     renderer: &mut Renderer,
     image: &mut Image,
 ) {
-    if let Some(rule) = overdraw {
+    if let Some(rule) = toggles.overdraw {
         let mut counts = zline_pipeline::Overdraw::default();
-        pool.install(|| renderer.render_overdraw_into(scene, &options.render, rule, &mut counts));
+        pool.install(|| renderer.render_overdraw_into(scene, options, rule, &mut counts));
         *image = crate::layers::overdraw_heat_map(&counts);
         return;
     }
-    match &options.trace {
+    if toggles.depth_view {
+        let mut depth = zline_pipeline::DepthImage::default();
+        pool.install(|| renderer.render_with_depth(scene, options, image, &mut depth));
+        *image = crate::layers::depth_as_image(&depth);
+        return;
+    }
+    match trace {
         Some(trace) => *image = pool.install(|| crate::ray_traced_image(scene, trace)).0,
         None => {
-            pool.install(|| renderer.render_into(scene, &options.render, image));
+            pool.install(|| renderer.render_into(scene, options, image));
         }
     }
 }
@@ -385,7 +421,7 @@ fn screenshot(
     let path = numbered(&options.screenshot);
     let scene = state.scene(&state.full_request());
     let mut image = Image::empty();
-    draw((&scene, state.toggles().overdraw), options, pool, renderer, &mut image);
+    draw((&scene, state.toggles()), (&options.render, options.trace.as_ref()), pool, renderer, &mut image);
     crate::save_image(&image, &path)
         .with_context(|| format!("{}: cannot write the screenshot", path.display()))?;
     Ok(path)
@@ -428,6 +464,10 @@ mod tests {
             (Key::Period, Action::StepForward),
             (Key::Comma, Action::StepBack),
             (Key::O, Action::CycleOverdraw),
+            (Key::D, Action::ToggleDepthView),
+            (Key::X, Action::ToggleShuffle),
+            (Key::RightBracket, Action::ScanlineForward),
+            (Key::LeftBracket, Action::ScanlineBack),
             (Key::S, Action::Screenshot),
             (Key::Escape, Action::Quit),
             (Key::Q, Action::Quit),

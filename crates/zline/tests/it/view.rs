@@ -245,6 +245,11 @@ fn the_keys_reach_the_scene_rendered() {
         "{:?}",
         state.hint()
     );
+    state.handle(Event::Key(Action::ScanlineForward));
+    assert!(state.toggles().scanline.is_some());
+    assert!(state.hint().is_some_and(|h| h.contains("scanline")), "{:?}", state.hint());
+    state.handle(Event::Key(Action::StepForward));
+    assert_eq!(state.toggles().scanline, None, "a new triangle starts whole");
     state.handle(Event::Key(Action::ToggleStepMode));
     assert_eq!((count(&state), state.hint()), (all, None));
     // O: the overdraw heat map under each tie rule, then the image again.
@@ -258,6 +263,22 @@ fn the_keys_reach_the_scene_rendered() {
     }
     state.handle(Event::Key(Action::CycleOverdraw));
     assert_eq!((state.toggles().overdraw, state.hint()), (None, None));
+    // D: the depth buffer's picture; X: a shuffled order of the same
+    // triangles.
+    state.handle(Event::Key(Action::ToggleDepthView));
+    assert!(state.hint().is_some_and(|h| h.contains("depth buffer")), "{:?}", state.hint());
+    state.handle(Event::Key(Action::ToggleDepthView));
+    let order = |s: &ViewerState| s.scene(&s.full_request()).objects[0].mesh.triangles.clone();
+    let plain = order(&state);
+    state.handle(Event::Key(Action::ToggleShuffle));
+    assert!(state.hint().is_some_and(|h| h.contains("shuffled")), "{:?}", state.hint());
+    let (mut shuffled, mut sorted) = (order(&state), plain.clone());
+    assert_ne!(shuffled, plain);
+    shuffled.sort_unstable();
+    sorted.sort_unstable();
+    assert_eq!(shuffled, sorted);
+    state.handle(Event::Key(Action::ToggleShuffle));
+    assert_eq!((order(&state), state.hint()), (plain, None));
     // A click asks for the inspector once, at a pixel inside the window,
     // and draws the frame again (with the inspector's line).
     let before = state.frame_to_render();
@@ -464,6 +485,35 @@ fn keys_given_on_the_command_line_reach_the_first_frame() {
     };
     let (few, some, all) = (drawn_pixels("P 2*."), drawn_pixels("P 299*."), drawn_pixels("1"));
     assert!(few < some && some < all, "{few} {some} {all}");
+    // Scanline steps: the 300th triangle drawn down to a row is the frame
+    // with 300 triangles above and on the row, with 299 below it.
+    let with = run(&["view", spot, size[0], size[1], "--keys", "P 299*.", "--save-first-frame", &viewed]);
+    let without = run(&["view", spot, size[0], size[1], "--keys", "P 298*.", "--save-first-frame", &viewed]);
+    let rows = |img: &image::RgbImage, r: std::ops::Range<u32>| {
+        r.flat_map(|y| (0..img.width()).map(move |x| img.get_pixel(x, y).0)).collect::<Vec<_>>()
+    };
+    let mut partly = 0;
+    for step in [1u32, 3, 6, 12, 40] {
+        let keys = format!("P 299*. {step}*]");
+        let partial = run(&["view", spot, size[0], size[1], "--keys", &keys, "--save-first-frame", &viewed]);
+        let split = (0..=120).find(|&r| {
+            rows(&partial, 0..r) == rows(&with, 0..r) && rows(&partial, r..120) == rows(&without, r..120)
+        });
+        assert!(split.is_some(), "{keys}: not the full frame above a row and the previous one below");
+        partly += usize::from(partial != with && partial != without);
+    }
+    assert!(partly > 0, "no step showed the 300th triangle partly drawn");
+    // D: the depth image's picture, as --depth-image's 16-bit PNG rounded
+    // to 8 bits.
+    let depth16 = path("depth.png");
+    let out = zline(&["render", spot, size[0], size[1], "-o", &path("x.png"), "--depth-image", &depth16]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let shown = run(&["view", spot, size[0], size[1], "--keys", "D", "--save-first-frame", &viewed]);
+    let want = image::open(&depth16).unwrap().to_luma16();
+    for (p, q) in shown.pixels().zip(want.pixels()) {
+        let g = ((u32::from(q.0[0]) * 255 + 32767) / 65535) as u8;
+        assert_eq!(p.0, [g, g, g]);
+    }
     // --click: the inspector's report, checked against the frame.
     let out = zline(&["view", spot, size[0], size[1], "--click", "80,60", "--save-first-frame", &viewed]);
     let report = String::from_utf8_lossy(&out.stdout);
