@@ -1,7 +1,7 @@
 //! `zline inspect` and `render --inspect X,Y`: the pixel inspector's
 //! report (`zline_pipeline::PixelTrace`) as text for a learner, or as JSON.
 
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 use serde::Serialize;
 use zline_pipeline::{FragmentTrace, Outcome, Pass, PixelTrace, SampleAttributes};
 use zline_scene::Scene;
@@ -45,7 +45,7 @@ pub fn lighting_terms(scene: &Scene, object: u32, a: &SampleAttributes) -> Optio
         .iter()
         .enumerate()
         .map(|(k, light)| {
-            let l = to_eye(light, &view);
+            let l = light.transformed(&view);
             let parts = alone(Vec3::ZERO, vec![l]);
             let (kind, to_light, attenuation) = match l {
                 Light::Point { position, attenuation, .. } => {
@@ -69,25 +69,6 @@ pub fn lighting_terms(scene: &Scene, object: u32, a: &SampleAttributes) -> Optio
         })
         .collect();
     Some((base, terms))
-}
-
-/// A world-space light in eye space.
-fn to_eye(light: &Light, view: &Mat4) -> Light {
-    match *light {
-        Light::Point { position, color, attenuation } => {
-            Light::Point { position: view.transform_point3(position), color, attenuation }
-        }
-        Light::Spot { position, direction, color, attenuation, cone } => Light::Spot {
-            position: view.transform_point3(position),
-            direction: view.transform_vector3(direction),
-            color,
-            attenuation,
-            cone,
-        },
-        Light::Directional { direction, color } => {
-            Light::Directional { direction: view.transform_vector3(direction), color }
-        }
-    }
 }
 
 fn rgb(c: glam::Vec3) -> String {
