@@ -45,7 +45,7 @@ pub use image::Image;
 pub use layers::{render_depth, render_normals, DepthImage, DepthRange};
 pub use object_ids::{render_object_ids, ObjectIds};
 pub use render::inspect::{
-    FragmentTrace, Outcome, OutsideImage, Pass, PixelTrace, SampleAttributes, SampleTrace,
+    FragmentTrace, Outcome, OutsideImage, Pass, PixelTrace, SampleAttributes, SampleTrace, TextureRead,
 };
 pub use render::overdraw::{render_overdraw, Overdraw};
 pub use render::{render, RenderOptions, RenderStats, Renderer};

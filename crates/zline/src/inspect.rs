@@ -176,6 +176,18 @@ fn attributes_text(out: &mut String, f: &FragmentTrace, scene: &Scene) {
     if let Some(c) = a.flat {
         parts.push(format!("flat colour {} (lit once at the centroid)", rgb(c)));
     }
+    if let Some(r) = a.texture {
+        parts.push(format!(
+            "texture {}x{} ({} mip levels, {:?}): level of detail {:.4}, texel read {}, alpha {:.6}",
+            r.size.0,
+            r.size.1,
+            r.levels,
+            r.filter,
+            r.lod,
+            rgb(r.texel.truncate()),
+            r.texel.w
+        ));
+    }
     for p in parts {
         let _ = writeln!(out, "    {p}");
     }
@@ -282,6 +294,8 @@ struct FragmentJson {
     texture_coordinates: Option<[f32; 2]>,
     vertex_color: Option<[f32; 3]>,
     gouraud_color: Option<[f32; 3]>,
+    texture_lod: Option<f32>,
+    texel: Option<[f32; 4]>,
     ambient: Option<[f32; 3]>,
     lights: Option<Vec<LightTerm>>,
 }
@@ -340,6 +354,8 @@ pub fn json(trace: &PixelTrace, scene: &Scene) -> String {
                     texture_coordinates: f.attributes.uv.map(|v| v.to_array()),
                     vertex_color: f.attributes.vertex_color.map(|v| v.to_array()),
                     gouraud_color: f.attributes.gouraud.map(|v| v.to_array()),
+                    texture_lod: f.attributes.texture.map(|r| r.lod),
+                    texel: f.attributes.texture.map(|r| r.texel.to_array()),
                     ambient: lighting_terms(scene, f.object, &f.attributes).map(|(b, _)| b.to_array()),
                     lights: lighting_terms(scene, f.object, &f.attributes).map(|(_, t)| t),
                 })

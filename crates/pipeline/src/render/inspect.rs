@@ -31,7 +31,7 @@ use super::{Frame, RenderOptions, Renderer};
 use crate::bin::{OpaqueRef, PrimitiveRef, TileGrid};
 use crate::image::Image;
 use crate::setup::{layout, Kernel, KernelTables, PassKind, PrimitiveChunk, TexturedLighting};
-use crate::tile::TileTarget;
+use crate::tile::{FrameTexture, TileTarget};
 
 /// The pass that drew a fragment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -116,6 +116,28 @@ pub struct SampleAttributes {
     pub lit_parts: Option<(Vec3, Vec3)>,
     /// Flat shading's colour, lit once at the centroid.
     pub flat: Option<Vec3>,
+    /// The diffuse texture read at the sample.
+    pub texture: Option<TextureRead>,
+}
+
+/// A texture read at one sample, by the sampler's scalar twin
+/// (`Texture::sample`, bit for bit the kernels' eight-lane read).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextureRead {
+    /// The texture's size (level 0).
+    pub size: (u32, u32),
+    /// Its mip levels.
+    pub levels: usize,
+    /// The filter.
+    pub filter: zline_shading::Filter,
+    /// The level of detail (trilinear filtering: ½·log2 of the larger
+    /// squared footprint in texels, from the planes' exact derivatives, in
+    /// scalar f32 — the kernels take the same formula eight lanes at a
+    /// time with a vector log2, so the last bits may differ; 0 for nearest
+    /// and bilinear filtering).
+    pub lod: f32,
+    /// The filtered texel (RGBA, linear).
+    pub texel: glam::Vec4,
 }
 
 /// The planes of one primitive at sample `x` of `span`, over q.
@@ -139,11 +161,78 @@ fn vec3(v: &[f32], at: usize) -> Vec3 {
     Vec3::new(v[at], v[at + 1], v[at + 2])
 }
 
+/// The texture `texture` read at (s, t) with the level of detail `lod`
+/// names, the derivatives from `planes` (the textured layout).
+fn read_texture<const N: usize>(
+    textures: &[FrameTexture],
+    (texture, lod, interpolation): (u32, crate::setup::LevelOfDetail, zline_scene::Interpolation),
+    (depth, planes): (&DepthPlane, &AttributePlanes<N>),
+    (span, x): (Span, i32),
+) -> Option<TextureRead> {
+    use layout::textured::{Q, S, T};
+    let f = textures.get(texture as usize)?;
+    let mut raw = [0.0f32; N];
+    for_each_sample(depth, planes, span, |sx, _, v| {
+        if sx == x {
+            raw = *v;
+        }
+    });
+    let inv = 1.0 / raw[Q];
+    let (s, t) = (raw[S] * inv, raw[T] * inv);
+    let (w, h) = (f.texture.width(), f.texture.height());
+    let level = match lod {
+        crate::setup::LevelOfDetail::Base => 0.0,
+        crate::setup::LevelOfDetail::Derivatives => {
+            let (dx, dy) = (planes.dx(), planes.dy());
+            let perspective = interpolation == zline_scene::Interpolation::PerspectiveCorrect;
+            let d = |ds: f32, dq: f32, v: f32| if perspective { (ds - v * dq) * inv } else { ds };
+            let (sx, tx) = (d(dx[S], dx[Q], s) * w as f32, d(dx[T], dx[Q], t) * h as f32);
+            let (sy, ty) = (d(dy[S], dy[Q], s) * w as f32, d(dy[T], dy[Q], t) * h as f32);
+            0.5 * (sx * sx + tx * tx).max(sy * sy + ty * ty).log2()
+        }
+    };
+    Some(TextureRead {
+        size: (w, h),
+        levels: f.texture.levels(),
+        filter: f.sampler.filter,
+        lod: level,
+        texel: f.texture.sample(&f.sampler, s, t, level),
+    })
+}
+
 /// The attributes of primitive `index` of `kernel` at sample `x` of `span`.
-fn attributes_of(t: &KernelTables, kernel: Kernel, index: u32, span: Span, x: i32) -> SampleAttributes {
+fn attributes_of(
+    (t, textures): (&KernelTables, &[FrameTexture]),
+    kernel: Kernel,
+    index: u32,
+    span: Span,
+    x: i32,
+) -> SampleAttributes {
     use layout::{gouraud, phong, textured};
     let i = index as usize;
     let mut a = SampleAttributes::default();
+    if let Kernel::Textured { lighting, interpolation, lod, .. } = kernel {
+        let how = |id: u32| (id, lod, interpolation);
+        let at = (span, x);
+        a.texture = match lighting {
+            TexturedLighting::Flat => {
+                let p = &t.textured_flat[i];
+                read_texture(textures, how(p.shader.texture), (&p.depth, &p.shader.planes), at)
+            }
+            TexturedLighting::Gouraud => {
+                let p = &t.textured_gouraud[i];
+                read_texture(textures, how(p.shader.texture), (&p.depth, &p.shader.planes), at)
+            }
+            TexturedLighting::Phong => {
+                let p = &t.textured_phong[i];
+                read_texture(textures, how(p.shader.texture), (&p.depth, &p.shader.planes), at)
+            }
+            TexturedLighting::ColoredPhong => {
+                let p = &t.textured_colored_phong[i];
+                read_texture(textures, how(p.shader.texture), (&p.depth, &p.shader.planes), at)
+            }
+        };
+    }
     let phong_like = |a: &mut SampleAttributes, v: &[f32], normal: usize, eye: usize| {
         (a.normal, a.eye) = (Some(vec3(v, normal)), Some(vec3(v, eye)));
     };
@@ -316,8 +405,13 @@ impl Renderer {
         target.ceiling = passes.shade.lighting.ceiling();
         let positions: Vec<(i32, i32)> =
             (0..n as i32).flat_map(|b| (0..n as i32).map(move |a| (sx0 + a, sy0 + b))).collect();
-        let mut probe =
-            Probe { passes: &passes, positions: &positions, n, fragments: vec![Vec::new(); positions.len()] };
+        let mut probe = Probe {
+            passes: &passes,
+            textures: &self.tables.textures,
+            positions: &positions,
+            n,
+            fragments: vec![Vec::new(); positions.len()],
+        };
         let (opaque, transparent) = (&self.bins.opaque[tile], &self.bins.transparent[tile]);
         let mut order = Vec::new();
         let mut note = None;
@@ -430,6 +524,7 @@ fn draw_ref(chunks: &[PrimitiveChunk], r: &OpaqueRef) -> PrimitiveRef {
 /// The pixel's samples, followed through the calls.
 struct Probe<'a> {
     passes: &'a TilePasses<'a>,
+    textures: &'a [FrameTexture],
     positions: &'a [(i32, i32)],
     n: u32,
     fragments: Vec<Vec<FragmentTrace>>,
@@ -508,7 +603,7 @@ impl Probe<'_> {
                 before: b,
                 after: a,
                 outcome,
-                attributes: attributes_of(&chunk.tables, d.kernel, d.index, span, x),
+                attributes: attributes_of((&chunk.tables, self.textures), d.kernel, d.index, span, x),
             });
         }
     }

@@ -123,3 +123,42 @@ fn the_lighting_terms_add_up_to_the_written_colour() {
     }
     assert!(checked > 100, "{checked}");
 }
+
+/// On the demo's textured floor, the texel the inspector reads and its
+/// lighting terms give the written colour: texel ⊙ (ka·Ia + Σ diffuse) +
+/// ke + Σ specular (SPEC §7), within 5·10⁻⁴ — the inspector's level of
+/// detail is the kernels' formula in scalar f32 with libm's log2, the
+/// kernels' a vector log2, so the trilinear weight may differ in its last
+/// bits.
+#[test]
+fn the_texel_read_and_the_terms_give_the_textured_colour() {
+    use zline::pipeline::{Outcome, RenderOptions, Renderer};
+    let mut scene = zline::scenes::demo_scene();
+    (scene.settings.width, scene.settings.height) = (160, 120);
+    let mut renderer = Renderer::default();
+    let mut checked = 0;
+    for y in (60..120).step_by(6) {
+        for x in (0..160).step_by(7) {
+            let mut image = zline::pipeline::Image::empty();
+            let trace = renderer.inspect(&scene, &RenderOptions::default(), (x, y), &mut image).unwrap();
+            let written =
+                trace.samples.iter().flat_map(|s| &s.fragments).filter(|f| f.outcome == Outcome::Written);
+            for f in written.filter(|f| f.attributes.texture.is_some() && f.attributes.normal.is_some()) {
+                let texel = f.attributes.texture.unwrap().texel.truncate();
+                let m = scene.objects[f.object as usize].material().sanitized();
+                let (_, terms) = zline::inspect::lighting_terms(&scene, f.object, &f.attributes).unwrap();
+                let diffuse: glam::Vec3 = terms.iter().map(|t| glam::Vec3::from(t.diffuse)).sum();
+                let specular: glam::Vec3 = terms.iter().map(|t| glam::Vec3::from(t.specular)).sum();
+                let want = (texel * (m.ka * scene.ambient + diffuse) + m.ke + specular)
+                    .clamp(glam::Vec3::ZERO, glam::Vec3::ONE);
+                assert!(
+                    (f.after.1 - want).abs().max_element() < 5e-4,
+                    "({x}, {y}): kernel {} vs {want}",
+                    f.after.1
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 30, "{checked}");
+}
