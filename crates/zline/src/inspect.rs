@@ -18,6 +18,9 @@ pub struct LightTerm {
     pub attenuation: f32,
     /// N·L (before the max with 0).
     pub n_dot_l: f32,
+    /// The share of the light the sample sees: 1 lit, 0 in shadow (the
+    /// shadow maps' lookup or the planar mask), between with filtering.
+    pub share: f32,
     /// f·Il·kd·max(0, N·L).
     pub diffuse: [f32; 3],
     /// f·Il·ks·max(0, N·H)^ns (Cook–Torrance: its specular lobe).
@@ -27,10 +30,16 @@ pub struct LightTerm {
 /// SPEC §5 at a sample of object `object`: the ambient term ka·Ia (plus
 /// the emission ke) and each light's terms, from the interpolated eye-space
 /// position and the renormalized normal, with the object's material (a
-/// texel or vertex colour, which multiplies ka and kd, is not applied;
-/// shadows are not evaluated). `None` where the kernel interpolates no
-/// normal (flat and Gouraud shading lit at the centroid or the vertices).
-pub fn lighting_terms(scene: &Scene, object: u32, a: &SampleAttributes) -> Option<(Vec3, Vec<LightTerm>)> {
+/// texel or vertex colour, which multiplies ka and kd, is not applied),
+/// each light's terms times the share `shares` says the sample sees (1
+/// where it says nothing). `None` where the kernel interpolates no normal
+/// (flat and Gouraud shading lit at the centroid or the vertices).
+pub fn lighting_terms(
+    scene: &Scene,
+    object: u32,
+    a: &SampleAttributes,
+    shares: &[f32],
+) -> Option<(Vec3, Vec<LightTerm>)> {
     let (normal, point) = (a.normal?.normalize_or_zero(), a.eye?);
     let material = scene.objects.get(object as usize)?.material().sanitized();
     let view = scene.camera.eye_from_world();
@@ -58,13 +67,15 @@ pub fn lighting_terms(scene: &Scene, object: u32, a: &SampleAttributes) -> Optio
                 }
                 Light::Directional { direction, .. } => ("directional", -direction, 1.0),
             };
+            let share = shares.get(k).copied().unwrap_or(1.0);
             LightTerm {
                 light: k,
                 kind,
                 attenuation,
                 n_dot_l: normal.dot(to_light.normalize_or_zero()),
-                diffuse: parts.ambient_diffuse.to_array(),
-                specular: (parts.specular - material.ke).to_array(),
+                share,
+                diffuse: (parts.ambient_diffuse * share).to_array(),
+                specular: ((parts.specular - material.ke) * share).to_array(),
             }
         })
         .collect();
@@ -191,17 +202,17 @@ fn attributes_text(out: &mut String, f: &FragmentTrace, scene: &Scene) {
     for p in parts {
         let _ = writeln!(out, "    {p}");
     }
-    if let Some((base, terms)) = lighting_terms(scene, f.object, a) {
-        let _ =
-            writeln!(out, "    lighting (SPEC §5, before texels and shadows): ke + ka·Ia = {}", rgb(base));
+    if let Some((base, terms)) = lighting_terms(scene, f.object, a, &f.light_shares) {
+        let _ = writeln!(out, "    lighting (SPEC §5, before the texel): ke + ka·Ia = {}", rgb(base));
         for t in terms {
             let _ = writeln!(
                 out,
-                "      light {} ({}): N·L {:.4}, attenuation {:.4}, diffuse {}, specular {}",
+                "      light {} ({}): N·L {:.4}, attenuation {:.4}, seen {:.4}, diffuse {}, specular {}",
                 t.light,
                 t.kind,
                 t.n_dot_l,
                 t.attenuation,
+                t.share,
                 rgb(Vec3::from(t.diffuse)),
                 rgb(Vec3::from(t.specular))
             );
@@ -356,8 +367,9 @@ pub fn json(trace: &PixelTrace, scene: &Scene) -> String {
                     gouraud_color: f.attributes.gouraud.map(|v| v.to_array()),
                     texture_lod: f.attributes.texture.map(|r| r.lod),
                     texel: f.attributes.texture.map(|r| r.texel.to_array()),
-                    ambient: lighting_terms(scene, f.object, &f.attributes).map(|(b, _)| b.to_array()),
-                    lights: lighting_terms(scene, f.object, &f.attributes).map(|(_, t)| t),
+                    ambient: lighting_terms(scene, f.object, &f.attributes, &f.light_shares)
+                        .map(|(b, _)| b.to_array()),
+                    lights: lighting_terms(scene, f.object, &f.attributes, &f.light_shares).map(|(_, t)| t),
                 })
                 .collect(),
             after_opaque: (s.after_opaque.0, s.after_opaque.1.to_array()),

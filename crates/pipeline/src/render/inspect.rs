@@ -93,6 +93,11 @@ pub struct FragmentTrace {
     pub outcome: Outcome,
     /// The primitive's interpolated values at the sample.
     pub attributes: SampleAttributes,
+    /// Per light of the scene, the share of it the sample sees: the
+    /// shadow maps' own lookup, or 0 where the sample's planar shadow bit
+    /// for the light is set (1 elsewhere); empty for kernels without a
+    /// per-sample normal (flat, Gouraud).
+    pub light_shares: Vec<f32>,
 }
 
 /// What a primitive's attribute planes give at one sample, evaluated as
@@ -407,6 +412,7 @@ impl Renderer {
             (0..n as i32).flat_map(|b| (0..n as i32).map(move |a| (sx0 + a, sy0 + b))).collect();
         let mut probe = Probe {
             passes: &passes,
+            lights: scene.lights.len(),
             textures: &self.tables.textures,
             positions: &positions,
             n,
@@ -524,6 +530,8 @@ fn draw_ref(chunks: &[PrimitiveChunk], r: &OpaqueRef) -> PrimitiveRef {
 /// The pixel's samples, followed through the calls.
 struct Probe<'a> {
     passes: &'a TilePasses<'a>,
+    /// The scene's lights.
+    lights: usize,
     textures: &'a [FrameTexture],
     positions: &'a [(i32, i32)],
     n: u32,
@@ -561,6 +569,7 @@ impl Probe<'_> {
             return;
         }
         let before = self.states(target);
+        let masks: Vec<i32> = self.positions.iter().map(|&(x, y)| target.shadow_mask_at(x, y)).collect();
         call(target);
         let after = self.states(target);
         let triangle = triangle_of(chunk, r.index);
@@ -581,6 +590,10 @@ impl Probe<'_> {
                 covers(v, x.into(), y.into(), TieRule::Closed) != covers(v, x.into(), y.into(), TieRule::Open)
             };
             let (b, a) = ((before[i].0, before[i].1), (after[i].0, after[i].1));
+            let attributes = attributes_of((&chunk.tables, self.textures), d.kernel, d.index, span, x);
+            let material = self.passes.shade.materials.get(chunk.object as usize);
+            let light_shares =
+                light_shares(&self.passes.shade, (masks[i], material), &attributes, self.lights);
             // The kernels' test: z < stored (NaN fails).
             let passed = z < b.0;
             let outcome = match pass {
@@ -603,10 +616,39 @@ impl Probe<'_> {
                 before: b,
                 after: a,
                 outcome,
-                attributes: attributes_of((&chunk.tables, self.textures), d.kernel, d.index, span, x),
+                attributes,
+                light_shares,
             });
         }
     }
+}
+
+/// Per light, the share a sample sees (see `FragmentTrace::light_shares`):
+/// the kernels' own lookups, `ShadowMaps::visibility_x8` at the sample's
+/// position and unit normal, or the planar mask's bit for the light.
+fn light_shares(
+    shade: &crate::tile::ShadeContext<'_>,
+    (mask, material): (i32, Option<&zline_shading::PreparedMaterial>),
+    a: &SampleAttributes,
+    lights: usize,
+) -> Vec<f32> {
+    use zline_shading::Vec3x8;
+    use zline_simd::lanes::Baseline;
+    let (Some(normal), Some(point)) = (a.normal, a.eye) else { return Vec::new() };
+    let normal = normal.normalize_or_zero();
+    (0..lights as u32)
+        .map(|k| match (shade.maps, material.and_then(|m| m.shadow_bits)) {
+            (Some(maps), _) => {
+                let lanes = (Vec3x8::<Baseline>::splat(point), Vec3x8::<Baseline>::splat(normal));
+                maps.visibility_x8(k, lanes.0, lanes.1).to_array()[0]
+            }
+            (None, Some(first)) => match first.checked_add(k).filter(|&b| b < 32) {
+                Some(bit) if mask & (1 << bit) != 0 => 0.0,
+                _ => 1.0,
+            },
+            (None, None) => 1.0,
+        })
+        .collect()
 }
 
 /// The mesh triangle that made draw `index` of `chunk`, when the chunk

@@ -199,6 +199,15 @@ impl TileTarget {
         (depth, color, alpha)
     }
 
+    /// Sample (x, y)'s planar shadow mask (0 where no shadow falls on the
+    /// tile).
+    pub(crate) fn shadow_mask_at(&self, x: i32, y: i32) -> i32 {
+        if self.shadow.is_empty() {
+            return 0;
+        }
+        bytemuck::cast_slice::<_, i32>(&self.shadow)[self.index(x, y)]
+    }
+
     #[inline]
     pub(crate) fn background_at(&self, i: usize) -> Vec3 {
         if self.sky_drawn {

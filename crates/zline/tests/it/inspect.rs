@@ -107,7 +107,8 @@ fn the_lighting_terms_add_up_to_the_written_colour() {
             let trace = renderer.inspect(&scene, &RenderOptions::default(), (x, y), &mut image).unwrap();
             for f in trace.samples.iter().flat_map(|s| &s.fragments).filter(|f| f.outcome == Outcome::Written)
             {
-                let (base, terms) = zline::inspect::lighting_terms(&scene, f.object, &f.attributes).unwrap();
+                let (base, terms) =
+                    zline::inspect::lighting_terms(&scene, f.object, &f.attributes, &f.light_shares).unwrap();
                 let sum = terms
                     .iter()
                     .fold(base, |c, t| c + glam::Vec3::from(t.diffuse) + glam::Vec3::from(t.specular));
@@ -146,7 +147,8 @@ fn the_texel_read_and_the_terms_give_the_textured_colour() {
             for f in written.filter(|f| f.attributes.texture.is_some() && f.attributes.normal.is_some()) {
                 let texel = f.attributes.texture.unwrap().texel.truncate();
                 let m = scene.objects[f.object as usize].material().sanitized();
-                let (_, terms) = zline::inspect::lighting_terms(&scene, f.object, &f.attributes).unwrap();
+                let (_, terms) =
+                    zline::inspect::lighting_terms(&scene, f.object, &f.attributes, &f.light_shares).unwrap();
                 let diffuse: glam::Vec3 = terms.iter().map(|t| glam::Vec3::from(t.diffuse)).sum();
                 let specular: glam::Vec3 = terms.iter().map(|t| glam::Vec3::from(t.specular)).sum();
                 let want = (texel * (m.ka * scene.ambient + diffuse) + m.ke + specular)
@@ -161,4 +163,50 @@ fn the_texel_read_and_the_terms_give_the_textured_colour() {
         }
     }
     assert!(checked > 30, "{checked}");
+}
+
+/// Under shadow maps and planar shadows the terms, each light times the
+/// share the kernels' own lookup gives, still add up to the written
+/// colour of the room's untextured surfaces; some samples are in shadow.
+#[test]
+fn shadowed_terms_add_up_with_the_lights_share() {
+    use zline::pipeline::{Outcome, RenderOptions, Renderer};
+    for mode in [zline::scene::ShadowMode::Map, zline::scene::ShadowMode::Planar] {
+        let mut scene = zline::scenes::room_scene();
+        (scene.settings.width, scene.settings.height) = (96, 72);
+        scene.shadows.mode = mode;
+        let mut renderer = Renderer::default();
+        let (mut checked, mut shadowed) = (0, 0);
+        for y in (1..72).step_by(5) {
+            for x in (1..96).step_by(5) {
+                let mut image = zline::pipeline::Image::empty();
+                let trace = renderer.inspect(&scene, &RenderOptions::default(), (x, y), &mut image).unwrap();
+                let written =
+                    trace.samples.iter().flat_map(|s| &s.fragments).filter(|f| f.outcome == Outcome::Written);
+                for f in written {
+                    assert!(f.light_shares.iter().all(|s| (0.0..=1.0).contains(s)), "{:?}", f.light_shares);
+                    shadowed += usize::from(f.light_shares.iter().any(|&s| s < 1.0));
+                    if f.attributes.texture.is_some() || f.attributes.vertex_color.is_some() {
+                        continue;
+                    }
+                    let Some((base, terms)) =
+                        zline::inspect::lighting_terms(&scene, f.object, &f.attributes, &f.light_shares)
+                    else {
+                        continue;
+                    };
+                    let sum = terms
+                        .iter()
+                        .fold(base, |c, t| c + glam::Vec3::from(t.diffuse) + glam::Vec3::from(t.specular));
+                    let want = sum.clamp(glam::Vec3::ZERO, glam::Vec3::ONE);
+                    assert!(
+                        (f.after.1 - want).abs().max_element() < 1e-4,
+                        "{mode:?} ({x}, {y}): kernel {} vs terms {want}",
+                        f.after.1
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 30 && shadowed > 5, "{mode:?}: {checked} checked, {shadowed} in shadow");
+    }
 }
