@@ -158,9 +158,39 @@ fn fragment_text(out: &mut String, k: usize, f: &FragmentTrace, scene: &Scene, f
     let _ = writeln!(out, "    colour: {} -> {}", rgb(f.before.1), rgb(f.after.1));
 }
 
+/// The triangle's vertices in each space of SPEC §1, with the frame's
+/// matrices in f32 (the window position in the trace is the one setup
+/// snapped, exactly): object, world, eye, clip, NC.
+pub fn vertex_spaces(scene: &Scene, object: u32, triangle: u32) -> Option<[[glam::Vec4; 3]; 5]> {
+    let o = scene.objects.get(object as usize)?;
+    let t = o.mesh.triangles.get(triangle as usize)?;
+    let aspect = scene.settings.width.max(1) as f32 / scene.settings.height.max(1) as f32;
+    let view = scene.camera.eye_from_world();
+    let projection = scene.camera.clip_from_eye(aspect);
+    let p = t.map(|i| o.mesh.positions.get(i as usize).copied().unwrap_or(Vec3::NAN).extend(1.0));
+    let world = p.map(|v| o.world_from_object * v);
+    let eye = world.map(|v| view * v);
+    let clip = eye.map(|v| projection * v);
+    let nc = clip.map(|v| v / v.w);
+    Some([p, world, eye, clip, nc])
+}
+
 fn attributes_text(out: &mut String, f: &FragmentTrace, scene: &Scene) {
     use std::fmt::Write;
     let a = &f.attributes;
+    if let Some(spaces) = f.triangle.and_then(|t| vertex_spaces(scene, f.object, t)) {
+        let names = ["object", "world", "eye", "clip", "NC"];
+        for (name, vs) in names.iter().zip(spaces) {
+            let v = vs.map(|v| {
+                if *name == "clip" {
+                    format!("({:.4}, {:.4}, {:.4}, {:.4})", v.x, v.y, v.z, v.w)
+                } else {
+                    format!("({:.4}, {:.4}, {:.4})", v.x, v.y, v.z)
+                }
+            });
+            let _ = writeln!(out, "    {name} vertices: {} {} {}", v[0], v[1], v[2]);
+        }
+    }
     let mut parts = Vec::new();
     if let Some(n) = a.normal {
         parts.push(format!(
@@ -307,6 +337,8 @@ struct FragmentJson {
     gouraud_color: Option<[f32; 3]>,
     texture_lod: Option<f32>,
     texel: Option<[f32; 4]>,
+    /// The triangle's vertices in object, world, eye, clip and NC space.
+    vertex_spaces: Option<[[[f32; 4]; 3]; 5]>,
     ambient: Option<[f32; 3]>,
     lights: Option<Vec<LightTerm>>,
 }
@@ -367,6 +399,10 @@ pub fn json(trace: &PixelTrace, scene: &Scene) -> String {
                     gouraud_color: f.attributes.gouraud.map(|v| v.to_array()),
                     texture_lod: f.attributes.texture.map(|r| r.lod),
                     texel: f.attributes.texture.map(|r| r.texel.to_array()),
+                    vertex_spaces: f
+                        .triangle
+                        .and_then(|t| vertex_spaces(scene, f.object, t))
+                        .map(|s| s.map(|vs| vs.map(|v| v.to_array()))),
                     ambient: lighting_terms(scene, f.object, &f.attributes, &f.light_shares)
                         .map(|(b, _)| b.to_array()),
                     lights: lighting_terms(scene, f.object, &f.attributes, &f.light_shares).map(|(_, t)| t),

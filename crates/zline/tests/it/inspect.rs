@@ -210,3 +210,40 @@ fn shadowed_terms_add_up_with_the_lights_share() {
         assert!(checked > 30 && shadowed > 5, "{mode:?}: {checked} checked, {shadowed} in shadow");
     }
 }
+
+/// The vertices the inspector lists in NC space map to the window
+/// vertices setup snapped (the same three points, within the 1/256-pixel
+/// grid), for the bunny's unclipped triangles.
+#[test]
+fn the_vertices_in_each_space_lead_to_the_snapped_window_vertices() {
+    use zline::pipeline::{RenderOptions, Renderer};
+    let mut scene =
+        zline::load::load(&repo().join("assets/ply/bunny_lowres.ply"), Default::default()).unwrap().scene;
+    (scene.settings.width, scene.settings.height) = (96, 72);
+    scene.camera = zline::io::model_camera(&scene.objects, 96.0 / 72.0);
+    let mut renderer = Renderer::default();
+    let mut checked = 0;
+    for (x, y) in (8..64).step_by(8).flat_map(|y| (8..88).step_by(8).map(move |x| (x, y))) {
+        let mut image = zline::pipeline::Image::empty();
+        let trace = renderer.inspect(&scene, &RenderOptions::default(), (x, y), &mut image).unwrap();
+        for f in trace.samples.iter().flat_map(|s| &s.fragments) {
+            let spaces = zline::inspect::vertex_spaces(&scene, f.object, f.triangle.unwrap()).unwrap();
+            let mut window: Vec<(f64, f64)> = spaces[4]
+                .iter()
+                .map(|v| ((f64::from(v.x) + 1.0) / 2.0 * 96.0, (1.0 - f64::from(v.y)) / 2.0 * 72.0))
+                .collect();
+            let mut snapped = f.vertices.to_vec();
+            let key = |p: &(f64, f64)| (p.1, p.0);
+            window.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap());
+            snapped.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap());
+            for (w, s) in window.iter().zip(&snapped) {
+                assert!(
+                    (w.0 - s.0).abs() < 0.01 && (w.1 - s.1).abs() < 0.01,
+                    "({x}, {y}): {window:?} vs {snapped:?}"
+                );
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 10, "{checked}");
+}
