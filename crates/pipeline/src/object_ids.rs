@@ -62,14 +62,7 @@ impl std::fmt::Display for TooManyObjects {
 
 impl std::error::Error for TooManyObjects {}
 
-/// Whether the pipeline draws `object` in the transparency pass: a
-/// material opacity below 1 (NaN included, which the pipeline clamps to 0)
-/// or a texture whose alpha blends.
-pub fn is_transparent(object: &Object) -> bool {
-    let blends =
-        object.mesh.diffuse_map.as_ref().is_some_and(|m| m.alpha_blend && !object.mesh.uvs.is_empty());
-    object.material().sanitized().opacity < 1.0 || blends
-}
+pub use crate::render::is_transparent;
 
 /// The emission that encodes `index`: (index + 1) in 24 bits, low byte in
 /// red, each byte over 255.

@@ -185,7 +185,6 @@ fn fit_planes(camera: &mut Camera, scene: &Scene, near: Option<f32>, far: Option
 /// Points the camera as the caller asked (see [`CameraArgs`]); the
 /// framing path is `zline render`'s (`aim` in the CLI).
 fn aim(scene: &mut Scene, c: &CameraArgs, framed: bool) -> PyResult<()> {
-    let aspect = zline::view::aspect_of(scene);
     if let Some(k) = c.intrinsics {
         let pose = c.pose.ok_or_else(|| error("intrinsics need a pose (camera-to-world, 4×4)"))?;
         scene.camera = pinhole(scene, k, pose, c.near, c.far)?;
@@ -204,17 +203,27 @@ fn aim(scene: &mut Scene, c: &CameraArgs, framed: bool) -> PyResult<()> {
         scene.camera = camera;
         return Ok(());
     }
-    if framed {
-        scene.camera = zline::io::model_camera(&scene.objects, aspect);
-    }
-    if let Some(name) = &c.view {
-        let view = NamedView::from_name(name).ok_or_else(|| {
-            error(format!(
-                "view: unknown view {name:?}; expected front, back, left, right, top, bottom or iso"
-            ))
-        })?;
-        view.apply(scene, aspect, framed);
-    }
+    // `zline render`'s own path: the `Aim` its camera flags make.
+    let view = c
+        .view
+        .as_deref()
+        .map(|name| {
+            NamedView::from_name(name).ok_or_else(|| {
+                error(format!(
+                    "view: unknown view {name:?}; expected front, back, left, right, top, bottom or iso"
+                ))
+            })
+        })
+        .transpose()?;
+    let projection = c
+        .projection
+        .as_deref()
+        .map(|kind| match kind {
+            "perspective" => Ok(ProjectionKind::Perspective),
+            "ortho" | "orthographic" => Ok(ProjectionKind::Orthographic),
+            other => Err(error(format!("projection: expected perspective or ortho, got {other:?}"))),
+        })
+        .transpose()?;
     let change = zline::view::ViewChange {
         azimuth: c.azimuth,
         elevation: c.elevation,
@@ -223,22 +232,7 @@ fn aim(scene: &mut Scene, c: &CameraArgs, framed: bool) -> PyResult<()> {
         fov: c.fov,
         up: c.up.map(Vec3::from),
     };
-    change.apply(scene, aspect, framed);
-    if let Some(kind) = &c.projection {
-        let kind = match kind.as_str() {
-            "perspective" => ProjectionKind::Perspective,
-            "ortho" | "orthographic" => ProjectionKind::Orthographic,
-            other => return Err(error(format!("projection: expected perspective or ortho, got {other:?}"))),
-        };
-        zline::views::set_projection(scene, kind, aspect, framed);
-        if let (Some(z), Projection::Orthographic { height, .. }) =
-            (c.zoom.filter(|z| z.is_finite() && *z > 0.0), &mut scene.camera.projection)
-        {
-            if kind == ProjectionKind::Orthographic && framed {
-                *height /= z;
-            }
-        }
-    }
+    zline::views::Aim { view, change, projection }.apply(scene, framed);
     Ok(())
 }
 

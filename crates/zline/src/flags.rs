@@ -29,13 +29,6 @@ pub(crate) fn apply_camera(scene: &mut Scene, common: &Common, framed: bool, tur
 
 /// [`apply_camera`] from the named view `view`.
 pub(crate) fn aim(scene: &mut Scene, common: &Common, view: Option<NamedView>, framed: bool, turn: f32) {
-    let aspect = zline::view::aspect_of(scene);
-    if framed {
-        scene.camera = zline::io::model_camera(&scene.objects, aspect);
-    }
-    if let Some(view) = view {
-        view.apply(scene, aspect, framed);
-    }
     let change = zline::view::ViewChange {
         azimuth: if turn == 0.0 { common.azimuth } else { Some(common.azimuth.unwrap_or(0.0) + turn) },
         elevation: common.elevation,
@@ -44,22 +37,11 @@ pub(crate) fn aim(scene: &mut Scene, common: &Common, view: Option<NamedView>, f
         fov: common.fov,
         up: common.up,
     };
-    change.apply(scene, aspect, framed);
-    if let Some(kind) = common.projection {
-        let kind = match kind {
-            Projection::Perspective => ProjectionKind::Perspective,
-            Projection::Ortho => ProjectionKind::Orthographic,
-        };
-        zline::views::set_projection(scene, kind, aspect, framed);
-        // Zoom divides the fitted orthographic height too.
-        if let (Some(z), zline::scene::Projection::Orthographic { height, .. }) =
-            (common.zoom.filter(|z| z.is_finite() && *z > 0.0), &mut scene.camera.projection)
-        {
-            if kind == ProjectionKind::Orthographic && framed {
-                *height /= z;
-            }
-        }
-    }
+    let projection = common.projection.map(|kind| match kind {
+        Projection::Perspective => ProjectionKind::Perspective,
+        Projection::Ortho => ProjectionKind::Orthographic,
+    });
+    zline::views::Aim { view, change, projection }.apply(scene, framed);
     if let Some(c) = common.background {
         scene.background = c;
     }

@@ -376,7 +376,8 @@ pub fn json(trace: &PixelTrace, scene: &Scene) -> String {
             fragments: s
                 .fragments
                 .iter()
-                .map(|f| FragmentJson {
+                .map(|f| (f, lighting_terms(scene, f.object, &f.attributes, &f.light_shares)))
+                .map(|(f, lighting)| FragmentJson {
                     pass: pass_name(f.pass),
                     object: f.object,
                     object_name: scene.objects.get(f.object as usize).map(|o| o.mesh.name.clone()),
@@ -403,9 +404,8 @@ pub fn json(trace: &PixelTrace, scene: &Scene) -> String {
                         .triangle
                         .and_then(|t| vertex_spaces(scene, f.object, t))
                         .map(|s| s.map(|vs| vs.map(|v| v.to_array()))),
-                    ambient: lighting_terms(scene, f.object, &f.attributes, &f.light_shares)
-                        .map(|(b, _)| b.to_array()),
-                    lights: lighting_terms(scene, f.object, &f.attributes, &f.light_shares).map(|(_, t)| t),
+                    ambient: lighting.as_ref().map(|(b, _)| b.to_array()),
+                    lights: lighting.map(|(_, t)| t),
                 })
                 .collect(),
             after_opaque: (s.after_opaque.0, s.after_opaque.1.to_array()),

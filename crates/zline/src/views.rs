@@ -133,6 +133,46 @@ pub enum ProjectionKind {
     Orthographic,
 }
 
+/// What a command asks of a scene's camera: a named view, then orbit,
+/// distance, zoom, field of view and up, then a projection. `render`'s
+/// camera flags and the Python module's keyword arguments both come here,
+/// so the two point the camera alike, to the bit.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Aim {
+    /// `--view`.
+    pub view: Option<NamedView>,
+    /// `--azimuth`, `--elevation`, `--distance`, `--zoom`, `--fov`, `--up`.
+    pub change: crate::view::ViewChange,
+    /// `--projection`.
+    pub projection: Option<ProjectionKind>,
+}
+
+impl Aim {
+    /// Points `scene`'s camera: zline's framing of the objects again for
+    /// the image's aspect when `framed` (a bare model, or a scene file
+    /// without a camera), the named view, the changes, the projection (a
+    /// zoom also divides a framed orthographic view's height).
+    pub fn apply(&self, scene: &mut Scene, framed: bool) {
+        let aspect = crate::view::aspect_of(scene);
+        if framed {
+            scene.camera = zline_io::model_camera(&scene.objects, aspect);
+        }
+        if let Some(view) = self.view {
+            view.apply(scene, aspect, framed);
+        }
+        self.change.apply(scene, aspect, framed);
+        if let Some(kind) = self.projection {
+            set_projection(scene, kind, aspect, framed);
+            let zoom = self.change.zoom.filter(|z| z.is_finite() && *z > 0.0);
+            if let (Some(z), Projection::Orthographic { height, .. }) = (zoom, &mut scene.camera.projection) {
+                if kind == ProjectionKind::Orthographic && framed {
+                    *height /= z;
+                }
+            }
+        }
+    }
+}
+
 /// The vertical field of view a perspective camera made from an
 /// orthographic one gets.
 pub const ORTHO_TO_PERSPECTIVE_FOVY: f32 = 45.0;

@@ -143,9 +143,8 @@ struct FrameTables {
     textures: Vec<FrameTexture>,
     /// Per object's material: its Cook–Torrance maps in `textures`.
     surfaces: Vec<SurfaceUse>,
-    /// Per object: its texture's use and whether its alpha blends (the
-    /// object is then transparent even at opacity 1).
-    object_textures: Vec<Option<(TextureUse, bool)>>,
+    /// Per object: its texture's use.
+    object_textures: Vec<Option<TextureUse>>,
     /// Per object: its bump or normal map, when it has one with texture
     /// coordinates and tangents.
     object_maps: Vec<Option<NormalMapUse>>,
@@ -382,7 +381,7 @@ impl Renderer {
                 (None, false) => AlphaUse::Ignore,
             };
             let index = t.textures.len() as u32;
-            t.object_textures.push(Some((TextureUse { index, lod, alpha }, map.alpha_blend)));
+            t.object_textures.push(Some(TextureUse { index, lod, alpha }));
             let cutoff = map.alpha_cutoff.unwrap_or(0.0);
             let texture = t.colour_texture(&map.texture, decode_srgb);
             t.textures.push(FrameTexture { texture, sampler, cutoff });
@@ -436,10 +435,7 @@ impl Renderer {
         let receives = scene.shadows.receives(index) && !scene.lights.is_empty();
         let mut shading =
             if receives { ShadingMode::Phong } else { object.shading.unwrap_or(scene.settings.shading) };
-        let (mut texture, blends) = match self.tables.object_textures[index] {
-            Some((texture, blends)) => (Some(texture), blends),
-            None => (None, false),
-        };
+        let mut texture = self.tables.object_textures[index];
         let mut vertex_colors =
             if mesh.colors.is_empty() { VertexColors::Absent } else { VertexColors::Present };
         if self.normals {
@@ -479,7 +475,7 @@ impl Renderer {
         let opacity = material.material.opacity;
         let pass = if self.normals {
             PassKind::Opaque
-        } else if opacity < 1.0 || blends {
+        } else if is_transparent(object) {
             PassKind::Transparent { kt: 1.0 - opacity }
         } else {
             PassKind::Opaque
@@ -625,6 +621,16 @@ fn opaque_primitives<'a>(
 fn pixels_of(samples: Rect, n: u32) -> Rect {
     let n = n as i32;
     Rect { x0: samples.x0 / n, y0: samples.y0 / n, x1: samples.x1 / n, y1: samples.y1 / n }
+}
+
+/// Whether the pipeline draws `object` in the transparency pass: a
+/// material opacity below 1 (NaN included: sanitized to 0) or a diffuse
+/// texture, with texture coordinates to read it, whose alpha blends (glTF
+/// BLEND). The object-ID frame leaves these objects out by the same test.
+pub fn is_transparent(object: &Object) -> bool {
+    let blends =
+        object.mesh.diffuse_map.as_ref().is_some_and(|m| m.alpha_blend && !object.mesh.uvs.is_empty());
+    object.material().sanitized().opacity < 1.0 || blends
 }
 
 /// Triangles per setup chunk for a mesh of `n` triangles: [`TRIANGLE_CHUNK`],

@@ -93,34 +93,20 @@ fn inspect_usage_errors_are_clean() {
 /// time, in another order).
 #[test]
 fn the_lighting_terms_add_up_to_the_written_colour() {
-    use zline::pipeline::{Outcome, RenderOptions, Renderer};
     let mut scene =
         zline::load::load(&repo().join("assets/ply/bunny_lowres.ply"), Default::default()).unwrap().scene;
     (scene.settings.width, scene.settings.height) = (96, 72);
     scene.settings.shading = zline::shading::ShadingMode::Phong;
     scene.camera = zline::io::model_camera(&scene.objects, 96.0 / 72.0);
-    let mut renderer = Renderer::default();
     let mut checked = 0;
-    for y in (2..72).step_by(4) {
-        for x in (2..96).step_by(4) {
-            let mut image = zline::pipeline::Image::empty();
-            let trace = renderer.inspect(&scene, &RenderOptions::default(), (x, y), &mut image).unwrap();
-            for f in trace.samples.iter().flat_map(|s| &s.fragments).filter(|f| f.outcome == Outcome::Written)
-            {
-                let (base, terms) =
-                    zline::inspect::lighting_terms(&scene, f.object, &f.attributes, &f.light_shares).unwrap();
-                let sum = terms
-                    .iter()
-                    .fold(base, |c, t| c + glam::Vec3::from(t.diffuse) + glam::Vec3::from(t.specular));
-                let want = sum.clamp(glam::Vec3::ZERO, glam::Vec3::ONE);
-                assert!(
-                    (f.after.1 - want).abs().max_element() < 2e-5,
-                    "({x}, {y}): kernel {} vs terms {want}",
-                    f.after.1
-                );
-                checked += 1;
-            }
-        }
+    for ((x, y), f) in written_on_grid(&scene, (2..96).step_by(4), (2..72).step_by(4)) {
+        let want = terms_sum(&scene, &f).unwrap();
+        assert!(
+            (f.after.1 - want).abs().max_element() < 2e-5,
+            "({x}, {y}): kernel {} vs terms {want}",
+            f.after.1
+        );
+        checked += 1;
     }
     assert!(checked > 100, "{checked}");
 }
@@ -133,34 +119,23 @@ fn the_lighting_terms_add_up_to_the_written_colour() {
 /// bits.
 #[test]
 fn the_texel_read_and_the_terms_give_the_textured_colour() {
-    use zline::pipeline::{Outcome, RenderOptions, Renderer};
     let mut scene = zline::scenes::demo_scene();
     (scene.settings.width, scene.settings.height) = (160, 120);
-    let mut renderer = Renderer::default();
     let mut checked = 0;
-    for y in (60..120).step_by(6) {
-        for x in (0..160).step_by(7) {
-            let mut image = zline::pipeline::Image::empty();
-            let trace = renderer.inspect(&scene, &RenderOptions::default(), (x, y), &mut image).unwrap();
-            let written =
-                trace.samples.iter().flat_map(|s| &s.fragments).filter(|f| f.outcome == Outcome::Written);
-            for f in written.filter(|f| f.attributes.texture.is_some() && f.attributes.normal.is_some()) {
-                let texel = f.attributes.texture.unwrap().texel.truncate();
-                let m = scene.objects[f.object as usize].material().sanitized();
-                let (_, terms) =
-                    zline::inspect::lighting_terms(&scene, f.object, &f.attributes, &f.light_shares).unwrap();
-                let diffuse: glam::Vec3 = terms.iter().map(|t| glam::Vec3::from(t.diffuse)).sum();
-                let specular: glam::Vec3 = terms.iter().map(|t| glam::Vec3::from(t.specular)).sum();
-                let want = (texel * (m.ka * scene.ambient + diffuse) + m.ke + specular)
-                    .clamp(glam::Vec3::ZERO, glam::Vec3::ONE);
-                assert!(
-                    (f.after.1 - want).abs().max_element() < 5e-4,
-                    "({x}, {y}): kernel {} vs {want}",
-                    f.after.1
-                );
-                checked += 1;
-            }
-        }
+    let written = written_on_grid(&scene, (0..160).step_by(7), (60..120).step_by(6));
+    for ((x, y), f) in
+        written.iter().filter(|(_, f)| f.attributes.texture.is_some() && f.attributes.normal.is_some())
+    {
+        let texel = f.attributes.texture.unwrap().texel.truncate();
+        let m = scene.objects[f.object as usize].material().sanitized();
+        let (_, terms) =
+            zline::inspect::lighting_terms(&scene, f.object, &f.attributes, &f.light_shares).unwrap();
+        let diffuse: glam::Vec3 = terms.iter().map(|t| glam::Vec3::from(t.diffuse)).sum();
+        let specular: glam::Vec3 = terms.iter().map(|t| glam::Vec3::from(t.specular)).sum();
+        let want = (texel * (m.ka * scene.ambient + diffuse) + m.ke + specular)
+            .clamp(glam::Vec3::ZERO, glam::Vec3::ONE);
+        assert!((f.after.1 - want).abs().max_element() < 5e-4, "({x}, {y}): kernel {} vs {want}", f.after.1);
+        checked += 1;
     }
     assert!(checked > 30, "{checked}");
 }
@@ -170,42 +145,24 @@ fn the_texel_read_and_the_terms_give_the_textured_colour() {
 /// colour of the room's untextured surfaces; some samples are in shadow.
 #[test]
 fn shadowed_terms_add_up_with_the_lights_share() {
-    use zline::pipeline::{Outcome, RenderOptions, Renderer};
     for mode in [zline::scene::ShadowMode::Map, zline::scene::ShadowMode::Planar] {
         let mut scene = zline::scenes::room_scene();
         (scene.settings.width, scene.settings.height) = (96, 72);
         scene.shadows.mode = mode;
-        let mut renderer = Renderer::default();
         let (mut checked, mut shadowed) = (0, 0);
-        for y in (1..72).step_by(5) {
-            for x in (1..96).step_by(5) {
-                let mut image = zline::pipeline::Image::empty();
-                let trace = renderer.inspect(&scene, &RenderOptions::default(), (x, y), &mut image).unwrap();
-                let written =
-                    trace.samples.iter().flat_map(|s| &s.fragments).filter(|f| f.outcome == Outcome::Written);
-                for f in written {
-                    assert!(f.light_shares.iter().all(|s| (0.0..=1.0).contains(s)), "{:?}", f.light_shares);
-                    shadowed += usize::from(f.light_shares.iter().any(|&s| s < 1.0));
-                    if f.attributes.texture.is_some() || f.attributes.vertex_color.is_some() {
-                        continue;
-                    }
-                    let Some((base, terms)) =
-                        zline::inspect::lighting_terms(&scene, f.object, &f.attributes, &f.light_shares)
-                    else {
-                        continue;
-                    };
-                    let sum = terms
-                        .iter()
-                        .fold(base, |c, t| c + glam::Vec3::from(t.diffuse) + glam::Vec3::from(t.specular));
-                    let want = sum.clamp(glam::Vec3::ZERO, glam::Vec3::ONE);
-                    assert!(
-                        (f.after.1 - want).abs().max_element() < 1e-4,
-                        "{mode:?} ({x}, {y}): kernel {} vs terms {want}",
-                        f.after.1
-                    );
-                    checked += 1;
-                }
+        for ((x, y), f) in written_on_grid(&scene, (1..96).step_by(5), (1..72).step_by(5)) {
+            assert!(f.light_shares.iter().all(|s| (0.0..=1.0).contains(s)), "{:?}", f.light_shares);
+            shadowed += usize::from(f.light_shares.iter().any(|&s| s < 1.0));
+            if f.attributes.texture.is_some() || f.attributes.vertex_color.is_some() {
+                continue;
             }
+            let Some(want) = terms_sum(&scene, &f) else { continue };
+            assert!(
+                (f.after.1 - want).abs().max_element() < 1e-4,
+                "{mode:?} ({x}, {y}): kernel {} vs terms {want}",
+                f.after.1
+            );
+            checked += 1;
         }
         assert!(checked > 30 && shadowed > 5, "{mode:?}: {checked} checked, {shadowed} in shadow");
     }
@@ -246,4 +203,33 @@ fn the_vertices_in_each_space_lead_to_the_snapped_window_vertices() {
         }
     }
     assert!(checked >= 10, "{checked}");
+}
+
+/// The written fragments (the opaque pass's) of every pixel of the grid
+/// `xs` × `ys`, each with its pixel, as the inspector reports them.
+fn written_on_grid(
+    scene: &zline::scene::Scene,
+    xs: std::iter::StepBy<std::ops::Range<u32>>,
+    ys: std::iter::StepBy<std::ops::Range<u32>>,
+) -> Vec<((u32, u32), zline::pipeline::FragmentTrace)> {
+    use zline::pipeline::{Outcome, RenderOptions, Renderer};
+    let mut renderer = Renderer::default();
+    let pixels: Vec<(u32, u32)> = ys.flat_map(|y| xs.clone().map(move |x| (x, y))).collect();
+    let mut out = Vec::new();
+    for pixel in pixels {
+        let mut image = zline::pipeline::Image::empty();
+        let trace = renderer.inspect(scene, &RenderOptions::default(), pixel, &mut image).unwrap();
+        let written =
+            trace.samples.into_iter().flat_map(|s| s.fragments).filter(|f| f.outcome == Outcome::Written);
+        out.extend(written.map(|f| (pixel, f)));
+    }
+    out
+}
+
+/// clamp(ke + ka·Ia + Σ (diffuse + specular)) from the reported terms;
+/// `None` for a kernel without a per-sample normal.
+fn terms_sum(scene: &zline::scene::Scene, f: &zline::pipeline::FragmentTrace) -> Option<glam::Vec3> {
+    let (base, terms) = zline::inspect::lighting_terms(scene, f.object, &f.attributes, &f.light_shares)?;
+    let sum = terms.iter().fold(base, |c, t| c + glam::Vec3::from(t.diffuse) + glam::Vec3::from(t.specular));
+    Some(sum.clamp(glam::Vec3::ZERO, glam::Vec3::ONE))
 }
