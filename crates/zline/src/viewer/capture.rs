@@ -3,8 +3,9 @@
 //! (`Xvfb -fbdir`), and the screen is read back from the X server's own
 //! framebuffer while the window shows its frames.
 //!
-//! [`under_xvfb`] starts `Xvfb :N -screen 0 WxHx24 -fbdir DIR` on the first
-//! free display number from 90, the screen exactly the window's size (an X
+//! [`under_xvfb`] starts `Xvfb -displayfd 1 -screen 0 WxHx24 -fbdir DIR`,
+//! which takes a free display number itself and writes it once it accepts
+//! clients, the screen exactly the window's size (an X
 //! server without a window manager opens the window centred: here at the
 //! origin, covering the screen), runs `zline view … --exit-after-frames N`
 //! on it and reads the screen every 20 ms until the viewer exits, keeping
@@ -89,6 +90,7 @@ pub fn under_xvfb(
     let screen_file = dir.path().join("Xvfb_screen0");
     let start = Instant::now();
     let mut best: Option<(f64, Image)> = None;
+    let mut last_error = None;
     let status = loop {
         if let Some(status) = viewer.try_wait()? {
             break status;
@@ -98,13 +100,16 @@ pub fn under_xvfb(
             let _ = viewer.wait();
             bail!("zline view did not exit within {} s", TIMEOUT.as_secs());
         }
-        if let Ok(bytes) = std::fs::read(&screen_file) {
-            let screen =
-                super::xwd::read(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", screen_file.display()))?;
-            let matching = matching_fraction(&screen, &expected);
-            if best.as_ref().is_none_or(|(m, _)| matching > *m) {
-                best = Some((matching, screen));
+        // A read may catch the file between the server's writes; such a
+        // read is skipped, and named only when no read ever succeeds.
+        match std::fs::read(&screen_file).map_err(|e| e.to_string()).and_then(|b| super::xwd::read(&b)) {
+            Ok(screen) => {
+                let matching = matching_fraction(&screen, &expected);
+                if best.as_ref().is_none_or(|(m, _)| matching > *m) {
+                    best = Some((matching, screen));
+                }
             }
+            Err(e) => last_error = Some(e),
         }
         std::thread::sleep(Duration::from_millis(20));
     };
@@ -112,7 +117,13 @@ pub fn under_xvfb(
     if !status.success() {
         bail!("zline view failed under Xvfb ({status})");
     }
-    let (matching, screen) = best.context("the X screen was never readable")?;
+    let Some((matching, screen)) = best else {
+        bail!(
+            "{}: the X screen was never readable ({})",
+            screen_file.display(),
+            last_error.unwrap_or_default()
+        );
+    };
     Ok(Capture { screen, expected, matching })
 }
 
@@ -129,40 +140,38 @@ struct Server {
 }
 
 impl Server {
-    /// Starts Xvfb on the first display number from 90 that no running
-    /// server holds and waits for its socket. A lock file whose process is
-    /// gone (a server killed before it could clean up) does not hold its
-    /// number: Xvfb replaces such a stale lock itself.
+    /// Starts Xvfb with `-displayfd`: the server takes the first display
+    /// number no other server holds (its own lock files decide, so two
+    /// captures at once never share a number) and writes the number to its
+    /// standard output, a pipe here, only once its screen exists and it
+    /// accepts clients.
     fn start(xvfb: &Path, fbdir: &Path, (w, h): (u32, u32)) -> Result<Server> {
-        for display in 90..190 {
-            let lock = PathBuf::from(format!("/tmp/.X{display}-lock"));
-            if lock.exists() && lock_is_live(&lock) {
-                continue;
-            }
-            let mut child = Command::new(xvfb)
-                .arg(format!(":{display}"))
-                .args(["-screen", "0", &format!("{w}x{h}x24"), "-nolisten", "tcp", "-fbdir"])
-                .arg(fbdir)
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .spawn()
-                .with_context(|| format!("cannot run {}", xvfb.display()))?;
-            let socket = PathBuf::from(format!("/tmp/.X11-unix/X{display}"));
-            let start = Instant::now();
-            while start.elapsed() < Duration::from_secs(10) {
-                if child.try_wait()?.is_some() {
-                    // Another server took the number first.
-                    break;
-                }
-                if socket.exists() && fbdir.join("Xvfb_screen0").exists() {
-                    return Ok(Server { child, display });
-                }
-                std::thread::sleep(Duration::from_millis(20));
-            }
-            let _ = child.kill();
-            let _ = child.wait();
+        let (reader, writer) = std::io::pipe().context("cannot make a pipe for Xvfb's display number")?;
+        let child = Command::new(xvfb)
+            .args(["-displayfd", "1", "-screen", "0", &format!("{w}x{h}x24"), "-nolisten", "tcp", "-fbdir"])
+            .arg(fbdir)
+            .stdout(writer)
+            .stderr(Stdio::null())
+            .spawn()
+            .with_context(|| format!("cannot run {}", xvfb.display()))?;
+        // The server holds the pipe's only writer now: the read ends with
+        // the number, or at end of file when the server exits first.
+        let mut server = Server { child, display: 0 };
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut line = String::new();
+            let _ = std::io::BufRead::read_line(&mut std::io::BufReader::new(reader), &mut line);
+            let _ = tx.send(line);
+        });
+        let line = match rx.recv_timeout(Duration::from_secs(30)) {
+            Ok(line) => line,
+            Err(_) => bail!("{} did not report a display within 30 s", xvfb.display()),
+        };
+        match line.trim().parse() {
+            Ok(display) => server.display = display,
+            Err(_) => bail!("{} exited before it reported a display (-displayfd)", xvfb.display()),
         }
-        bail!("could not start Xvfb on any display from :90 to :189")
+        Ok(server)
     }
 
     /// Asks the server to end (SIGTERM, so that it removes its lock file
@@ -180,16 +189,6 @@ impl Server {
         }
         let _ = self.child.kill();
         let _ = self.child.wait();
-    }
-}
-
-/// True when the X lock file `lock` names a process that still runs (or
-/// cannot be read, which is taken as held).
-fn lock_is_live(lock: &Path) -> bool {
-    let Ok(text) = std::fs::read_to_string(lock) else { return true };
-    match text.trim().parse::<u32>() {
-        Ok(pid) => Path::new(&format!("/proc/{pid}")).exists(),
-        Err(_) => true,
     }
 }
 
