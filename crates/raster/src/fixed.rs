@@ -38,7 +38,7 @@ impl FixedPoint {
         }
         let s = SUBPIXEL_ONE as f32;
         // Exact: |v·256| ≤ 2^29 fits in i32, and `as` cannot saturate here.
-        Some(FixedPoint { x: (x * s).round() as i32, y: (y * s).round() as i32 })
+        Some(FixedPoint { x: round_to_i32(x * s), y: round_to_i32(y * s) })
     }
 
     /// The point in pixels, exactly (fixed-point values are exact in f64).
@@ -47,6 +47,18 @@ impl FixedPoint {
         let s = SUBPIXEL_ONE as f64;
         (f64::from(self.x) / s, f64::from(self.y) / s)
     }
+}
+
+/// `v.round() as i32` (to nearest, halves away from zero) for |v| ≤ 2^30,
+/// without `roundf`: below SSE4.1 that is a library call, once per snapped
+/// coordinate. The truncation is exact, and so is `v − t` (below 2^24 both
+/// lie in one binade or t is 0; from 2^24 on every float is an integer).
+#[inline]
+fn round_to_i32(v: f32) -> i32 {
+    let t = v as i32;
+    let frac = v - t as f32;
+    // Flags, not branches: the fraction's side is data, not a pattern.
+    t + i32::from(frac >= 0.5) - i32::from(frac <= -0.5)
 }
 
 /// A half-open rectangle of pixels: columns `x0..x1`, rows `y0..y1`.
@@ -148,6 +160,31 @@ mod tests {
         assert_eq!(FixedPoint::snap(f32::NAN, 0.0), None);
         assert_eq!(FixedPoint::snap(0.0, f32::INFINITY), None);
         assert_eq!(FixedPoint::snap(3e6, 0.0), None);
+    }
+
+    #[test]
+    fn rounding_matches_round_for_every_float_in_range() {
+        // Every float of magnitude ≤ 2^21·256 whose rounding could differ:
+        // all of [0, 2^24) at a stride that still visits each binade's
+        // halves, plus every x.5 and its neighbours up to 2^23.
+        let check = |v: f32| {
+            assert_eq!(round_to_i32(v), v.round() as i32, "{v}");
+            assert_eq!(round_to_i32(-v), (-v).round() as i32, "{}", -v);
+        };
+        let mut bits = 0u32;
+        while f32::from_bits(bits) <= (1u32 << 29) as f32 {
+            check(f32::from_bits(bits));
+            bits += 97;
+        }
+        for i in 0..(1 << 16) {
+            let half = i as f32 * 128.0 + 0.5;
+            for v in [half, f32::from_bits(half.to_bits() - 1), f32::from_bits(half.to_bits() + 1)] {
+                check(v);
+            }
+        }
+        for v in [0.0, 0.5, 0.49999997, 1.5, 2.5, 8_388_607.5, 8_388_608.0, 16_777_217.0, 536_870_912.0] {
+            check(v);
+        }
     }
 
     #[test]

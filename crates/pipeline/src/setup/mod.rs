@@ -401,7 +401,16 @@ fn emit(
     out: &mut PrimitiveChunk,
 ) {
     let fixed = p.map(|v| v.fixed);
-    let (Some(edges), Some(basis)) = (EdgeTable::new(fixed), PlaneBasis::new(fixed)) else {
+    let Some(edges) = EdgeTable::new(fixed) else {
+        return;
+    };
+    // A triangle whose bounds hold no sample centre covers no sample (the
+    // spans lie inside the bounds): no planes, no primitive. On a mesh of
+    // triangles smaller than a pixel this is most of them.
+    if edges.bounds().is_empty() {
+        return;
+    }
+    let Some(basis) = PlaneBasis::new(fixed) else {
         return;
     };
     let depth = DepthPlane::new(&basis, std::array::from_fn(|k| ctx.depth.value(tri[k], &p[k])));

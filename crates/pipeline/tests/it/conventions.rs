@@ -14,6 +14,7 @@
 use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
+use zline_pipeline::{render, RenderOptions};
 use zline_scene::{Fog, FogCoordinate, FogMode, GouraudClamp, LightingSides, Mesh, Scene};
 use zline_shading::{Attenuation, Light, Material, ShadingMode};
 
@@ -243,4 +244,33 @@ fn a_back_face_is_lit_turned_towards_the_viewer_or_as_given() {
             }
         }
     }
+}
+
+/// A triangle in window coordinates (16 px window, plane z = −2, where a
+/// pixel is 0.25 units), counter-clockwise as seen.
+fn window_triangle(p: [(f32, f32); 3]) -> Scene {
+    let world = p.map(|(x, y)| Vec3::new((x / 8.0 - 1.0) * 2.0, (1.0 - y / 8.0) * 2.0, -2.0)).to_vec();
+    let m = Material { ka: Vec3::ONE, kd: Vec3::ZERO, ks: Vec3::ZERO, ..Material::default() };
+    let object = object(mesh(world, vec![Vec3::Z; 3], vec![[0, 2, 1]], m), None);
+    scene(16, Vec3::ONE, vec![], vec![object])
+}
+
+#[test]
+fn a_triangle_whose_bounds_hold_no_sample_centre_makes_no_primitive() {
+    // Inside pixel (5, 5) right of and below its centre (5.5, 5.5): no
+    // sample, so setup makes no primitive and the pixel stays background.
+    let between = window_triangle([(5.6, 5.6), (5.95, 5.6), (5.6, 5.95)]);
+    let (image, stats) = render(&between, &RenderOptions::default());
+    assert_eq!((stats.triangles_drawn, stats.primitives), (1, 0), "{stats:?}");
+    assert!((0..16).all(|y| (0..16).all(|x| image.pixel(x, y) == [0, 0, 0])));
+    // Moved 0.3 px up and left it covers that centre: one primitive, one
+    // white sample.
+    let over = window_triangle([(5.3, 5.3), (5.95, 5.3), (5.3, 5.95)]);
+    let (image, stats) = render(&over, &RenderOptions::default());
+    assert_eq!((stats.triangles_drawn, stats.primitives), (1, 1), "{stats:?}");
+    let lit: Vec<(u32, u32)> = (0..16)
+        .flat_map(|y| (0..16).map(move |x| (x, y)))
+        .filter(|&(x, y)| image.pixel(x, y) != [0, 0, 0])
+        .collect();
+    assert_eq!(lit, [(5, 5)]);
 }

@@ -103,8 +103,13 @@ fn a_far_dense_mesh_is_drawn_simplified_and_stays_close_to_the_full_mesh() {
         assert_eq!(full_stats.triangles_drawn, full_stats.triangles, "τ = {tolerance}");
         assert!(lod_stats.triangles_drawn * 4 < lod_stats.triangles, "τ = {tolerance}: {lod_stats:?}");
         assert!(matches!(levels[..], [Some(_)]), "τ = {tolerance}: no level drawn: {levels:?}");
+        // Setup makes no primitive of a triangle whose bounds hold no
+        // sample centre, so most of the full mesh's sub-pixel triangles
+        // are gone before they count: the level saves setup work, not
+        // primitives four to one.
+        assert!(full_stats.primitives * 4 < full_stats.triangles_drawn, "τ = {tolerance}: {full_stats:?}");
         assert!(
-            lod_stats.primitives * 4 < full_stats.primitives,
+            lod_stats.primitives < full_stats.primitives,
             "τ = {tolerance}: {} primitives of {}",
             lod_stats.primitives,
             full_stats.primitives
