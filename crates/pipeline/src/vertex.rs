@@ -16,7 +16,9 @@ use zline_scene::{GouraudClamp, Mesh};
 use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode, Vec3x8};
 use zline_simd::lanes::{f32x8, Level};
 
-use crate::volume::{view_code, ClipVolume};
+#[cfg(test)]
+use crate::volume::view_code;
+use crate::volume::{view_codes_x8, ClipVolume};
 
 /// Vertices per rayon task: big enough that scheduling costs nothing.
 const VERTEX_CHUNK: usize = 4096;
@@ -204,9 +206,7 @@ pub fn transform_mesh(
         let start = chunk * VERTEX_CHUNK;
         let positions = &mesh.positions[start..start + out.len()];
         let normals = &mesh.normals[start..start + out.len()];
-        for ((v, &p), &n) in out.iter_mut().zip(positions).zip(normals) {
-            *v = transform_vertex(p, n, t, screen);
-        }
+        zline_simd::vectorize(TransformVertices { out: &mut *out, positions, normals, t, screen });
         if let Some(uvs) = mesh.uvs.get(start..start + out.len()) {
             for (v, &uv) in out.iter_mut().zip(uvs) {
                 v.uv = uv;
@@ -299,7 +299,114 @@ fn light_vertices_at<S: Level>(
     }
 }
 
-#[inline]
+/// The vertex transform eight vertices at a time, a job of
+/// [`zline_simd::vectorize`]: the three matrix products, the normal's
+/// normalization and both outcodes in lanes, with glam's operations in
+/// glam's order (no fused multiply-add), so that every vertex gets the bits
+/// of its scalar twin [`transform_vertex`]; the divide and the snap, in
+/// f64, per vertex that needs no clipping.
+struct TransformVertices<'a> {
+    out: &'a mut [ClipVertex],
+    positions: &'a [Vec3],
+    normals: &'a [Vec3],
+    t: &'a ObjectTransforms,
+    screen: &'a Screen,
+}
+
+impl zline_simd::Vectorized for TransformVertices<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<S: Level>(self) {
+        let TransformVertices { out, positions, normals, t, screen } = self;
+        let groups = out.chunks_mut(8).zip(positions.chunks(8).zip(normals.chunks(8)));
+        for (out, (p, n)) in groups {
+            transform_group::<S>(out, p, n, t, screen);
+        }
+    }
+}
+
+/// Up to eight vertices of [`TransformVertices`] (lanes past the end repeat
+/// the last vertex and are not stored). Helpers are functions, not
+/// closures: a closure left out of line would reach each lane operation
+/// through a call.
+#[inline(always)]
+fn transform_group<S: Level>(
+    out: &mut [ClipVertex],
+    p: &[Vec3],
+    n: &[Vec3],
+    t: &ObjectTransforms,
+    s: &Screen,
+) {
+    let p = [gather::<S>(p, 0), gather(p, 1), gather(p, 2)];
+    let e = t.eye_from_object.to_cols_array_2d();
+    let eye = [affine(&e, 0, &p), affine(&e, 1, &p), affine(&e, 2, &p)];
+    let c = t.clip_from_object.to_cols_array_2d();
+    let clip = [affine(&c, 0, &p), affine(&c, 1, &p), affine(&c, 2, &p), affine(&c, 3, &p)];
+    // glam's Mat3 · n, then normalize_or_zero: n·(1/√((x² + y²) + z²)) when
+    // that factor is finite and positive, else zero.
+    let n = [gather::<S>(n, 0), gather(n, 1), gather(n, 2)];
+    let m = t.normal_eye_from_object.to_cols_array_2d();
+    let [mx, my, mz] = [linear(&m, 0, &n), linear(&m, 1, &n), linear(&m, 2, &n)];
+    let rcp = f32x8::splat(1.0) / ((mx * mx + my * my) + mz * mz).sqrt();
+    let unit = rcp.is_finite() & rcp.cmp_gt(f32x8::splat(0.0));
+    let zero = f32x8::splat(0.0);
+    let normal = [unit.blend(mx * rcp, zero), unit.blend(my * rcp, zero), unit.blend(mz * rcp, zero)];
+    let clip_codes = s.volume.clip_codes_x8(clip);
+    let view_codes = view_codes_x8(clip);
+    let eye = [eye[0].to_array(), eye[1].to_array(), eye[2].to_array()];
+    let normal = [normal[0].to_array(), normal[1].to_array(), normal[2].to_array()];
+    let clip = [clip[0].to_array(), clip[1].to_array(), clip[2].to_array(), clip[3].to_array()];
+    for (k, v) in out.iter_mut().enumerate() {
+        let clip = Vec4::new(clip[0][k], clip[1][k], clip[2][k], clip[3][k]);
+        let mut clip_code = clip_codes[k];
+        let projected = if clip_code == 0 { Projected::new(clip, s.viewport) } else { None };
+        if projected.is_none() {
+            clip_code |= NEEDS_SETUP;
+        }
+        *v = ClipVertex {
+            clip,
+            eye: Vec3::new(eye[0][k], eye[1][k], eye[2][k]),
+            normal: Vec3::new(normal[0][k], normal[1][k], normal[2][k]),
+            color: Vec3::ZERO,
+            uv: glam::Vec2::ZERO,
+            tangent: Vec4::ZERO,
+            projected: projected.unwrap_or_default(),
+            view_code: view_codes[k],
+            clip_code,
+        };
+    }
+}
+
+/// Component `c` of up to eight vectors in lanes (the last repeated).
+#[inline(always)]
+fn gather<S: Level>(v: &[Vec3], c: usize) -> f32x8<S> {
+    let last = v.len() - 1;
+    let mut lanes = [0.0; 8];
+    for (k, lane) in lanes.iter_mut().enumerate() {
+        *lane = v[k.min(last)][c];
+    }
+    f32x8::from(lanes)
+}
+
+/// Row `row` of glam's Mat4 · point (the same as Mat4 · (p, 1)), columns
+/// `m`: ((m0·x + m1·y) + m2·z) + m3.
+#[inline(always)]
+fn affine<S: Level>(m: &[[f32; 4]; 4], row: usize, [x, y, z]: &[f32x8<S>; 3]) -> f32x8<S> {
+    let splat = |col: usize| f32x8::<S>::splat(m[col][row]);
+    ((splat(0) * *x + splat(1) * *y) + splat(2) * *z) + splat(3)
+}
+
+/// Row `row` of glam's Mat3 · v, columns `m`: (m0·x + m1·y) + m2·z.
+#[inline(always)]
+fn linear<S: Level>(m: &[[f32; 3]; 3], row: usize, [x, y, z]: &[f32x8<S>; 3]) -> f32x8<S> {
+    let splat = |col: usize| f32x8::<S>::splat(m[col][row]);
+    (splat(0) * *x + splat(1) * *y) + splat(2) * *z
+}
+
+/// One vertex: the scalar twin of [`TransformVertices`], which the tests
+/// hold it to bit for bit.
+#[cfg(test)]
 fn transform_vertex(p: Vec3, n: Vec3, t: &ObjectTransforms, s: &Screen) -> ClipVertex {
     let eye = t.eye_from_object.transform_point3(p);
     let normal = (t.normal_eye_from_object * n).normalize_or_zero();
@@ -319,5 +426,83 @@ fn transform_vertex(p: Vec3, n: Vec3, t: &ObjectTransforms, s: &Screen) -> ClipV
         projected: projected.unwrap_or_default(),
         view_code: view_code(clip),
         clip_code,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn vec3() -> impl Strategy<Value = Vec3> {
+        let c = prop_oneof![
+            8 => -50.0f32..50.0,
+            1 => Just(0.0f32),
+            1 => -1e30f32..1e30,
+            1 => prop_oneof![Just(f32::NAN), Just(f32::INFINITY), Just(-0.0f32), Just(1e-30f32)],
+        ];
+        (c.clone(), c.clone(), c).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    }
+
+    fn bits(v: &ClipVertex) -> Vec<u32> {
+        let floats = [v.clip.to_array().as_slice(), &v.eye.to_array(), &v.normal.to_array()].concat();
+        let p = v.projected;
+        // A NaN's sign and payload are not specified by Rust or LLVM (which
+        // may swap an addition's operands): every NaN compares as one.
+        let mut out: Vec<u32> =
+            floats.iter().map(|f| if f.is_nan() { u32::MAX } else { f.to_bits() }).collect();
+        out.extend([
+            p.fixed.x as u32,
+            p.fixed.y as u32,
+            p.inv_w.to_bits(),
+            u32::from(v.view_code),
+            u32::from(v.clip_code),
+        ]);
+        out.extend([p.z.to_bits() as u32, (p.z.to_bits() >> 32) as u32]);
+        out
+    }
+
+    proptest! {
+        /// Every lane of the vectorized transform, at the level the CPU
+        /// runs and at the baseline, equals the scalar twin bit for bit:
+        /// inside, outside, behind the eye, degenerate and non-finite.
+        #[test]
+        fn the_lanes_equal_the_scalar_twin(
+            vertices in proptest::collection::vec((vec3(), vec3()), 1..30),
+            eye in vec3(),
+            perspective in any::<bool>(),
+        ) {
+            let camera = zline_scene::Camera {
+                eye: eye.clamp(Vec3::splat(-5.0), Vec3::splat(5.0)).map(|c| if c.is_nan() { 0.0 } else { c }),
+                target: Vec3::new(0.1, 0.2, -1.0),
+                up: Vec3::Y,
+                projection: if perspective {
+                    zline_scene::Projection::Perspective { fovy_degrees: 60.0, near: 0.5, far: 80.0 }
+                } else {
+                    zline_scene::Projection::Orthographic { height: 40.0, near: 0.5, far: 80.0 }
+                },
+            };
+            let model = Mat4::from_scale_rotation_translation(
+                Vec3::new(1.5, -0.75, 2.0),
+                glam::Quat::from_euler(glam::EulerRot::XYZ, 0.3, -1.1, 0.7),
+                Vec3::new(0.25, -3.0, 1.0),
+            );
+            let t = ObjectTransforms::new(camera.clip_from_eye(4.0 / 3.0), camera.eye_from_world(), model);
+            let screen = Screen { viewport: Viewport { width: 320, height: 240 }, volume: ClipVolume::new(320, 240) };
+            let (positions, normals): (Vec<Vec3>, Vec<Vec3>) = vertices.into_iter().unzip();
+            let twin: Vec<Vec<u32>> =
+                positions.iter().zip(&normals).map(|(&p, &n)| bits(&transform_vertex(p, n, &t, &screen))).collect();
+            for baseline in [false, true] {
+                let mut out = vec![ClipVertex::default(); positions.len()];
+                let job = TransformVertices { out: &mut out, positions: &positions, normals: &normals, t: &t, screen: &screen };
+                if baseline {
+                    zline_simd::vectorize_at::<zline_simd::lanes::Baseline, _>(job);
+                } else {
+                    zline_simd::vectorize(job);
+                }
+                let lanes: Vec<Vec<u32>> = out.iter().map(bits).collect();
+                prop_assert_eq!(&lanes, &twin, "baseline: {}", baseline);
+            }
+        }
     }
 }

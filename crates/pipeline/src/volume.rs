@@ -9,6 +9,7 @@
 //! coordinates for exact fixed-point arithmetic.
 
 use glam::Vec4;
+use zline_simd::lanes::{f32x8, Level};
 
 /// Pixels of guard band beyond each side of the window.
 pub const GUARD_BAND_PIXELS: f32 = 8192.0;
@@ -37,6 +38,13 @@ impl ClipVolume {
         [p.z + p.w, p.w - p.z, p.x + gx, gx - p.x, p.y + gy, gy - p.y]
     }
 
+    /// [`ClipVolume::clip_code`] of eight points (x, y, z, w in lanes).
+    #[inline(always)]
+    pub fn clip_codes_x8<S: Level>(&self, [x, y, z, w]: [f32x8<S>; 4]) -> [u8; 8] {
+        let (gx, gy) = (f32x8::splat(self.guard_x) * w, f32x8::splat(self.guard_y) * w);
+        outcodes([z + w, w - z, x + gx, gx - x, y + gy, gy - y])
+    }
+
     /// Bit i set when `p` is outside clipping plane i (NaN counts as outside).
     #[inline]
     pub fn clip_code(&self, p: Vec4) -> u8 {
@@ -58,6 +66,32 @@ pub fn view_code(p: Vec4) -> u8 {
         code |= u8::from(d.is_nan() || d < 0.0) << i;
     }
     code
+}
+
+/// [`view_code`] of eight points (x, y, z, w in lanes).
+#[inline(always)]
+pub fn view_codes_x8<S: Level>([x, y, z, w]: [f32x8<S>; 4]) -> [u8; 8] {
+    outcodes([x + w, w - x, y + w, w - y, z + w, w - z])
+}
+
+/// Per lane, bit i set when distance i is negative or NaN (not ≥ 0). The
+/// bits are summed as floats in lanes (powers of two: exact), which keeps
+/// the eight codes apart without moving masks between registers.
+#[inline(always)]
+fn outcodes<S: Level>(d: [f32x8<S>; 6]) -> [u8; 8] {
+    let zero = f32x8::splat(0.0);
+    let mut code = zero;
+    let mut bit = 1.0;
+    for d in d {
+        code += (!d.cmp_ge(zero)).blend(f32x8::splat(bit), zero);
+        bit *= 2.0;
+    }
+    let code = code.to_array();
+    let mut codes = [0; 8];
+    for (c, v) in codes.iter_mut().zip(code) {
+        *c = v as u8;
+    }
+    codes
 }
 
 #[cfg(test)]
