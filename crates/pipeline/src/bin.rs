@@ -1,5 +1,6 @@
 //! Binning: which primitives each tile must draw, in draw order.
 
+use rayon::prelude::*;
 use zline_raster::Rect;
 
 use crate::setup::{Kernel, PassKind, PrimitiveChunk};
@@ -106,30 +107,69 @@ pub fn bin_primitives_painter(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: 
     bin_into(chunks, grid, bins, true);
 }
 
+/// Bins in bands of tile rows, one rayon task a band, as many bands as the
+/// pool has threads (one on one thread): each band scans every primitive's
+/// bounds and appends to its own tiles' lists only, so no list is shared,
+/// no second pass merges anything, and every list is in draw order however
+/// many bands there are.
 fn bin_into(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins, painter: bool) {
     reset(&mut bins.opaque, grid.len());
     reset(&mut bins.transparent, grid.len());
     reset(&mut bins.shadow, grid.len());
-    let window = grid.window();
-    let ts = grid.tile_size as i32;
-    for (c, chunk) in chunks.iter().enumerate() {
-        for (i, (b, d)) in chunk.bounds.iter().zip(&chunk.draws).enumerate() {
-            let b = b.intersect(&window);
-            if b.is_empty() {
-                continue;
-            }
-            match chunk.pass {
-                PassKind::Opaque if !painter => {
-                    let r = OpaqueRef { chunk: c as u32, kernel: d.kernel, index: d.index };
-                    for_each_tile(b, ts, grid.cols, |t| bins.opaque[t].push(r));
+    if grid.is_empty() {
+        return;
+    }
+    let bands = rayon::current_num_threads().clamp(1, grid.rows as usize);
+    let rows_per_band = (grid.rows as usize).div_ceil(bands);
+    let tiles = rows_per_band * grid.cols as usize;
+    let opaque = bins.opaque.par_chunks_mut(tiles);
+    let lists = opaque.zip(bins.transparent.par_chunks_mut(tiles)).zip(bins.shadow.par_chunks_mut(tiles));
+    lists.enumerate().for_each(|(band, ((opaque, transparent), shadow))| {
+        let first_row = (band * rows_per_band) as u32;
+        let mut band =
+            BandLists { opaque, transparent, shadow, first_tile: first_row as usize * grid.cols as usize };
+        band.bin(chunks, grid, first_row, painter);
+    });
+}
+
+/// The tile lists of one band of tile rows ([`bin_into`]).
+struct BandLists<'a> {
+    opaque: &'a mut [Vec<OpaqueRef>],
+    transparent: &'a mut [Vec<PrimitiveRef>],
+    shadow: &'a mut [Vec<PrimitiveRef>],
+    /// The window's index of the band's first tile.
+    first_tile: usize,
+}
+
+impl BandLists<'_> {
+    /// Appends every primitive whose bounds meet the band (tile rows from
+    /// `first_row`) to the lists of the tiles it meets there.
+    fn bin(&mut self, chunks: &[PrimitiveChunk], grid: &TileGrid, first_row: u32, painter: bool) {
+        let ts = grid.tile_size as i32;
+        let rows = (self.opaque.len() / grid.cols as usize) as u32;
+        let y0 = (first_row * grid.tile_size) as i32;
+        let y1 = ((first_row + rows) * grid.tile_size).min(grid.height) as i32;
+        let area = Rect { x0: 0, y0, x1: grid.width as i32, y1 };
+        let first = self.first_tile;
+        for (c, chunk) in chunks.iter().enumerate() {
+            for (i, (b, d)) in chunk.bounds.iter().zip(&chunk.draws).enumerate() {
+                let b = b.intersect(&area);
+                if b.is_empty() {
+                    continue;
                 }
-                PassKind::Opaque | PassKind::Transparent { .. } => {
-                    let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
-                    for_each_tile(b, ts, grid.cols, |t| bins.transparent[t].push(r));
-                }
-                PassKind::Shadow { .. } => {
-                    let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
-                    for_each_tile(b, ts, grid.cols, |t| bins.shadow[t].push(r));
+                match chunk.pass {
+                    PassKind::Opaque if !painter => {
+                        let r = OpaqueRef { chunk: c as u32, kernel: d.kernel, index: d.index };
+                        for_each_tile(b, ts, grid.cols, |t| self.opaque[t - first].push(r));
+                    }
+                    PassKind::Opaque | PassKind::Transparent { .. } => {
+                        let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
+                        for_each_tile(b, ts, grid.cols, |t| self.transparent[t - first].push(r));
+                    }
+                    PassKind::Shadow { .. } => {
+                        let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
+                        for_each_tile(b, ts, grid.cols, |t| self.shadow[t - first].push(r));
+                    }
                 }
             }
         }
@@ -159,6 +199,80 @@ fn reset<T>(lists: &mut Vec<Vec<T>>, n: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    /// Chunks of the given passes, each primitive with the given bounds.
+    fn chunks(primitives: &[(u8, [i32; 4])]) -> Vec<PrimitiveChunk> {
+        let mut chunks: Vec<PrimitiveChunk> = Vec::new();
+        for (k, &(pass, [x, y, w, h])) in primitives.iter().enumerate() {
+            let pass = match pass % 3 {
+                0 => PassKind::Opaque,
+                1 => PassKind::Transparent { kt: 0.5 },
+                _ => PassKind::Shadow { bit: 0 },
+            };
+            if k % 4 == 0 || chunks.last().is_none_or(|c| c.pass != pass) {
+                let mut chunk = PrimitiveChunk::default();
+                chunk.reset(pass);
+                chunks.push(chunk);
+            }
+            let chunk = chunks.last_mut().unwrap();
+            let index = chunk.draws.len() as u32;
+            chunk.draws.push(crate::setup::Draw {
+                kernel: Kernel::Flat,
+                index,
+                sort_depth: 0.0,
+                far_depth: 0.0,
+            });
+            chunk.bounds.push(Rect { x0: x, y0: y, x1: x + w, y1: y + h });
+        }
+        chunks
+    }
+
+    proptest! {
+        /// Every tile's lists are the same, in the same order, whatever
+        /// the number of bands (threads), for both binnings: bounds inside,
+        /// across and outside the window, empty ones too.
+        #[test]
+        fn bins_do_not_depend_on_the_bands(
+            primitives in proptest::collection::vec((0u8..3, [-40i32..140, -40..140, 0..90, 0..90]), 0..60),
+            tile_size in 1u32..50,
+            painter in any::<bool>(),
+        ) {
+            let chunks = chunks(&primitives);
+            let grid = TileGrid::new(100, 70, tile_size);
+            let bin = |threads: usize| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let mut bins = Bins::default();
+                pool.install(|| bin_into(&chunks, &grid, &mut bins, painter));
+                (bins.opaque, bins.transparent, bins.shadow)
+            };
+            let one = bin(1);
+            // The brute force: each tile against each primitive, in order.
+            let mut expected = (vec![Vec::new(); grid.len()], vec![Vec::new(); grid.len()], vec![Vec::new(); grid.len()]);
+            for t in 0..grid.len() {
+                let tile = grid.rect(t as u32 % grid.cols, t as u32 / grid.cols);
+                for (c, chunk) in chunks.iter().enumerate() {
+                    for (i, (b, d)) in chunk.bounds.iter().zip(&chunk.draws).enumerate() {
+                        if b.intersect(&tile).is_empty() {
+                            continue;
+                        }
+                        let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
+                        match chunk.pass {
+                            PassKind::Opaque if !painter => {
+                                expected.0[t].push(OpaqueRef { chunk: c as u32, kernel: d.kernel, index: d.index })
+                            }
+                            PassKind::Opaque | PassKind::Transparent { .. } => expected.1[t].push(r),
+                            PassKind::Shadow { .. } => expected.2[t].push(r),
+                        }
+                    }
+                }
+            }
+            prop_assert!(one == expected);
+            for threads in [2, 3, 7, 16] {
+                prop_assert!(bin(threads) == one, "{} threads", threads);
+            }
+        }
+    }
 
     #[test]
     fn any_tile_size_gives_tiles_inside_the_window() {

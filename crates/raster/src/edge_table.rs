@@ -111,8 +111,20 @@ impl EdgeTable {
     /// a triangle of zero area, which covers no sample.
     #[inline]
     pub fn new(vertices: [FixedPoint; 3]) -> Option<EdgeTable> {
-        let mut s = vertices;
-        s.sort_by_key(|p| (p.y, p.x));
+        // Sorted by (y, x) with three compare-exchanges (points with equal
+        // keys are equal, so the order is the one a sort gives).
+        let key = |p: FixedPoint| (i64::from(p.y) << 32) + i64::from(p.x);
+        let [mut a, mut b, mut c] = vertices;
+        if key(b) < key(a) {
+            (a, b) = (b, a);
+        }
+        if key(c) < key(b) {
+            (b, c) = (c, b);
+        }
+        if key(b) < key(a) {
+            (a, b) = (b, a);
+        }
+        let s = [a, b, c];
         let [a, b, c] = s.map(|p| (i64::from(p.x), i64::from(p.y)));
         let cross = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
         if cross == 0 {

@@ -583,11 +583,18 @@ impl Planes<'_> {
         f: impl Fn(&ClipVertex) -> [Vec3; K],
     ) -> AttributePlanes<N> {
         debug_assert_eq!(N, 1 + 3 * K);
-        let values = std::array::from_fn(|k| {
+        // Loops, not nested `from_fn`s: those stayed out of line, a call
+        // per drawn triangle.
+        let mut values = [[0.0; N]; 3];
+        for (k, row) in values.iter_mut().enumerate() {
             let q = self.q[k];
-            let triples = f(self.tri[k]);
-            std::array::from_fn(|i| if i == 0 { q } else { triples[(i - 1) / 3][(i - 1) % 3] * q })
-        });
+            row[0] = q;
+            for (j, triple) in f(self.tri[k]).iter().enumerate() {
+                for c in 0..3 {
+                    row[1 + 3 * j + c] = triple[c] * q;
+                }
+            }
+        }
         AttributePlanes::new(self.basis, values)
     }
 
@@ -598,16 +605,17 @@ impl Planes<'_> {
         f: impl Fn(&ClipVertex) -> [Vec3; K],
     ) -> AttributePlanes<N> {
         debug_assert_eq!(N, 3 + 3 * K);
-        let values = std::array::from_fn(|k| {
+        let mut values = [[0.0; N]; 3];
+        for (k, row) in values.iter_mut().enumerate() {
             let q = self.q[k];
-            let (uv, triples) = (self.tri[k].uv * q, f(self.tri[k]));
-            std::array::from_fn(|i| match i {
-                0 => q,
-                1 => uv.x,
-                2 => uv.y,
-                _ => triples[(i - 3) / 3][(i - 3) % 3] * q,
-            })
-        });
+            let uv = self.tri[k].uv * q;
+            (row[0], row[1], row[2]) = (q, uv.x, uv.y);
+            for (j, triple) in f(self.tri[k]).iter().enumerate() {
+                for c in 0..3 {
+                    row[3 + 3 * j + c] = triple[c] * q;
+                }
+            }
+        }
         AttributePlanes::new(self.basis, values)
     }
 }
