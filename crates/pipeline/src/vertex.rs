@@ -206,7 +206,7 @@ pub fn transform_mesh(
         let start = chunk * VERTEX_CHUNK;
         let positions = &mesh.positions[start..start + out.len()];
         let normals = &mesh.normals[start..start + out.len()];
-        zline_simd::vectorize(TransformVertices { out: &mut *out, positions, normals, t, screen });
+        zline_simd::vectorize(TransformVertices { out: &mut *out, positions, normals, t, screen, lighting });
         if let Some(uvs) = mesh.uvs.get(start..start + out.len()) {
             for (v, &uv) in out.iter_mut().zip(uvs) {
                 v.uv = uv;
@@ -215,13 +215,12 @@ pub fn transform_mesh(
         if let Some(tangents) = mesh.normal_map.as_ref().and(mesh.tangents.get(start..start + out.len())) {
             transform_tangents(out, tangents, t);
         }
+        // Lit vertices have no vertex colours (`VertexLighting::choose`).
+        debug_assert!(lighting.is_none() || mesh.colors.is_empty());
         if let Some(colors) = mesh.colors.get(start..start + out.len()) {
             for (v, &c) in out.iter_mut().zip(colors) {
                 v.color = c;
             }
-        }
-        if let Some(VertexLights { lights, material, clamp }) = lighting {
-            light_vertices(out, lights, material, clamp);
         }
     });
 }
@@ -238,79 +237,22 @@ fn transform_tangents(out: &mut [ClipVertex], tangents: &[Vec4], t: &ObjectTrans
     }
 }
 
-/// Gouraud: the lighting model at every vertex, eight at a time (the lanes
-/// compute exactly what [`PreparedLights::shade`] would, or the sum of
-/// [`PreparedLights::shade_parts`] unclamped, see `zline_shading::Vec3x8`).
-fn light_vertices(
-    vertices: &mut [ClipVertex],
-    lights: &PreparedLights,
-    material: &PreparedMaterial,
-    clamp: GouraudClamp,
-) {
-    zline_simd::vectorize(LightVertices { vertices, lights, material, clamp });
-}
-
-/// [`light_vertices`] as a job of [`zline_simd::vectorize`].
-struct LightVertices<'a> {
-    vertices: &'a mut [ClipVertex],
-    lights: &'a PreparedLights,
-    material: &'a PreparedMaterial,
-    clamp: GouraudClamp,
-}
-
-impl zline_simd::Vectorized for LightVertices<'_> {
-    type Output = ();
-
-    #[inline(always)]
-    fn run<S: Level>(self) {
-        light_vertices_at::<S>(self.vertices, self.lights, self.material, self.clamp);
-    }
-}
-
-/// [`light_vertices`] at level `S`.
-#[inline(always)]
-fn light_vertices_at<S: Level>(
-    vertices: &mut [ClipVertex],
-    lights: &PreparedLights,
-    material: &PreparedMaterial,
-    clamp: GouraudClamp,
-) {
-    for group in vertices.chunks_mut(8) {
-        let lane = |k: usize| &group[k.min(group.len() - 1)];
-        let gather = |f: fn(&ClipVertex) -> Vec3| {
-            let v: [Vec3; 8] = std::array::from_fn(|k| f(lane(k)));
-            Vec3x8::<S> {
-                x: f32x8::from(v.map(|p| p.x)),
-                y: f32x8::from(v.map(|p| p.y)),
-                z: f32x8::from(v.map(|p| p.z)),
-            }
-        };
-        let (eye, normal) = (gather(|v| v.eye), gather(|v| v.normal));
-        let c = match clamp {
-            GouraudClamp::PerVertex => lights.shade_x8(material, eye, normal),
-            GouraudClamp::PerSample => {
-                let (ambient_diffuse, specular) = lights.shade_parts_x8(material, eye, normal);
-                ambient_diffuse + specular
-            }
-        };
-        for (k, v) in group.iter_mut().enumerate() {
-            v.color = c.lane(k);
-        }
-    }
-}
-
 /// The vertex transform eight vertices at a time, a job of
 /// [`zline_simd::vectorize`]: the three matrix products, the normal's
 /// normalization and both outcodes in lanes, with glam's operations in
 /// glam's order (no fused multiply-add), so that every vertex gets the bits
 /// of its scalar twin [`transform_vertex`]; the divide and the snap, in
-/// f64, per vertex that needs no clipping.
+/// f64, per vertex that needs no clipping. Gouraud vertices lit here are
+/// lit from the same lanes (the lighting model eight vertices at a time:
+/// exactly what [`PreparedLights::shade`] gives, or the sum of
+/// [`PreparedLights::shade_parts`] unclamped, see `zline_shading::Vec3x8`).
 struct TransformVertices<'a> {
     out: &'a mut [ClipVertex],
     positions: &'a [Vec3],
     normals: &'a [Vec3],
     t: &'a ObjectTransforms,
     screen: &'a Screen,
+    lighting: Option<VertexLights<'a>>,
 }
 
 impl zline_simd::Vectorized for TransformVertices<'_> {
@@ -318,10 +260,10 @@ impl zline_simd::Vectorized for TransformVertices<'_> {
 
     #[inline(always)]
     fn run<S: Level>(self) {
-        let TransformVertices { out, positions, normals, t, screen } = self;
+        let TransformVertices { out, positions, normals, t, screen, lighting } = self;
         let groups = out.chunks_mut(8).zip(positions.chunks(8).zip(normals.chunks(8)));
         for (out, (p, n)) in groups {
-            transform_group::<S>(out, p, n, t, screen);
+            transform_group::<S>(out, p, n, (t, lighting.as_ref()), screen);
         }
     }
 }
@@ -335,7 +277,7 @@ fn transform_group<S: Level>(
     out: &mut [ClipVertex],
     p: &[Vec3],
     n: &[Vec3],
-    t: &ObjectTransforms,
+    (t, lighting): (&ObjectTransforms, Option<&VertexLights<'_>>),
     s: &Screen,
 ) {
     let p = [gather::<S>(p, 0), gather(p, 1), gather(p, 2)];
@@ -352,11 +294,27 @@ fn transform_group<S: Level>(
     let unit = rcp.is_finite() & rcp.cmp_gt(f32x8::splat(0.0));
     let zero = f32x8::splat(0.0);
     let normal = [unit.blend(mx * rcp, zero), unit.blend(my * rcp, zero), unit.blend(mz * rcp, zero)];
+    let color = match lighting {
+        None => [zero; 3],
+        Some(l) => {
+            let eye = Vec3x8 { x: eye[0], y: eye[1], z: eye[2] };
+            let normal = Vec3x8 { x: normal[0], y: normal[1], z: normal[2] };
+            let c = match l.clamp {
+                GouraudClamp::PerVertex => l.lights.shade_x8(l.material, eye, normal),
+                GouraudClamp::PerSample => {
+                    let (ambient_diffuse, specular) = l.lights.shade_parts_x8(l.material, eye, normal);
+                    ambient_diffuse + specular
+                }
+            };
+            [c.x, c.y, c.z]
+        }
+    };
     let clip_codes = s.volume.clip_codes_x8(clip);
     let view_codes = view_codes_x8(clip);
     let eye = [eye[0].to_array(), eye[1].to_array(), eye[2].to_array()];
     let normal = [normal[0].to_array(), normal[1].to_array(), normal[2].to_array()];
     let clip = [clip[0].to_array(), clip[1].to_array(), clip[2].to_array(), clip[3].to_array()];
+    let color = [color[0].to_array(), color[1].to_array(), color[2].to_array()];
     for (k, v) in out.iter_mut().enumerate() {
         let clip = Vec4::new(clip[0][k], clip[1][k], clip[2][k], clip[3][k]);
         let mut clip_code = clip_codes[k];
@@ -368,7 +326,7 @@ fn transform_group<S: Level>(
             clip,
             eye: Vec3::new(eye[0][k], eye[1][k], eye[2][k]),
             normal: Vec3::new(normal[0][k], normal[1][k], normal[2][k]),
-            color: Vec3::ZERO,
+            color: Vec3::new(color[0][k], color[1][k], color[2][k]),
             uv: glam::Vec2::ZERO,
             tangent: Vec4::ZERO,
             projected: projected.unwrap_or_default(),
@@ -494,7 +452,8 @@ mod tests {
                 positions.iter().zip(&normals).map(|(&p, &n)| bits(&transform_vertex(p, n, &t, &screen))).collect();
             for baseline in [false, true] {
                 let mut out = vec![ClipVertex::default(); positions.len()];
-                let job = TransformVertices { out: &mut out, positions: &positions, normals: &normals, t: &t, screen: &screen };
+                let (positions, normals, screen) = (&positions, &normals, &screen);
+                let job = TransformVertices { out: &mut out, positions, normals, t: &t, screen, lighting: None };
                 if baseline {
                     zline_simd::vectorize_at::<zline_simd::lanes::Baseline, _>(job);
                 } else {
@@ -502,6 +461,43 @@ mod tests {
                 }
                 let lanes: Vec<Vec<u32>> = out.iter().map(bits).collect();
                 prop_assert_eq!(&lanes, &twin, "baseline: {}", baseline);
+            }
+            // Lit from the lanes: each colour is the scalar lighting model
+            // at the vertex's own eye position and normal, clamped per
+            // vertex or the unclamped sum.
+            let model = zline_shading::LightingModel {
+                ambient: Vec3::splat(0.1),
+                lights: vec![
+                    zline_shading::Light::Point {
+                        position: Vec3::new(4.0, 4.0, 5.0),
+                        color: Vec3::ONE,
+                        attenuation: zline_shading::Attenuation::new(1.0, 0.01, 0.005),
+                    },
+                    zline_shading::Light::Directional { direction: Vec3::new(1.0, -0.5, -1.0), color: Vec3::new(0.25, 0.3, 0.6) },
+                ],
+                environment: None,
+            };
+            let lights = PreparedLights::new(&model, &Mat4::IDENTITY);
+            let material = PreparedMaterial::new(zline_shading::Material { ks: Vec3::splat(0.6), ns: 40.0, ..Default::default() });
+            for clamp in [GouraudClamp::PerVertex, GouraudClamp::PerSample] {
+                let mut out = vec![ClipVertex::default(); positions.len()];
+                let lighting = Some(VertexLights { lights: &lights, material: &material, clamp });
+                let (positions, normals, screen) = (&positions, &normals, &screen);
+                zline_simd::vectorize(TransformVertices { out: &mut out, positions, normals, t: &t, screen, lighting });
+                // A vertex at a non-finite position is outside every view
+                // volume plane and never drawn; the scalar model returns
+                // black there, the lanes a colour.
+                for v in out.iter().filter(|v| v.eye.is_finite()) {
+                    let expected = match clamp {
+                        GouraudClamp::PerVertex => lights.shade(&material, v.eye, v.normal, Vec3::ZERO),
+                        GouraudClamp::PerSample => {
+                            let parts = lights.shade_parts(&material, v.eye, v.normal, Vec3::ZERO);
+                            parts.ambient_diffuse + parts.specular
+                        }
+                    };
+                    let canon = |c: Vec3| c.to_array().map(|f| if f.is_nan() { u32::MAX } else { f.to_bits() });
+                    prop_assert_eq!(canon(v.color), canon(expected), "{:?} at {:?}, {:?}", clamp, v.eye, v.normal);
+                }
             }
         }
     }
