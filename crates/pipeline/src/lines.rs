@@ -49,7 +49,7 @@
 //! of a fine mesh, edges of 2–3 pixels) is dashed as one line.
 
 use glam::{DVec3, DVec4, Vec3};
-use rayon::slice::ParallelSliceMut;
+use rayon::prelude::*;
 use zline_scene::{Mesh, WireframeMode};
 
 use crate::bin::TileGrid;
@@ -124,7 +124,14 @@ pub struct Lines {
     clip: Vec<DVec4>,
     faces: Vec<Face>,
     edges: Vec<(u32, u32, u32)>,
+    /// Where each edge's run of faces starts in `edges`, and the end.
+    runs: Vec<u32>,
+    /// Each run's segment, if it has one.
+    found: Vec<Option<Segment>>,
 }
+
+/// An edge slot without an edge: after every real (a, b, face) key.
+const NO_EDGE: (u32, u32, u32) = (u32::MAX, u32::MAX, u32::MAX);
 
 impl Lines {
     /// Empties the set for a frame drawn with `mode` on `background`.
@@ -146,61 +153,68 @@ impl Lines {
         let positions = &mesh.positions;
         self.weld_vertices(positions);
         let m = transforms.clip_from_object.as_dmat4();
-        self.clip.clear();
-        self.clip.extend(positions.iter().map(|p| m * p.as_dvec3().extend(1.0)));
+        positions.par_iter().map(|p| m * p.as_dvec3().extend(1.0)).collect_into_vec(&mut self.clip);
         let object_from_eye = transforms.eye_from_object.as_dmat4().inverse();
         let viewer = if frame.perspective {
             object_from_eye * DVec4::new(0.0, 0.0, 0.0, 1.0)
         } else {
             object_from_eye * DVec4::new(0.0, 0.0, 1.0, 0.0)
         };
-        self.faces.clear();
-        self.edges.clear();
-        for (f, t) in mesh.triangles.iter().enumerate() {
+        // Per triangle, in parallel: its face, and its three edges in its
+        // own three slots; a degenerate edge (or every edge of a triangle
+        // with an index out of range, a hand-built mesh) is a sentinel that
+        // sorts after every real key and is cut off.
+        let (clip, weld) = (&self.clip, &self.weld);
+        self.edges.resize(mesh.triangles.len() * 3, NO_EDGE);
+        let triangles = mesh.triangles.par_iter().zip(self.edges.par_chunks_mut(3)).enumerate();
+        let faces = triangles.map(|(f, (t, edges))| {
+            edges.fill(NO_EDGE);
             let corner = |k: usize| positions.get(t[k] as usize).map(|p| p.as_dvec3());
             let (Some(p0), Some(p1), Some(p2)) = (corner(0), corner(1), corner(2)) else {
-                // An index out of range (a hand-built mesh): no edges.
-                self.faces.push(Face { normal: DVec3::ZERO, front: false, slope: 0.0 });
-                continue;
+                return Face { normal: DVec3::ZERO, front: false, slope: 0.0 };
             };
             let normal = (p1 - p0).cross(p2 - p0);
             let towards = if frame.perspective { viewer.truncate() - p0 } else { viewer.truncate() };
-            let clip = t.map(|i| self.clip[i as usize]);
-            self.faces.push(Face { normal, front: normal.dot(towards) > 0.0, slope: slope(clip, frame) });
-            for k in 0..3 {
-                let (a, b) = (self.weld[t[k] as usize], self.weld[t[(k + 1) % 3] as usize]);
+            for (k, edge) in edges.iter_mut().enumerate() {
+                let (a, b) = (weld[t[k] as usize], weld[t[(k + 1) % 3] as usize]);
                 if a != b {
-                    self.edges.push((a.min(b), a.max(b), f as u32));
+                    *edge = (a.min(b), a.max(b), f as u32);
                 }
             }
-        }
+            let clip = t.map(|i| clip[i as usize]);
+            Face { normal, front: normal.dot(towards) > 0.0, slope: slope(clip, frame) }
+        });
+        faces.collect_into_vec(&mut self.faces);
         // Every key is distinct (it holds the face), so the parallel
         // unstable sort gives one order for any thread count.
         self.edges.par_sort_unstable();
-        let cap = depth_extent(&self.clip, frame) * SLOPE_CAP;
-        let cos_limit = feature_angle.map(|a| f64::from(a).to_radians().cos());
+        self.edges.truncate(self.edges.partition_point(|e| e.0 != NO_EDGE.0));
+        // The runs of one edge (its faces), then each run's segment in
+        // parallel, in order.
+        self.runs.clear();
         let mut start = 0;
         while start < self.edges.len() {
-            let (a, b, _) = self.edges[start];
-            let mut end = start + 1;
-            while end < self.edges.len() && (self.edges[end].0, self.edges[end].1) == (a, b) {
-                end += 1;
-            }
-            let faces = self.edges[start..end].iter().map(|e| self.faces[e.2 as usize]);
-            let keep = match cos_limit {
-                None => true,
-                Some(limit) => feature(faces.clone(), limit),
-            };
-            if keep {
-                let front = faces.clone().filter(|f| f.front).map(|f| f.slope).fold(None, max);
-                let s = front.or_else(|| faces.map(|f| f.slope).fold(None, max)).unwrap_or(0.0);
-                let (ca, cb) = (self.clip[a as usize], self.clip[b as usize]);
-                if let Some(segment) = segment(ca, cb, frame, DEPTH_EPSILON + s.min(cap)) {
-                    self.segments.push(segment);
-                }
-            }
-            start = end;
+            self.runs.push(start as u32);
+            let key = (self.edges[start].0, self.edges[start].1);
+            start += self.edges[start..].iter().take_while(|e| (e.0, e.1) == key).count();
         }
+        self.runs.push(self.edges.len() as u32);
+        let cap = depth_extent(&self.clip, frame) * SLOPE_CAP;
+        let cos_limit = feature_angle.map(|a| f64::from(a).to_radians().cos());
+        let (edges, faces, clip) = (&self.edges, &self.faces, &self.clip);
+        let found = self.runs.par_windows(2).map(|run| {
+            let run = &edges[run[0] as usize..run[1] as usize];
+            let (a, b, _) = run[0];
+            let faces = run.iter().map(|e| faces[e.2 as usize]);
+            if cos_limit.is_some_and(|limit| !feature(faces.clone(), limit)) {
+                return None;
+            }
+            let front = faces.clone().filter(|f| f.front).map(|f| f.slope).fold(None, max);
+            let s = front.or_else(|| faces.map(|f| f.slope).fold(None, max)).unwrap_or(0.0);
+            segment(clip[a as usize], clip[b as usize], frame, DEPTH_EPSILON + s.min(cap))
+        });
+        found.collect_into_vec(&mut self.found);
+        self.segments.extend(self.found.iter().flatten());
     }
 
     /// `weld[v]`: the smallest index of a vertex at `v`'s position.

@@ -108,3 +108,28 @@ fn oversized_settings_are_taken_as_the_largest() {
     let image = render(&scene, &RenderOptions { tile_size: u32::MAX }).0;
     assert_eq!((image.width, image.height), (zline_scene::MAX_IMAGE_SIDE, 1));
 }
+
+#[test]
+fn lines_do_not_change_a_byte_with_tile_size_or_thread_count() {
+    // The edges are extracted, sorted and clipped in parallel: every edge
+    // and every feature edge, hidden ones dashed.
+    use zline_scene::{Wireframe, WireframeMode};
+    for (mode, feature_angle) in [(WireframeMode::HiddenDashed, None), (WireframeMode::All, Some(20.0))] {
+        let mut s = test_scene(ShadingMode::Phong, Interpolation::PerspectiveCorrect);
+        s.settings.wireframe = Wireframe { mode, only: false, feature_angle };
+        let reference = render(&s, &RenderOptions { tile_size: 64 }).0;
+        let plain = render(
+            &test_scene(ShadingMode::Phong, Interpolation::PerspectiveCorrect),
+            &RenderOptions::default(),
+        )
+        .0;
+        assert!(reference != plain, "{mode:?}: no line drawn");
+        for tile_size in [7, 64] {
+            for threads in [1, 2, 3, 8] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let image = pool.install(|| render(&s, &RenderOptions { tile_size }).0);
+                assert!(image == reference, "{mode:?}: tile {tile_size}, {threads} threads differ");
+            }
+        }
+    }
+}
