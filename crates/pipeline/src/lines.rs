@@ -128,6 +128,8 @@ pub struct Lines {
     runs: Vec<u32>,
     /// Each run's segment, if it has one.
     found: Vec<Option<Segment>>,
+    /// Each segment's tiles: columns x0..=x1, rows y0..=y1.
+    ranges: Vec<[u32; 4]>,
 }
 
 /// An edge slot without an edge: after every real (a, b, face) key.
@@ -240,18 +242,41 @@ impl Lines {
         self.bins.resize_with(grid.len(), Vec::new);
         self.bins.truncate(grid.len());
         self.bins.iter_mut().for_each(Vec::clear);
+        if grid.is_empty() {
+            return;
+        }
         let (ts, n) = (f64::from(grid.tile_size), f64::from(n));
         let (cols, rows) = (grid.cols as usize, grid.rows as usize);
-        for (k, s) in self.segments.iter().enumerate() {
-            let tile = |v: f64, count: usize| ((v.floor() * n / ts).max(0.0) as usize).min(count - 1);
+        // In bands of tile rows, one task a band (as `bin::bin_primitives`
+        // does): each scans every segment and fills its own tiles' lists,
+        // in segment order whatever the band count.
+        let bands = rayon::current_num_threads().clamp(1, rows);
+        let rows_per_band = rows.div_ceil(bands);
+        // Each segment's tile range once, in parallel; the bands then scan
+        // the ranges.
+        let tile = |v: f64, count: usize| ((v.floor() * n / ts).max(0.0) as usize).min(count - 1) as u32;
+        let ranges = self.segments.par_iter().map(|s| {
             let (x0, x1) = (tile(s.a[0].min(s.b[0]), cols), tile(s.a[0].max(s.b[0]), cols));
             let (y0, y1) = (tile(s.a[1].min(s.b[1]), rows), tile(s.a[1].max(s.b[1]), rows));
-            for row in y0..=y1 {
-                for col in x0..=x1 {
-                    self.bins[row * cols + col].push(k as u32);
+            [x0, x1, y0, y1]
+        });
+        ranges.collect_into_vec(&mut self.ranges);
+        let ranges = &self.ranges;
+        self.bins.par_chunks_mut(rows_per_band * cols).enumerate().for_each(|(band, bins)| {
+            let first = band * rows_per_band;
+            let last = first + bins.len() / cols - 1;
+            for (k, range) in ranges.iter().enumerate() {
+                let [x0, x1, y0, y1] = range.map(|v| v as usize);
+                if y1 < first || y0 > last {
+                    continue;
+                }
+                for row in y0.max(first)..=y1.min(last) {
+                    for col in x0..=x1 {
+                        bins[(row - first) * cols + col].push(k as u32);
+                    }
                 }
             }
-        }
+        });
     }
 
     /// The segments binned in tile `tile` (empty before [`Lines::bin`]).
