@@ -17,6 +17,7 @@
 //! evaluates with rays.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use zline_scene::{light_position, shadow_matrix_f64, Light, Mesh, Object, ShadowPlane};
 
 /// How close to the light's height above the plane a caster point may be
@@ -27,15 +28,17 @@ pub(crate) const SLAB_MARGIN: f64 = 1e-6;
 
 /// The shadow of `casters` on `plane` from `light`, as world-space
 /// triangles in `out` (cleared first; positions, a normal per vertex —
-/// the plane's — and triangles); `world` is scratch for a caster's
-/// vertices, kept by the caller so that frames allocate nothing. Casters whose vertices are not finite
+/// the plane's — and triangles); `scratch` is kept by the caller so that
+/// frames allocate nothing. Each caster's vertices and triangles are
+/// transformed and clipped in parallel, and appended in order. Casters
+/// whose vertices are not finite
 /// cast nothing; a light in the plane or a directional light parallel to
 /// it casts nothing.
 pub(crate) fn project_casters<'a>(
     plane: &ShadowPlane,
     light: &Light,
     (receiver, casters): (&Object, impl Iterator<Item = &'a Object>),
-    (out, world): (&mut Mesh, &mut Vec<DVec3>),
+    (out, scratch): (&mut Mesh, &mut CasterScratch),
 ) {
     out.positions.clear();
     out.normals.clear();
@@ -63,16 +66,17 @@ pub(crate) fn project_casters<'a>(
     let (lo, hi) = (lo - pad, hi + pad);
     for object in casters {
         let to_world = object.world_from_object.as_dmat4();
-        world.clear();
-        world.extend(object.mesh.positions.iter().map(|&p| to_world.transform_point3(p.as_dvec3())));
-        for t in &object.mesh.triangles {
+        let positions = object.mesh.positions.par_iter();
+        positions.map(|&p| to_world.transform_point3(p.as_dvec3())).collect_into_vec(&mut scratch.world);
+        let world = &scratch.world;
+        let shadows = object.mesh.triangles.par_iter().map(|t| {
             let (Some(&a), Some(&b), Some(&c)) =
                 (world.get(t[0] as usize), world.get(t[1] as usize), world.get(t[2] as usize))
             else {
-                continue;
+                return Polygon::EMPTY;
             };
             if !(a.is_finite() && b.is_finite() && c.is_finite()) {
-                continue;
+                return Polygon::EMPTY;
             }
             let mut poly = Polygon::triangle(a, b, c).clip(height);
             if point_light {
@@ -85,6 +89,10 @@ pub(crate) fn project_casters<'a>(
             for axis in 0..3 {
                 poly = poly.clip(|x| x[axis] - lo[axis]).clip(|x| hi[axis] - x[axis]);
             }
+            poly
+        });
+        shadows.collect_into_vec(&mut scratch.polygons);
+        for poly in &mut scratch.polygons {
             let points = poly.points_mut();
             if points.len() < 3 || points.iter().any(|p| !p.is_finite()) {
                 continue;
@@ -101,6 +109,14 @@ pub(crate) fn project_casters<'a>(
     }
 }
 
+/// Scratch for [`project_casters`], kept from frame to frame: a caster's
+/// world-space vertices and each of its triangles' clipped shadow.
+#[derive(Debug, Default)]
+pub(crate) struct CasterScratch {
+    world: Vec<DVec3>,
+    polygons: Vec<Polygon>,
+}
+
 /// The world-space bounds of an object's vertices; `None` for an object
 /// without finite vertices.
 fn world_bounds(object: &Object) -> Option<(DVec3, DVec3)> {
@@ -113,7 +129,7 @@ fn world_bounds(object: &Object) -> Option<(DVec3, DVec3)> {
 /// A convex polygon of at most [`Polygon::MAX`] points, on the stack: a
 /// triangle cut by the two slab planes and the six faces of a box has at
 /// most 3 + 8 corners.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct Polygon {
     points: [DVec3; Polygon::MAX],
     len: usize,
@@ -121,6 +137,8 @@ pub(crate) struct Polygon {
 
 impl Polygon {
     const MAX: usize = 12;
+    /// No points.
+    const EMPTY: Polygon = Polygon { points: [DVec3::ZERO; Polygon::MAX], len: 0 };
 
     pub(crate) fn triangle(a: DVec3, b: DVec3, c: DVec3) -> Polygon {
         let mut points = [DVec3::ZERO; Polygon::MAX];
@@ -253,7 +271,7 @@ mod tests {
             &ground(),
             &light,
             (&quad(0.0, 10.0), [quad(1.0, 0.5)].iter()),
-            (&mut out, &mut Vec::new()),
+            (&mut out, &mut CasterScratch::default()),
         );
         assert_eq!(out.triangles.len(), 2);
         let (lo, hi) = bounds(&out);
@@ -275,7 +293,7 @@ mod tests {
             &ground(),
             &light,
             (&quad(0.0, 10.0), [quad(5.0, 0.5), quad(-1.0, 0.5)].iter()),
-            (&mut out, &mut Vec::new()),
+            (&mut out, &mut CasterScratch::default()),
         );
         assert!(out.triangles.is_empty(), "{:?}", out.positions);
         // A light under the plane lights its underside: the quad at y = -1
@@ -289,7 +307,7 @@ mod tests {
             &ground(),
             &under,
             (&quad(0.0, 10.0), [quad(1.0, 0.5), quad(-1.0, 0.5)].iter()),
-            (&mut out, &mut Vec::new()),
+            (&mut out, &mut CasterScratch::default()),
         );
         assert_eq!(out.triangles.len(), 2);
     }
@@ -308,7 +326,12 @@ mod tests {
         let wall = Object { mesh: Arc::new(tri), ..quad(0.0, 1.0) };
         let sun = Light::Directional { direction: Vec3::new(0.0, -1.0, -1.0), color: Vec3::ONE };
         let mut out = empty_mesh();
-        project_casters(&ground(), &sun, (&quad(0.0, 10.0), [wall].iter()), (&mut out, &mut Vec::new()));
+        project_casters(
+            &ground(),
+            &sun,
+            (&quad(0.0, 10.0), [wall].iter()),
+            (&mut out, &mut CasterScratch::default()),
+        );
         // The cut is the triangle's tip above y = 0: (±0.5, 0, 0) and (0, 1, 0),
         // whose tip falls along (0, −1, −1) to (0, 0, −1).
         let (lo, hi) = bounds(&out);

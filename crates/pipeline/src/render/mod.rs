@@ -107,8 +107,9 @@ pub struct Renderer {
     buffers: Vec<Mutex<BandBuffers>>,
     /// Scratch for one (plane, light) pair's planar shadow mesh.
     shadow_mesh: Option<zline_scene::Mesh>,
-    /// Scratch for a caster's world-space vertices (planar shadows).
-    shadow_world: Vec<glam::DVec3>,
+    /// Scratch for the casters' world-space vertices and shadow polygons
+    /// (planar shadows).
+    shadow_scratch: shadow::CasterScratch,
     /// The frame's shadow maps (`ShadowMode::Map`).
     maps: ShadowMaps,
     /// True when this frame reads `maps` (`ShadowMode::Map` with lights).
@@ -511,7 +512,7 @@ impl Renderer {
                 continue;
             };
             let casters = casters.map(|(_, o)| o);
-            let out = (&mut mesh, &mut self.shadow_world);
+            let out = (&mut mesh, &mut self.shadow_scratch);
             shadow::project_casters(&planes[p], &scene.lights[k], (receiver, casters), out);
             if mesh.triangles.is_empty() {
                 continue;

@@ -133,3 +133,29 @@ fn lines_do_not_change_a_byte_with_tile_size_or_thread_count() {
         }
     }
 }
+
+#[test]
+fn planar_shadows_do_not_change_a_byte_with_tile_size_or_thread_count() {
+    // The casters' triangles are clipped and projected in parallel: the
+    // wavy grid's 7,200 triangles onto a wall behind it.
+    use zline_scene::{ShadowMode, ShadowPlane, Shadows};
+    let mut s = test_scene(ShadingMode::Gouraud, Interpolation::PerspectiveCorrect);
+    let wall = crate::support::square(0.0, 0.0, 6.0, -5.0, zline_shading::Material::default());
+    s.objects.insert(0, object(wall, Some(ShadingMode::Phong)));
+    s.shadows = Shadows {
+        mode: ShadowMode::Planar,
+        planes: vec![ShadowPlane::of_object(0, &s.objects[0]).expect("the wall is flat")],
+        ..Shadows::default()
+    };
+    let reference = render(&s, &RenderOptions { tile_size: 64 }).0;
+    let mut unshadowed = s.clone();
+    unshadowed.shadows.mode = ShadowMode::None;
+    assert!(reference != render(&unshadowed, &RenderOptions::default()).0, "no shadow drawn");
+    for tile_size in [7, 64] {
+        for threads in [1, 2, 3, 8] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let image = pool.install(|| render(&s, &RenderOptions { tile_size }).0);
+            assert!(image == reference, "tile {tile_size}, {threads} threads differ");
+        }
+    }
+}
