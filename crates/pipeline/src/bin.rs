@@ -119,8 +119,7 @@ fn bin_into(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins, painter
     if grid.is_empty() {
         return;
     }
-    let bands = rayon::current_num_threads().clamp(1, grid.rows as usize);
-    let rows_per_band = (grid.rows as usize).div_ceil(bands);
+    let rows_per_band = rows_per_band(grid);
     let tiles = rows_per_band * grid.cols as usize;
     let opaque = bins.opaque.par_chunks_mut(tiles);
     let lists = opaque.zip(bins.transparent.par_chunks_mut(tiles)).zip(bins.shadow.par_chunks_mut(tiles));
@@ -130,6 +129,14 @@ fn bin_into(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins, painter
             BandLists { opaque, transparent, shadow, first_tile: first_row as usize * grid.cols as usize };
         band.bin(chunks, grid, first_row, painter);
     });
+}
+
+/// Tile rows per band when a grid's tiles are filled in parallel: as many
+/// bands as the pool has threads (one on one thread), at least a row each.
+/// Shared by the primitives' and the lines' binning.
+pub(crate) fn rows_per_band(grid: &TileGrid) -> usize {
+    let rows = grid.rows as usize;
+    rows.div_ceil(rayon::current_num_threads().clamp(1, rows.max(1)))
 }
 
 /// The tile lists of one band of tile rows ([`bin_into`]).

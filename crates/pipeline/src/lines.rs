@@ -250,8 +250,7 @@ impl Lines {
         // In bands of tile rows, one task a band (as `bin::bin_primitives`
         // does): each scans every segment and fills its own tiles' lists,
         // in segment order whatever the band count.
-        let bands = rayon::current_num_threads().clamp(1, rows);
-        let rows_per_band = rows.div_ceil(bands);
+        let rows_per_band = crate::bin::rows_per_band(grid);
         // Each segment's tile range once, in parallel; the bands then scan
         // the ranges.
         let tile = |v: f64, count: usize| ((v.floor() * n / ts).max(0.0) as usize).min(count - 1) as u32;

@@ -155,7 +155,7 @@ impl Polygon {
     /// an edge is split only where f changes sign. A convex polygon gains
     /// at most one point per cut.
     pub(crate) fn clip(&self, f: impl Fn(DVec3) -> f64) -> Polygon {
-        let mut out = Polygon { points: [DVec3::ZERO; Polygon::MAX], len: 0 };
+        let mut out = Polygon::EMPTY;
         let points = &self.points[..self.len];
         for (k, &a) in points.iter().enumerate() {
             let b = points[(k + 1) % points.len()];
