@@ -344,7 +344,7 @@ fn render<'py>(
     let mut scene = match (path, meshes) {
         (Some(path), None) => {
             let loaded = zline::load::load(&path, LoadOptions { allow_outside: allow_paths_outside })
-                .map_err(|e| error(format!("{e:#}")))?;
+                .map_err(|e| error(zline::error_line(&e)))?;
             warnings = loaded.warnings;
             if loaded.scene.settings.renderer != zline::scene::trace_options::Renderer::Raster {
                 warnings.push(format!(

@@ -211,8 +211,11 @@ def test_threads_do_not_change_the_arrays():
 
 
 def test_errors_name_the_file_and_the_problem(tmp_path):
-    with pytest.raises(zline.ZlineError, match="missing.obj"):
+    with pytest.raises(zline.ZlineError, match="missing.obj") as missing:
         zline.render(tmp_path / "missing.obj")
+    # One line, as the command line prints it: the operating system's
+    # reason once, not once more for the error's source.
+    assert str(missing.value).count("os error") == 1, str(missing.value)
     bad = tmp_path / "bad.ply"
     bad.write_text("ply\nformat ascii 1.0\nelement vertex 2\nend_header\n1 2\n")
     with pytest.raises(zline.ZlineError, match="bad.ply"):

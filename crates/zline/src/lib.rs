@@ -36,6 +36,24 @@ pub use zline_scenes as scenes;
 pub use zline_shading as shading;
 pub use zline_trace as trace;
 
+/// An error and its causes on one line, as the command line prints it,
+/// skipping a cause whose text the message already quotes (loader errors
+/// name their source in their own message).
+pub fn error_line(e: &anyhow::Error) -> String {
+    let mut line = String::new();
+    for cause in e.chain() {
+        let text = cause.to_string();
+        if line.contains(&text) {
+            continue;
+        }
+        if !line.is_empty() {
+            line.push_str(": ");
+        }
+        line.push_str(&text);
+    }
+    line
+}
+
 /// Ray-traces `scene` (`zline-trace`) and turns the linear colours into
 /// the image the rasterizer would write: the scene's tone mapping, then 8
 /// bits as SPEC §10 quantizes.

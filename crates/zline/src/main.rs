@@ -196,29 +196,11 @@ fn exit_code(f: impl FnOnce() -> Result<()> + std::panic::UnwindSafe) -> u8 {
     match result {
         Ok(Ok(())) => 0,
         Ok(Err(e)) => {
-            eprintln!("error: {}", one_line(&e));
+            eprintln!("error: {}", zline::error_line(&e));
             1
         }
         Err(_) => 1,
     }
-}
-
-/// The error and its causes on one line, skipping a cause whose text the
-/// message already quotes (loader errors name their source in their own
-/// message).
-fn one_line(e: &anyhow::Error) -> String {
-    let mut line = String::new();
-    for cause in e.chain() {
-        let text = cause.to_string();
-        if line.contains(&text) {
-            continue;
-        }
-        if !line.is_empty() {
-            line.push_str(": ");
-        }
-        line.push_str(&text);
-    }
-    line
 }
 
 /// Runs `zline render` (or any command) on an argument list, as the
@@ -454,7 +436,7 @@ fn job(common: &Common, allow_outside: bool) -> Result<job::Job<'_>> {
             Ok((scene, framed))
         }),
         aim: Box::new(|scene, framed, turn| apply_camera(scene, common, framed, turn)),
-        describe: one_line,
+        describe: zline::error_line,
     })
 }
 
