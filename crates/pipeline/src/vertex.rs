@@ -52,10 +52,16 @@ impl Projected {
         if cw.is_nan() || cw <= 0.0 {
             return None;
         }
+        let q = [f64::from(clip.x) / cw, f64::from(clip.y) / cw, f64::from(clip.z) / cw, 1.0 / cw];
+        Projected::from_quotients(q, viewport)
+    }
+
+    /// The window mapping of x/w, y/w, z/w and 1/w (in f64, w > 0).
+    #[inline(always)]
+    fn from_quotients([x, y, z, inv_w]: [f64; 4], viewport: Viewport) -> Option<Projected> {
         let (w, h) = (f64::from(viewport.width), f64::from(viewport.height));
-        let (x, y) = (f64::from(clip.x) / cw, f64::from(clip.y) / cw);
         let fixed = FixedPoint::snap(((x + 1.0) * 0.5 * w) as f32, ((1.0 - y) * 0.5 * h) as f32)?;
-        Some(Projected { fixed, z: f64::from(clip.z) / cw, inv_w: (1.0 / cw) as f32 })
+        Some(Projected { fixed, z, inv_w: inv_w as f32 })
     }
 }
 
@@ -315,10 +321,15 @@ fn transform_group<S: Level>(
     let normal = [normal[0].to_array(), normal[1].to_array(), normal[2].to_array()];
     let clip = [clip[0].to_array(), clip[1].to_array(), clip[2].to_array(), clip[3].to_array()];
     let color = [color[0].to_array(), color[1].to_array(), color[2].to_array()];
+    // The divides of all eight lanes, branch-free so that they run packed
+    // (each lane is IEEE division, the bits of `Projected::new`); only the
+    // lanes that need no clipping are used.
+    let quotients = divide_by_w(&clip);
     for (k, v) in out.iter_mut().enumerate() {
         let clip = Vec4::new(clip[0][k], clip[1][k], clip[2][k], clip[3][k]);
         let mut clip_code = clip_codes[k];
-        let projected = if clip_code == 0 { Projected::new(clip, s.viewport) } else { None };
+        let projected =
+            if clip_code == 0 { Projected::from_quotients(quotients[k], s.viewport) } else { None };
         if projected.is_none() {
             clip_code |= NEEDS_SETUP;
         }
@@ -334,6 +345,16 @@ fn transform_group<S: Level>(
             clip_code,
         };
     }
+}
+
+/// x/w, y/w, z/w and 1/w of eight clip positions, in f64.
+#[inline(always)]
+fn divide_by_w(clip: &[[f32; 8]; 4]) -> [[f64; 4]; 8] {
+    let w: [f64; 8] = clip[3].map(f64::from);
+    let over_w = |c: usize| -> [f64; 8] { std::array::from_fn(|k| f64::from(clip[c][k]) / w[k]) };
+    let (x, y, z) = (over_w(0), over_w(1), over_w(2));
+    let inv: [f64; 8] = std::array::from_fn(|k| 1.0 / w[k]);
+    std::array::from_fn(|k| [x[k], y[k], z[k], inv[k]])
 }
 
 /// Component `c` of up to eight vectors in lanes (the last repeated).
