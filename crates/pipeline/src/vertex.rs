@@ -247,8 +247,9 @@ fn transform_tangents(out: &mut [ClipVertex], tangents: &[Vec4], t: &ObjectTrans
 /// [`zline_simd::vectorize`]: the three matrix products, the normal's
 /// normalization and both outcodes in lanes, with glam's operations in
 /// glam's order (no fused multiply-add), so that every vertex gets the bits
-/// of its scalar twin [`transform_vertex`]; the divide and the snap, in
-/// f64, per vertex that needs no clipping. Gouraud vertices lit here are
+/// of its scalar twin [`transform_vertex`]; the divides by w in f64, all
+/// eight lanes packed, and the snap of each vertex that needs no clipping.
+/// Gouraud vertices lit here are
 /// lit from the same lanes (the lighting model eight vertices at a time:
 /// exactly what [`PreparedLights::shade`] gives, or the sum of
 /// [`PreparedLights::shade_parts`] unclamped, see `zline_shading::Vec3x8`).
