@@ -178,10 +178,10 @@ fn check_one(
         updated: false,
     };
     let mut argv: Vec<OsString> =
-        vec!["zline".into(), "render".into(), input.into(), "-o".into(), actual.into()];
+        vec!["zline".into(), "render".into(), input.into(), "-o".into(), actual.into(), "--quiet".into()];
     argv.extend(args.render.iter().cloned());
     if let Err(e) = render(argv) {
-        outcome.error = Some(format!("the render failed: {e:#}"));
+        outcome.error = Some(format!("the render failed: {}", zline::error_line(&e)));
         return outcome;
     }
     if args.update {
@@ -203,7 +203,7 @@ fn check_one(
     let (a, r) = match result {
         Ok(pair) => pair,
         Err(e) => {
-            outcome.error = Some(format!("{e:#}"));
+            outcome.error = Some(zline::error_line(&e));
             keep(args, &mut outcome, actual, None);
             return outcome;
         }

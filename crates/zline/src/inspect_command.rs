@@ -34,8 +34,14 @@ pub(crate) struct InspectArgs {
 pub(crate) fn run(args: &InspectArgs, render: &dyn Fn(Vec<OsString>) -> Result<()>) -> Result<()> {
     let dir = tempfile::tempdir().context("cannot make a temporary folder for the image")?;
     let image = dir.path().join("inspected.png");
-    let mut argv: Vec<OsString> =
-        vec!["zline".into(), "render".into(), args.input.clone().into(), "-o".into(), image.into()];
+    let mut argv: Vec<OsString> = vec![
+        "zline".into(),
+        "render".into(),
+        args.input.clone().into(),
+        "-o".into(),
+        image.into(),
+        "--quiet".into(),
+    ];
     argv.extend(["--inspect".into(), args.pixel.clone().into()]);
     if args.json {
         argv.push("--inspect-json".into());

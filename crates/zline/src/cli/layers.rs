@@ -162,22 +162,28 @@ impl LayerArgs {
         scene: &Scene,
         options: &RenderOptions,
         pool: &rayon::ThreadPool,
-        depth: Option<DepthImage>,
+        (depth, quiet): (Option<DepthImage>, bool),
     ) -> Result<()> {
+        // The `wrote …` lines, unless `--quiet`.
+        let say = |line: String| {
+            if !quiet {
+                eprintln!("{line}");
+            }
+        };
         if let (Some(path), Some(depth)) = (&self.depth_image, depth) {
             let range = zline::save_depth_png(&depth, path)
                 .with_context(|| format!("{}: cannot write the depth image", path.display()))?;
-            eprintln!(
+            say(format!(
                 "wrote {} (depth, 16-bit grey: {})",
                 path.display(),
                 zline::layers::describe_depth_range(range)
-            );
+            ));
         }
         if let Some(path) = &self.normal_image {
             let (normals, _) = pool.install(|| zline::pipeline::render_normals(scene, options));
             zline::save_image(&normals, path)
                 .with_context(|| format!("{}: cannot write the normal image", path.display()))?;
-            eprintln!("wrote {} (eye-space normals, RGB = (n + 1)/2)", path.display());
+            say(format!("wrote {} (eye-space normals, RGB = (n + 1)/2)", path.display()));
         }
         if let Some(path) = &self.id_image {
             let (mut image, mut ids) = (Image::empty(), zline::pipeline::ObjectIds::default());
@@ -187,11 +193,11 @@ impl LayerArgs {
             zline::save_image(&image, path)
                 .with_context(|| format!("{}: cannot write the ID image", path.display()))?;
             let shown = ids.ids.iter().filter(|&&i| i >= 0).collect::<std::collections::BTreeSet<_>>().len();
-            eprintln!(
+            say(format!(
                 "wrote {} (object IDs, RGB = index + 1: {shown} of {} objects seen)",
                 path.display(),
                 scene.objects.len()
-            );
+            ));
         }
         if let Some(pixel) = self.inspect {
             let mut image = Image::empty();
@@ -213,7 +219,7 @@ impl LayerArgs {
             zline::save_image(&zline::layers::overdraw_heat_map(&o), path)
                 .with_context(|| format!("{}: cannot write the overdraw image", path.display()))?;
             let line = zline::layers::describe_overdraw(&o, self.tie_rule, top_left.as_ref());
-            eprintln!("wrote {} ({line})", path.display());
+            say(format!("wrote {} ({line})", path.display()));
         }
         Ok(())
     }

@@ -121,7 +121,7 @@ pub fn run(state: &mut ViewerState, options: &ViewOptions, pool: &rayon::ThreadP
             // A failed save is reported; the window stays.
             match screenshot(state, options, pool, &mut frames.renderer) {
                 Ok(path) => println!("saved {}", path.display()),
-                Err(e) => eprintln!("error: {e:#}"),
+                Err(e) => eprintln!("error: {}", crate::error_line(&e)),
             }
         }
         let size = window.get_size();

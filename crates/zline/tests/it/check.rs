@@ -26,6 +26,8 @@ fn an_unchanged_scene_passes_exactly_and_a_changed_one_fails_with_its_heat_map()
         out.status.success() && said.contains("ok ") && said.contains("0 of 30000 pixels differ"),
         "{said}"
     );
+    // The verdict only: no line about the render's temporary image.
+    assert!(!said.contains("wrote"), "{said}");
     // Supersampled: the edges change. Exit 1, the picture and the heat
     // map kept, the JSON says why.
     let json = dir.path().join("result.json");

@@ -50,6 +50,23 @@ fn obj_renders_in_every_shading_mode() {
 }
 
 #[test]
+fn quiet_prints_nothing_on_success_and_still_names_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let (png, depth) = (dir.path().join("q.png"), dir.path().join("depth.png"));
+    let model = repo().join("assets/ply/bunny_lowres.ply");
+    let (model, png_arg) = (model.to_str().unwrap(), png.to_str().unwrap());
+    let args = ["render", model, "-o", png_arg, "--size", "64x48", "--depth-image", depth.to_str().unwrap()];
+    let loud = zline(&args);
+    assert!(String::from_utf8_lossy(&loud.stderr).matches("wrote").count() == 2, "{loud:?}");
+    let quiet = zline(&[&args[..], &["--quiet"]].concat());
+    check_png(&quiet, &png, (64, 48));
+    assert!(quiet.stderr.is_empty() && quiet.stdout.is_empty(), "{quiet:?}");
+    let missing = dir.path().join("missing.obj");
+    let out = zline(&["render", missing.to_str().unwrap(), "-o", png_arg, "-q"]);
+    check_clean_error(&out, &["missing.obj", "cannot read file"]);
+}
+
+#[test]
 fn example_scene_renders() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("scene.png");
