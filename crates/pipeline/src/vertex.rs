@@ -119,7 +119,11 @@ pub struct ClipVertex {
     /// Texture coordinates (zero for meshes without them).
     pub uv: glam::Vec2,
     /// Eye-space tangent (xyz, not normalized) and handedness w = ±1, for
-    /// meshes with a normal map (`zline_scene::NormalMap`); zero otherwise.
+    /// meshes with a normal map (`zline_scene::NormalMap`, Phong only).
+    /// On a Gouraud object lit by the vertex stage that draws both sides
+    /// with two-sided lighting ([`VertexLights::turned`]), xyz is instead
+    /// the colour lit with the normal turned, which setup gives a triangle
+    /// seen from behind. Zero otherwise.
     pub tangent: Vec4,
     /// Window position, NC depth and 1/w; meaningful when `clip_code` is 0.
     pub projected: Projected,
@@ -195,6 +199,11 @@ pub struct VertexLights<'a> {
     pub material: &'a PreparedMaterial,
     /// Whether the lit colour is clamped here or per sample.
     pub clamp: GouraudClamp,
+    /// Also light each vertex with its normal turned, into
+    /// [`ClipVertex::tangent`]: for an object drawing both sides with
+    /// two-sided lighting, whose triangles seen from behind would otherwise
+    /// relight their vertices one triangle at a time in setup.
+    pub turned: bool,
 }
 
 /// Transforms every vertex of `mesh` into `out` (resized), in parallel, and
@@ -301,19 +310,18 @@ fn transform_group<S: Level>(
     let unit = rcp.is_finite() & rcp.cmp_gt(f32x8::splat(0.0));
     let zero = f32x8::splat(0.0);
     let normal = [unit.blend(mx * rcp, zero), unit.blend(my * rcp, zero), unit.blend(mz * rcp, zero)];
-    let color = match lighting {
-        None => [zero; 3],
+    let (color, turned) = match lighting {
+        None => ([zero; 3], [zero; 3]),
         Some(l) => {
             let eye = Vec3x8 { x: eye[0], y: eye[1], z: eye[2] };
-            let normal = Vec3x8 { x: normal[0], y: normal[1], z: normal[2] };
-            let c = match l.clamp {
-                GouraudClamp::PerVertex => l.lights.shade_x8(l.material, eye, normal),
-                GouraudClamp::PerSample => {
-                    let (ambient_diffuse, specular) = l.lights.shade_parts_x8(l.material, eye, normal);
-                    ambient_diffuse + specular
-                }
+            let n = Vec3x8 { x: normal[0], y: normal[1], z: normal[2] };
+            let c = lit_x8(l, eye, n);
+            let t = if l.turned {
+                lit_x8(l, eye, Vec3x8 { x: -n.x, y: -n.y, z: -n.z })
+            } else {
+                Vec3x8::splat(Vec3::ZERO)
             };
-            [c.x, c.y, c.z]
+            ([c.x, c.y, c.z], [t.x, t.y, t.z])
         }
     };
     let clip_codes = s.volume.clip_codes_x8(clip);
@@ -322,6 +330,7 @@ fn transform_group<S: Level>(
     let normal = [normal[0].to_array(), normal[1].to_array(), normal[2].to_array()];
     let clip = [clip[0].to_array(), clip[1].to_array(), clip[2].to_array(), clip[3].to_array()];
     let color = [color[0].to_array(), color[1].to_array(), color[2].to_array()];
+    let turned = [turned[0].to_array(), turned[1].to_array(), turned[2].to_array()];
     // The divides of all eight lanes, branch-free so that they run packed
     // (each lane is IEEE division, the bits of `Projected::new`); only the
     // lanes that need no clipping are used.
@@ -340,11 +349,25 @@ fn transform_group<S: Level>(
             normal: Vec3::new(normal[0][k], normal[1][k], normal[2][k]),
             color: Vec3::new(color[0][k], color[1][k], color[2][k]),
             uv: glam::Vec2::ZERO,
-            tangent: Vec4::ZERO,
+            tangent: Vec4::new(turned[0][k], turned[1][k], turned[2][k], 0.0),
             projected: projected.unwrap_or_default(),
             view_code: view_codes[k],
             clip_code,
         };
+    }
+}
+
+/// Eight vertices lit by the lighting model: exactly what
+/// [`PreparedLights::shade`] gives, or the sum of
+/// [`PreparedLights::shade_parts`] unclamped.
+#[inline(always)]
+fn lit_x8<S: Level>(l: &VertexLights<'_>, eye: Vec3x8<S>, normal: Vec3x8<S>) -> Vec3x8<S> {
+    match l.clamp {
+        GouraudClamp::PerVertex => l.lights.shade_x8(l.material, eye, normal),
+        GouraudClamp::PerSample => {
+            let (ambient_diffuse, specular) = l.lights.shade_parts_x8(l.material, eye, normal);
+            ambient_diffuse + specular
+        }
     }
 }
 
@@ -503,22 +526,26 @@ mod tests {
             let material = PreparedMaterial::new(zline_shading::Material { ks: Vec3::splat(0.6), ns: 40.0, ..Default::default() });
             for clamp in [GouraudClamp::PerVertex, GouraudClamp::PerSample] {
                 let mut out = vec![ClipVertex::default(); positions.len()];
-                let lighting = Some(VertexLights { lights: &lights, material: &material, clamp });
+                let lighting = Some(VertexLights { lights: &lights, material: &material, clamp, turned: true });
                 let (positions, normals, screen) = (&positions, &normals, &screen);
                 zline_simd::vectorize(TransformVertices { out: &mut out, positions, normals, t: &t, screen, lighting });
                 // A vertex at a non-finite position is outside every view
                 // volume plane and never drawn; the scalar model returns
                 // black there, the lanes a colour.
+                // The turned colour (two-sided lighting) is the same model
+                // with the normal negated.
                 for v in out.iter().filter(|v| v.eye.is_finite()) {
-                    let expected = match clamp {
-                        GouraudClamp::PerVertex => lights.shade(&material, v.eye, v.normal, Vec3::ZERO),
+                    let lit = |normal: Vec3| match clamp {
+                        GouraudClamp::PerVertex => lights.shade(&material, v.eye, normal, Vec3::ZERO),
                         GouraudClamp::PerSample => {
-                            let parts = lights.shade_parts(&material, v.eye, v.normal, Vec3::ZERO);
+                            let parts = lights.shade_parts(&material, v.eye, normal, Vec3::ZERO);
                             parts.ambient_diffuse + parts.specular
                         }
                     };
                     let canon = |c: Vec3| c.to_array().map(|f| if f.is_nan() { u32::MAX } else { f.to_bits() });
-                    prop_assert_eq!(canon(v.color), canon(expected), "{:?} at {:?}, {:?}", clamp, v.eye, v.normal);
+                    prop_assert_eq!(canon(v.color), canon(lit(v.normal)), "{:?} at {:?}, {:?}", clamp, v.eye, v.normal);
+                    let turned = v.tangent.truncate();
+                    prop_assert_eq!(canon(turned), canon(lit(-v.normal)), "turned {:?} at {:?}", clamp, v.eye);
                 }
             }
         }

@@ -484,7 +484,15 @@ impl Renderer {
 
         let lights = match vertex_lighting {
             VertexLighting::VertexStage => {
-                Some(VertexLights { lights: &t.lighting, material, clamp: scene.settings.gouraud_clamp })
+                // Two-sided lighting of triangles seen from behind reads
+                // the vertex stage's turned colours (`setup::turned`).
+                let turned = ctx.faces == Faces::Both && ctx.sides == zline_scene::LightingSides::TwoSided;
+                Some(VertexLights {
+                    lights: &t.lighting,
+                    material,
+                    clamp: scene.settings.gouraud_clamp,
+                    turned,
+                })
             }
             VertexLighting::Unlit | VertexLighting::Setup => None,
         };

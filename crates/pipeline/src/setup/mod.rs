@@ -297,18 +297,16 @@ fn seen_from_behind(tri: &[&ClipVertex; 3], viewer: Viewer) -> bool {
     normal.dot(to_viewer) < 0.0
 }
 
-/// A vertex with its normal turned around, and its colour relit with that
-/// normal when the vertex stage lit it.
+/// A vertex with its normal turned around, and the colour the vertex stage
+/// lit with that normal when it lit the vertex ([`ClipVertex::tangent`]).
+#[inline]
 fn turned(v: &ClipVertex, ctx: &SetupContext<'_>) -> ClipVertex {
     let normal = -v.normal;
     // The whole tangent frame turns: T and w negated keep B = w·(N × T)
     // negated too, so the perturbed normal is the front one negated.
     let tangent = -v.tangent;
     let color = match ctx.vertex_lighting {
-        VertexLighting::VertexStage => {
-            let parts = ctx.lighting.shade_parts(ctx.material.0, v.eye, normal, Vec3::ZERO);
-            lit_color(parts, ctx.gouraud_clamp, ctx.lighting.ceiling())
-        }
+        VertexLighting::VertexStage => v.tangent.truncate(),
         VertexLighting::Unlit | VertexLighting::Setup => v.color,
     };
     ClipVertex { normal, color, tangent, ..*v }
