@@ -171,10 +171,29 @@ pub struct SetupContext<'a> {
 
 /// Sets up one triangle (vertices in the mesh's order) and appends 0 or more
 /// primitives to `out` (more than one only when clipping made a polygon).
+///
+/// The two tests that drop most triangles of a closed mesh run here,
+/// inlined into the caller's loop: entirely outside one plane of the view
+/// volume, and (culling, no clipping needed) a back face. The rest is
+/// [`setup_drawn`], out of line.
+#[inline(always)]
 pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut PrimitiveChunk) {
     if tri[0].view_code & tri[1].view_code & tri[2].view_code != 0 {
         return; // entirely outside one plane of the view volume (NaN vertices included)
     }
+    let projected = tri[0].clip_code | tri[1].clip_code | tri[2].clip_code == 0;
+    if ctx.faces == Faces::Front && projected {
+        let p = [tri[0].projected.fixed, tri[1].projected.fixed, tri[2].projected.fixed];
+        if !is_front_facing(&p) {
+            return; // culled before it is lit (SPEC §2)
+        }
+    }
+    setup_drawn(tri, ctx, out);
+}
+
+/// [`setup_triangle`] past its first tests.
+#[inline(never)]
+fn setup_drawn(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut PrimitiveChunk) {
     // Two-sided lighting (the default): a triangle seen from behind
     // (possible only when culling is off) is lit with its normals turned
     // towards the viewer, as OpenGL's two-sided lighting model and glTF's
