@@ -315,12 +315,14 @@ fn transform_group<S: Level>(
         Some(l) => {
             let eye = Vec3x8 { x: eye[0], y: eye[1], z: eye[2] };
             let n = Vec3x8 { x: normal[0], y: normal[1], z: normal[2] };
-            let c = lit_x8(l, eye, n);
-            let t = if l.turned {
-                lit_x8(l, eye, Vec3x8 { x: -n.x, y: -n.y, z: -n.z })
-            } else {
-                Vec3x8::splat(Vec3::ZERO)
-            };
+            // One lighting call in a loop over one or two normals, not two
+            // inlined copies of the lighting model per level.
+            let normals = [n, Vec3x8 { x: -n.x, y: -n.y, z: -n.z }];
+            let mut lit = [Vec3x8::splat(Vec3::ZERO); 2];
+            for (out, normal) in lit.iter_mut().zip(normals).take(1 + usize::from(l.turned)) {
+                *out = lit_x8(l, eye, normal);
+            }
+            let [c, t] = lit;
             ([c.x, c.y, c.z], [t.x, t.y, t.z])
         }
     };

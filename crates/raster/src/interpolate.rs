@@ -143,7 +143,7 @@ impl AttributePlanes<0> {
 
 impl<const N: usize> AttributePlanes<N> {
     /// Planes through the vertex values `v[k][i]` (vertex k, attribute i).
-    #[inline(always)]
+    #[inline]
     pub fn new(basis: &PlaneBasis, v: [[f32; N]; 3]) -> AttributePlanes<N> {
         let mut dx = [0.0; N];
         let mut dy = [0.0; N];
