@@ -314,10 +314,7 @@ fn run(cli: Cli) -> Result<()> {
     let start = Instant::now();
     let (image, stats, depth) = pool.install(|| common.layers.render(&scene, &options));
     let elapsed = start.elapsed();
-    let saving = Instant::now();
-    zline::save_image(&image, &common.output)
-        .with_context(|| format!("{}: cannot write the image", common.output.display()))?;
-    let saved = saving.elapsed();
+    let saved = save_output(&image, &common)?;
     let count = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     if !common.quiet {
         eprintln!(
@@ -361,6 +358,14 @@ fn run(cli: Cli) -> Result<()> {
     Ok(())
 }
 
+/// Writes the image to `--output` and returns how long that took.
+fn save_output(image: &zline::pipeline::Image, common: &Common) -> Result<std::time::Duration> {
+    let saving = Instant::now();
+    zline::save_image(image, &common.output)
+        .with_context(|| format!("{}: cannot write the image", common.output.display()))?;
+    Ok(saving.elapsed())
+}
+
 /// `render --renderer raytrace`: traces, writes the image and says what it
 /// cost.
 fn ray_trace(
@@ -374,9 +379,7 @@ fn ray_trace(
     for warning in &traced.warnings {
         eprintln!("warning: {warning}");
     }
-    let saving = Instant::now();
-    zline::save_image(&image, &common.output)
-        .with_context(|| format!("{}: cannot write the image", common.output.display()))?;
+    let saved = save_output(&image, common)?;
     let w = traced.work;
     let pixels = (u64::from(image.width) * u64::from(image.height)).max(1);
     let rays = w.primary.rays + w.secondary.rays + w.shadow.rays;
@@ -408,7 +411,7 @@ fn ray_trace(
             ms(traced.build),
             ms(traced.trace),
             rays as f64 / traced.trace.as_secs_f64().max(1e-9) / 1e6,
-            ms(saving.elapsed()),
+            ms(saved),
             per_ray(w.primary),
             per_ray(w.shadow)
         );
