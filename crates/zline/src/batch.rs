@@ -147,7 +147,7 @@ pub(crate) fn run(args: &BatchArgs, job: &Job) -> Result<()> {
     std::fs::create_dir_all(outdir)
         .with_context(|| format!("{}: cannot create the folder", outdir.display()))?;
     let started = Instant::now();
-    let progress = Progress::new(mine.len() as u64, &args.progress, job.timings);
+    let progress = Progress::new(mine.len() as u64, &args.progress, (job.quiet, job.timings));
     let (mut rendered, mut skipped, mut failed) = (0usize, 0usize, 0usize);
     for input in &mine {
         let png = outdir.join(format!("{}.png", stem(input)?));

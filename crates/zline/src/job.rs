@@ -23,6 +23,8 @@ pub(crate) struct Job<'a> {
     pub(crate) output: PathBuf,
     /// `--timings`: per-file lines with their times.
     pub(crate) timings: bool,
+    /// `--quiet`: no progress bar and no per-file lines.
+    pub(crate) quiet: bool,
     /// The tile size.
     pub(crate) options: RenderOptions,
     /// The worker threads (`--threads`).

@@ -62,10 +62,6 @@ enum Command {
         /// by default absolute paths and `..` leading out are refused.
         #[arg(long)]
         allow_paths_outside: bool,
-        /// Print no `wrote …` lines on success (warnings and errors still
-        /// go to standard error).
-        #[arg(short, long)]
-        quiet: bool,
         #[command(flatten)]
         common: Common,
     },
@@ -101,10 +97,6 @@ enum Command {
         /// shadows on the floor).
         #[arg(long, value_enum, default_value_t = BuiltIn::Demo)]
         scene: BuiltIn,
-        /// Print no `wrote …` lines on success (warnings and errors still
-        /// go to standard error).
-        #[arg(short, long)]
-        quiet: bool,
         #[command(flatten)]
         common: Common,
     },
@@ -130,10 +122,6 @@ enum Command {
         heights: PathBuf,
         #[command(flatten)]
         terrain: terrain::TerrainArgs,
-        /// Print no `wrote …` lines on success (warnings and errors still
-        /// go to standard error).
-        #[arg(short, long)]
-        quiet: bool,
         #[command(flatten)]
         common: Common,
     },
@@ -235,12 +223,12 @@ fn run(cli: Cli) -> Result<()> {
         Command::Thumbnailer { action } => return thumbnail::thumbnailer(&action),
         Command::Scan(scan) => return scan_command::run(&scan),
         Command::Inspect(inspect) => return inspect_command::run(&inspect, &render_argv),
-        Command::Render { input, allow_paths_outside, quiet, common } => {
-            (Some(input), BuiltIn::Demo, allow_paths_outside, Common { quiet, ..common }, None)
+        Command::Render { input, allow_paths_outside, common } => {
+            (Some(input), BuiltIn::Demo, allow_paths_outside, common, None)
         }
-        Command::Demo { scene, quiet, common } => (None, scene, false, Common { quiet, ..common }, None),
-        Command::Terrain { heights, terrain, quiet, common } => {
-            (Some(heights), BuiltIn::Demo, false, Common { quiet, ..common }, Some(terrain))
+        Command::Demo { scene, common } => (None, scene, false, common, None),
+        Command::Terrain { heights, terrain, common } => {
+            (Some(heights), BuiltIn::Demo, false, common, Some(terrain))
         }
         Command::Turntable { turntable, common } => {
             common.layers.refuse("turntable")?;
@@ -316,18 +304,17 @@ fn run(cli: Cli) -> Result<()> {
     let elapsed = start.elapsed();
     let saved = save_output(&image, &common)?;
     let count = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
-    if !common.quiet {
-        eprintln!(
-            "wrote {} ({}x{}, {}, {} drawn, {} shaded, {:.2} ms)",
-            common.output.display(),
-            image.width,
-            image.height,
+    say_written(
+        &image,
+        &common,
+        format_args!(
+            "{}, {} drawn, {} shaded, {:.2} ms",
             count(stats.triangles, "triangle", "triangles"),
             stats.primitives,
             count(stats.fragments, "sample", "samples"),
             elapsed.as_secs_f64() * 1e3
-        );
-    }
+        ),
+    );
     common.layers.write(&scene, &options, &pool, (depth, common.quiet))?;
     if let Some(why) = blank_image(&scene, &stats) {
         let name = input.as_deref().map_or_else(|| built_in.name().into(), |p| p.display().to_string());
@@ -358,6 +345,13 @@ fn run(cli: Cli) -> Result<()> {
     Ok(())
 }
 
+/// The `wrote OUT (WxH, details)` line, unless `--quiet`.
+fn say_written(image: &zline::pipeline::Image, common: &Common, details: std::fmt::Arguments<'_>) {
+    if !common.quiet {
+        eprintln!("wrote {} ({}x{}, {details})", common.output.display(), image.width, image.height);
+    }
+}
+
 /// Writes the image to `--output` and returns how long that took.
 fn save_output(image: &zline::pipeline::Image, common: &Common) -> Result<std::time::Duration> {
     let saving = Instant::now();
@@ -383,12 +377,11 @@ fn ray_trace(
     let w = traced.work;
     let pixels = (u64::from(image.width) * u64::from(image.height)).max(1);
     let rays = w.primary.rays + w.secondary.rays + w.shadow.rays;
-    if !common.quiet {
-        eprintln!(
-        "wrote {} ({}x{}, ray traced: {} camera, {} reflected or transmitted, {} shadow rays, {:.2} a pixel, tree depth {}, {:.2} ms + {:.2} ms to build the {})",
-        common.output.display(),
-        image.width,
-        image.height,
+    say_written(
+        &image,
+        common,
+        format_args!(
+        "ray traced: {} camera, {} reflected or transmitted, {} shadow rays, {:.2} a pixel, tree depth {}, {:.2} ms + {:.2} ms to build the {}",
         w.primary.rays,
         w.secondary.rays,
         w.shadow.rays,
@@ -397,8 +390,8 @@ fn ray_trace(
         traced.trace.as_secs_f64() * 1e3,
         traced.build.as_secs_f64() * 1e3,
         options.accel.name()
+        ),
     );
-    }
     if common.timings {
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
         let per_ray = |c: zline::trace::accel::Counters| {
@@ -440,6 +433,7 @@ fn job(common: &Common, allow_outside: bool) -> Result<job::Job<'_>> {
     Ok(job::Job {
         output: common.output.clone(),
         timings: common.timings,
+        quiet: common.quiet,
         options: RenderOptions { tile_size: common.tile_size },
         pool,
         load: Box::new(move |input| {

@@ -7,15 +7,11 @@ use std::time::Duration;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-/// `--quiet` and `--verbose`.
+/// `--verbose` (`--quiet` is one of the common render flags).
 #[derive(Args)]
 pub(crate) struct ProgressArgs {
-    /// No progress bar and no per-file lines: only errors (and, when some
-    /// failed, the summary).
-    #[arg(short, long, conflicts_with = "verbose")]
-    pub(crate) quiet: bool,
     /// A line per file (or frame) with the time it took.
-    #[arg(short, long)]
+    #[arg(short, long, conflicts_with = "quiet")]
     pub(crate) verbose: bool,
 }
 
@@ -28,10 +24,11 @@ pub(crate) struct Progress {
 }
 
 impl Progress {
-    /// A bar for `len` steps; `timings` (the common `--timings`) asks for
-    /// the per-file lines as `--verbose` does.
-    pub(crate) fn new(len: u64, args: &ProgressArgs, timings: bool) -> Progress {
-        let bar = if args.quiet || !std::io::stderr().is_terminal() {
+    /// A bar for `len` steps; `quiet` and `timings` are the common
+    /// `--quiet` and `--timings` (which asks for the per-file lines as
+    /// `--verbose` does).
+    pub(crate) fn new(len: u64, args: &ProgressArgs, (quiet, timings): (bool, bool)) -> Progress {
+        let bar = if quiet || !std::io::stderr().is_terminal() {
             ProgressBar::hidden()
         } else {
             let bar = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr());
@@ -43,7 +40,7 @@ impl Progress {
             bar.enable_steady_tick(Duration::from_millis(250));
             bar
         };
-        Progress { bar, quiet: args.quiet, verbose: args.verbose || (timings && !args.quiet) }
+        Progress { bar, quiet, verbose: args.verbose || (timings && !quiet) }
     }
 
     /// The name shown beside the bar.

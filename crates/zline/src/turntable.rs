@@ -108,7 +108,8 @@ pub(crate) fn run(args: &TurntableArgs, job: &Job) -> Result<()> {
     }
     let started = Instant::now();
     let (scene, framed) = (job.load)(&args.input)?;
-    let progress = Progress::new(u64::from(frames.end - frames.start), &args.progress, job.timings);
+    let progress =
+        Progress::new(u64::from(frames.end - frames.start), &args.progress, (job.quiet, job.timings));
     let (width, height) = (scene.settings.width, scene.settings.height);
     let each_frame = |add: &mut dyn FnMut(u32, &Image) -> Result<()>| -> Result<()> {
         for k in frames.clone() {

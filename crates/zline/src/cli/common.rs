@@ -30,9 +30,10 @@ pub(crate) struct Common {
     /// Also print the time of each step: load, render, PNG encode and write.
     #[arg(long)]
     pub(crate) timings: bool,
-    /// Print no `wrote …` lines (`render`, `demo` and `terrain` set it from
-    /// their `--quiet`; the batch commands have their own).
-    #[arg(skip)]
+    /// Print no `wrote …` lines on success, and with `batch` and
+    /// `turntable` no progress bar and no per-file lines: only warnings,
+    /// errors (and, when some failed, a batch's summary).
+    #[arg(short, long)]
     pub(crate) quiet: bool,
     /// Image size, e.g. 1280x720 (default: the scene's, or 800x600).
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
