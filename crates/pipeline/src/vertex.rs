@@ -227,7 +227,10 @@ pub fn transform_mesh(
                 v.uv = uv;
             }
         }
-        if let Some(tangents) = mesh.normal_map.as_ref().and(mesh.tangents.get(start..start + out.len())) {
+        // Tangents are read only by Phong's perturbed kernel; on a Gouraud
+        // object lit here `tangent` holds the turned colour instead.
+        let tangents = mesh.normal_map.as_ref().and(mesh.tangents.get(start..start + out.len()));
+        if let (Some(tangents), None) = (tangents, lighting) {
             transform_tangents(out, tangents, t);
         }
         // Lit vertices have no vertex colours (`VertexLighting::choose`).
@@ -258,10 +261,9 @@ fn transform_tangents(out: &mut [ClipVertex], tangents: &[Vec4], t: &ObjectTrans
 /// glam's order (no fused multiply-add), so that every vertex gets the bits
 /// of its scalar twin [`transform_vertex`]; the divides by w in f64, all
 /// eight lanes packed, and the snap of each vertex that needs no clipping.
-/// Gouraud vertices lit here are
-/// lit from the same lanes (the lighting model eight vertices at a time:
-/// exactly what [`PreparedLights::shade`] gives, or the sum of
-/// [`PreparedLights::shade_parts`] unclamped, see `zline_shading::Vec3x8`).
+/// Gouraud vertices lit here are lit from the same lanes ([`lit_x8`], see
+/// `zline_shading::Vec3x8`), also with the normal turned when
+/// [`VertexLights::turned`] asks.
 struct TransformVertices<'a> {
     out: &'a mut [ClipVertex],
     positions: &'a [Vec3],

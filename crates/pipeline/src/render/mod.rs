@@ -486,13 +486,8 @@ impl Renderer {
             VertexLighting::VertexStage => {
                 // Two-sided lighting of triangles seen from behind reads
                 // the vertex stage's turned colours (`setup::turned`).
-                let turned = ctx.faces == Faces::Both && ctx.sides == zline_scene::LightingSides::TwoSided;
-                Some(VertexLights {
-                    lights: &t.lighting,
-                    material,
-                    clamp: scene.settings.gouraud_clamp,
-                    turned,
-                })
+                let clamp = scene.settings.gouraud_clamp;
+                Some(VertexLights { lights: &t.lighting, material, clamp, turned: ctx.turns_back_faces() })
             }
             VertexLighting::Unlit | VertexLighting::Setup => None,
         };

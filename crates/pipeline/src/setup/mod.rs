@@ -169,6 +169,15 @@ pub struct SetupContext<'a> {
     pub normals: bool,
 }
 
+impl SetupContext<'_> {
+    /// Whether a triangle seen from behind is lit with its normals turned
+    /// towards the viewer: back faces drawn, two-sided lighting.
+    #[inline]
+    pub fn turns_back_faces(&self) -> bool {
+        self.faces == Faces::Both && self.sides == LightingSides::TwoSided
+    }
+}
+
 /// Sets up one triangle (vertices in the mesh's order) and appends 0 or more
 /// primitives to `out` (more than one only when clipping made a polygon).
 ///
@@ -200,9 +209,7 @@ fn setup_drawn(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut Primitiv
     // doubleSided do. One-sided lighting keeps the normals as given, so the
     // far side of an open mesh is lit as if the viewer stood behind it.
     let flipped: [ClipVertex; 3];
-    let back = ctx.faces == Faces::Both
-        && ctx.sides == LightingSides::TwoSided
-        && seen_from_behind(&tri, ctx.viewer);
+    let back = ctx.turns_back_faces() && seen_from_behind(&tri, ctx.viewer);
     let tri = if back {
         flipped = tri.map(|v| turned(v, ctx));
         [&flipped[0], &flipped[1], &flipped[2]]

@@ -116,14 +116,36 @@ fn a_flat_normal_map_tilts_only_by_the_byte_rounding() {
     assert_eq!(zero.pixels, draw(&lit(square(None), ShadingMode::Phong, l)).pixels);
 }
 
+/// The square rotated 180° about y around its centre, culling off: seen
+/// from behind.
+fn turn_away(s: &mut Scene) {
+    s.objects[0].world_from_object = glam::Mat4::from_translation(Vec3::new(0.0, 0.0, -2.0))
+        * glam::Mat4::from_rotation_y(std::f32::consts::PI)
+        * glam::Mat4::from_translation(Vec3::new(0.0, 0.0, 2.0));
+    s.objects[0].cull_back_faces = false;
+}
+
 #[test]
 fn flat_and_gouraud_shading_ignore_the_maps() {
+    // Also seen from behind: two-sided Gouraud lighting reads the colour
+    // the vertex stage lit with the normal turned, which a mesh's tangents
+    // must not overwrite.
     let l = DVec3::new(1.0, 0.5, 2.0);
     for mode in [ShadingMode::Flat, ShadingMode::Gouraud] {
-        let plain = draw(&lit(square(None), mode, l));
-        for encoding in [NormalEncoding::Height, NormalEncoding::Tangent] {
-            let mapped = draw(&lit(square(Some((ramp(), encoding, 1.0))), mode, l));
-            assert_eq!(mapped.pixels, plain.pixels, "{mode:?}, {encoding:?}");
+        for back in [false, true] {
+            let draw_lit = |mesh| {
+                let mut s = lit(mesh, mode, l);
+                if back {
+                    turn_away(&mut s);
+                }
+                draw(&s)
+            };
+            let plain = draw_lit(square(None));
+            assert_ne!(plain.pixel(32, 30), [0, 0, 0], "{mode:?}, back {back}: lit");
+            for encoding in [NormalEncoding::Height, NormalEncoding::Tangent] {
+                let mapped = draw_lit(square(Some((ramp(), encoding, 1.0))));
+                assert_eq!(mapped.pixels, plain.pixels, "{mode:?}, back {back}, {encoding:?}");
+            }
         }
     }
 }
@@ -149,11 +171,7 @@ fn seen_from_behind_the_perturbed_normal_turns_around() {
     let l = DVec3::new(-1.0, 0.0, 1.0);
     let front = draw(&lit(square(Some((ramp(), NormalEncoding::Height, k))), ShadingMode::Phong, l));
     let mut s = lit(square(Some((ramp(), NormalEncoding::Height, k))), ShadingMode::Phong, l);
-    let turn = glam::Mat4::from_translation(Vec3::new(0.0, 0.0, -2.0))
-        * glam::Mat4::from_rotation_y(std::f32::consts::PI)
-        * glam::Mat4::from_translation(Vec3::new(0.0, 0.0, 2.0));
-    s.objects[0].world_from_object = turn;
-    s.objects[0].cull_back_faces = false;
+    turn_away(&mut s);
     let back = draw(&s);
     // The back's normal: the front normal (−a, 0, 1) rotated to (a, 0, −1),
     // negated by two-sided lighting: (−a, 0, 1) — the same as the front.
