@@ -99,11 +99,11 @@ impl EdgeWalker {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EdgeTable {
     /// Vertices sorted by y (top first), as given after snapping.
-    sorted: [FixedPoint; 3],
+    pub(crate) sorted: [FixedPoint; 3],
     /// True when the long edge (top to bottom) is the left boundary.
-    long_is_left: bool,
+    pub(crate) long_is_left: bool,
     /// Rows and columns that may hold covered samples.
-    bounds: Rect,
+    pub(crate) bounds: Rect,
 }
 
 impl EdgeTable {

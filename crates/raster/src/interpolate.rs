@@ -86,10 +86,10 @@ impl PlaneBasis {
 /// NC depth over a triangle, kept in f64 (SPEC §4).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DepthPlane {
-    z0: f64,
-    dzdx: f64,
-    dzdy: f64,
-    anchor: (f64, f64),
+    pub(crate) z0: f64,
+    pub(crate) dzdx: f64,
+    pub(crate) dzdy: f64,
+    pub(crate) anchor: (f64, f64),
 }
 
 impl DepthPlane {
@@ -130,10 +130,10 @@ impl DepthPlane {
 /// N attributes linear in window space, kept in f32.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AttributePlanes<const N: usize> {
-    v0: [f32; N],
-    dx: [f32; N],
-    dy: [f32; N],
-    anchor: (f64, f64),
+    pub(crate) v0: [f32; N],
+    pub(crate) dx: [f32; N],
+    pub(crate) dy: [f32; N],
+    pub(crate) anchor: (f64, f64),
 }
 
 impl AttributePlanes<0> {

@@ -12,12 +12,15 @@
 //!   what the rule prevents.
 //! - [`interpolate`]: plane equations for depth and attributes, evaluated
 //!   incrementally along spans and re-anchored on a fixed global grid.
+//! - [`lanes`]: the edge tables and planes of eight triangles at a time,
+//!   bit for bit the scalar ones, for setup vectorized across triangles.
 //!
 //! This crate knows nothing of lighting, files, threads or colour buffers.
 
 pub mod edge_table;
 pub mod fixed;
 pub mod interpolate;
+pub mod lanes;
 pub mod tie_rule;
 
 pub use edge_table::{EdgeTable, Span};

@@ -25,8 +25,8 @@ use crate::image::Image;
 use crate::lines::{LineFrame, Lines};
 use crate::lod::{Choice, LodView};
 use crate::setup::{
-    setup_triangle, AlphaUse, DepthEncoding, Faces, LevelOfDetail, NormalMapUse, PassKind, PrimitiveChunk,
-    SetupContext, TextureUse, VertexColors, Viewer,
+    setup_triangle, AlphaUse, DepthEncoding, Faces, LanesKind, LevelOfDetail, NormalMapUse, PassKind,
+    PrimitiveChunk, SetupContext, SetupTriangles, TextureUse, VertexColors, Viewer,
 };
 use crate::shadow;
 use crate::shadow_map::ShadowMaps;
@@ -589,9 +589,15 @@ fn setup_mesh(
         chunks.resize_with(*used, PrimitiveChunk::default);
     }
     let tris = mesh.triangles.par_chunks(chunk);
+    let lanes = LanesKind::choose(ctx, sources);
     chunks[first..*used].par_iter_mut().zip(tris).enumerate().for_each(|(k, (out, tris))| {
         out.reset(pass);
         (out.object, out.first_triangle) = (ctx.material.1, (k * chunk) as u32);
+        if let Some(kind) = lanes {
+            let (vertices, triangles) = (vertices.as_slice(), tris);
+            zline_simd::vectorize(SetupTriangles { vertices, triangles, ctx, kind, out });
+            return;
+        }
         for t in tris {
             if let Some(tri) = gather(vertices, t) {
                 setup_triangle(tri, ctx, out);

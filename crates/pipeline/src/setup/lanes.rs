@@ -1,0 +1,379 @@
+//! Setup vectorized across triangles: the common case — an untextured
+//! Gouraud or Phong triangle needing no clipping — eight triangles at a
+//! time ([`SetupTriangles`], a job of [`zline_simd::vectorize`]).
+//!
+//! Per group of eight: a scalar pass reads each triangle's three vertex
+//! records once and makes the per-triangle decisions of [`setup_triangle`]
+//! (view volume, clipping needed, back face, seen from behind), putting
+//! the window positions, depths and attribute values of the triangles it
+//! keeps into lanes; [`SetupLanes`] then builds the edge tables and every
+//! plane's gradients in lanes, with the scalar operations in their order;
+//! last, a scalar pass appends the primitives in mesh order, calling
+//! [`setup_triangle`] itself for a triangle that needs clipping. So the
+//! primitives, their order and their bits are exactly the scalar path's
+//! (the tests hold the two to it).
+
+use zline_raster::lanes::{Lanes, SetupLanes, TriangleLanes, SETUP_LANES};
+use zline_raster::{AttributePlanes, DepthPlane, EdgeTable};
+use zline_scene::Interpolation;
+use zline_shading::ShadingMode;
+use zline_simd::lanes::Level;
+
+use super::{
+    is_front_facing, seen_from_behind, setup_triangle, Faces, Gouraud, Kernel, Phong, Primitive,
+    PrimitiveChunk, SetupContext, VertexColors,
+};
+use crate::vertex::{ClipVertex, VertexLighting};
+
+/// The kernels the lanes path sets up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LanesKind {
+    /// Untextured Gouraud lit by the vertex stage: the colour.
+    Gouraud,
+    /// Untextured Phong without vertex colours: the normal and the eye
+    /// position.
+    Phong,
+}
+
+impl LanesKind {
+    /// The lanes path for an object, or `None` where only the scalar path
+    /// sets it up: flat shading (lit per triangle), textures, vertex
+    /// colours, maps, the adaptive mode, the normals frame, and the pixel
+    /// inspector's triangle sources.
+    pub fn choose(ctx: &SetupContext<'_>, sources: bool) -> Option<LanesKind> {
+        let plain = !sources
+            && ctx.adaptive.is_none()
+            && ctx.texture.is_none()
+            && ctx.normal_map.is_none()
+            && !ctx.normals
+            && ctx.vertex_colors == VertexColors::Absent;
+        match (ctx.shading, ctx.vertex_lighting) {
+            (ShadingMode::Gouraud, VertexLighting::VertexStage) if plain => Some(LanesKind::Gouraud),
+            (ShadingMode::Phong, VertexLighting::Unlit) if plain => Some(LanesKind::Phong),
+            _ => None,
+        }
+    }
+}
+
+/// Sets up `triangles` (indices into `vertices`) into `out` as
+/// [`setup_triangle`] would, one at a time, but eight at a time in lanes.
+pub struct SetupTriangles<'a> {
+    /// The object's transformed vertices.
+    pub vertices: &'a [ClipVertex],
+    /// The triangles, in mesh order.
+    pub triangles: &'a [[u32; 3]],
+    /// The object.
+    pub ctx: &'a SetupContext<'a>,
+    /// What the object's primitives are ([`LanesKind::choose`]).
+    pub kind: LanesKind,
+    /// Where the primitives go.
+    pub out: &'a mut PrimitiveChunk,
+}
+
+impl zline_simd::Vectorized for SetupTriangles<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<L: Level>(self) {
+        let SetupTriangles { vertices, triangles, ctx, kind, out } = self;
+        for group in triangles.chunks(SETUP_LANES) {
+            match kind {
+                LanesKind::Gouraud => setup_group::<GouraudLanes, 4>(vertices, group, ctx, out),
+                LanesKind::Phong => setup_group::<PhongLanes, 7>(vertices, group, ctx, out),
+            }
+        }
+    }
+}
+
+/// One kernel's planes and primitive, for [`setup_group`]: `N` planes, the
+/// first q (1/w or 1), then the vertex values [`Self::values`] gives, each
+/// times q.
+trait LaneKernel<const N: usize> {
+    /// Planes 1.. of a vertex (its normal turned when `back`), before q.
+    fn values(v: &ClipVertex, back: bool) -> [f32; N];
+    /// Appends the primitive.
+    fn push(
+        ctx: &SetupContext<'_>,
+        primitive: Primitive<AttributePlanes<N>>,
+        depths: (f32, f32),
+        out: &mut PrimitiveChunk,
+    );
+}
+
+/// [`LanesKind::Gouraud`].
+struct GouraudLanes;
+
+impl LaneKernel<4> for GouraudLanes {
+    #[inline(always)]
+    fn values(v: &ClipVertex, back: bool) -> [f32; 4] {
+        // Seen from behind: the colour the vertex stage lit with the normal
+        // turned (`super::turned`).
+        let c = if back { v.tangent.truncate() } else { v.color };
+        [0.0, c.x, c.y, c.z]
+    }
+
+    #[inline(always)]
+    fn push(
+        ctx: &SetupContext<'_>,
+        p: Primitive<AttributePlanes<4>>,
+        depths: (f32, f32),
+        out: &mut PrimitiveChunk,
+    ) {
+        let kernel = Kernel::Gouraud { interpolation: ctx.interpolation, clamp: ctx.gouraud_clamp };
+        let PrimitiveChunk { draws, bounds, tables, .. } = out;
+        let primitive = Primitive { edges: p.edges, depth: p.depth, shader: Gouraud { planes: p.shader } };
+        PrimitiveChunk::push((draws, bounds), &mut tables.gouraud, kernel, primitive, depths);
+    }
+}
+
+/// [`LanesKind::Phong`].
+struct PhongLanes;
+
+impl LaneKernel<7> for PhongLanes {
+    #[inline(always)]
+    fn values(v: &ClipVertex, back: bool) -> [f32; 7] {
+        let n = if back { -v.normal } else { v.normal };
+        [0.0, n.x, n.y, n.z, v.eye.x, v.eye.y, v.eye.z]
+    }
+
+    #[inline(always)]
+    fn push(
+        ctx: &SetupContext<'_>,
+        p: Primitive<AttributePlanes<7>>,
+        depths: (f32, f32),
+        out: &mut PrimitiveChunk,
+    ) {
+        let kernel = Kernel::Phong(ctx.interpolation);
+        let PrimitiveChunk { draws, bounds, tables, .. } = out;
+        let shader = Phong { planes: p.shader, material: ctx.material.1 };
+        let primitive = Primitive { edges: p.edges, depth: p.depth, shader };
+        PrimitiveChunk::push((draws, bounds), &mut tables.phong, kernel, primitive, depths);
+    }
+}
+
+/// What the first pass decided for one triangle of a group.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Lane {
+    /// No primitive (outside the view volume, culled, bad index).
+    Skip,
+    /// Needs clipping: [`setup_triangle`] sets it up.
+    Scalar,
+    /// In the lanes.
+    Lanes,
+}
+
+/// Up to eight triangles (see the module doc).
+#[inline(always)]
+fn setup_group<K: LaneKernel<N>, const N: usize>(
+    vertices: &[ClipVertex],
+    group: &[[u32; 3]],
+    ctx: &SetupContext<'_>,
+    out: &mut PrimitiveChunk,
+) {
+    let mut lane = [Lane::Skip; SETUP_LANES];
+    let mut points = TriangleLanes::default();
+    // Depth values, NC depths (the sort keys) and planes [q, values·q],
+    // per vertex j and lane k.
+    let mut depth = [[0.0f64; SETUP_LANES]; 3];
+    let mut nc = [[0.0f64; SETUP_LANES]; 3];
+    let mut planes = [[[0.0f32; SETUP_LANES]; 3]; N];
+    for (k, t) in group.iter().enumerate() {
+        let Some(tri) = gather(vertices, t) else {
+            continue;
+        };
+        if tri[0].view_code & tri[1].view_code & tri[2].view_code != 0 {
+            continue; // entirely outside one plane of the view volume (NaN vertices included)
+        }
+        if tri[0].clip_code | tri[1].clip_code | tri[2].clip_code != 0 {
+            lane[k] = Lane::Scalar;
+            continue;
+        }
+        let fixed = [tri[0].projected.fixed, tri[1].projected.fixed, tri[2].projected.fixed];
+        if ctx.faces == Faces::Front && !is_front_facing(&fixed) {
+            continue; // culled (SPEC §2)
+        }
+        let back = ctx.turns_back_faces() && seen_from_behind(&tri, ctx.viewer);
+        lane[k] = Lane::Lanes;
+        points.set(k, fixed);
+        for (j, v) in tri.iter().enumerate() {
+            depth[j][k] = ctx.depth.value(v, &v.projected);
+            nc[j][k] = v.projected.z;
+            let q = match ctx.interpolation {
+                Interpolation::PerspectiveCorrect => v.projected.inv_w,
+                Interpolation::ScreenLinear => 1.0,
+            };
+            let values = K::values(v, back);
+            planes[0][j][k] = q;
+            for i in 1..N {
+                planes[i][j][k] = values[i] * q;
+            }
+        }
+    }
+    if !lane.contains(&Lane::Lanes) {
+        for (k, t) in group.iter().enumerate() {
+            if let (Lane::Scalar, Some(tri)) = (lane[k], gather(vertices, t)) {
+                setup_triangle(tri, ctx, out);
+            }
+        }
+        return;
+    }
+    let setup = SetupLanes::new(&points);
+    let (dzdx, dzdy) = setup.gradients(&depth);
+    let mut dx = [[0.0f32; SETUP_LANES]; N];
+    let mut dy = [[0.0f32; SETUP_LANES]; N];
+    for i in 0..N {
+        (dx[i], dy[i]) = setup.attribute_gradients(&planes[i]);
+    }
+    let (sort, far) = sort_keys(&nc);
+    for (k, t) in group.iter().enumerate() {
+        match lane[k] {
+            Lane::Skip => {}
+            Lane::Scalar => {
+                if let Some(tri) = gather(vertices, t) {
+                    setup_triangle(tri, ctx, out);
+                }
+            }
+            Lane::Lanes if setup.drawn(k) => {
+                let edges: EdgeTable = setup.edge_table(k);
+                let depth: DepthPlane = setup.depth_plane(k, depth[0][k], (dzdx[k], dzdy[k]));
+                let v0 = std::array::from_fn(|i| planes[i][0][k]);
+                let d = (std::array::from_fn(|i| dx[i][k]), std::array::from_fn(|i| dy[i][k]));
+                let shader = setup.attribute_planes(k, v0, d);
+                K::push(ctx, Primitive { edges, depth, shader }, (sort[k], far[k]), out);
+            }
+            Lane::Lanes => {}
+        }
+    }
+}
+
+/// The draw's sort keys from the vertices' NC depths, as `super::emit`
+/// computes them: the mean and the largest, in f32.
+#[inline(always)]
+fn sort_keys(z: &[Lanes<f64>; 3]) -> (Lanes<f32>, Lanes<f32>) {
+    let mut sort = [0.0; SETUP_LANES];
+    let mut far = [0.0; SETUP_LANES];
+    for k in 0..SETUP_LANES {
+        sort[k] = ((z[0][k] + z[1][k] + z[2][k]) / 3.0) as f32;
+        far[k] = z[0][k].max(z[1][k]).max(z[2][k]) as f32;
+    }
+    (sort, far)
+}
+
+/// The three vertices of a triangle; `None` when an index is out of range.
+#[inline(always)]
+fn gather<'a>(vertices: &'a [ClipVertex], t: &[u32; 3]) -> Option<[&'a ClipVertex; 3]> {
+    Some([vertices.get(t[0] as usize)?, vertices.get(t[1] as usize)?, vertices.get(t[2] as usize)?])
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{Mat4, Vec3};
+    use proptest::prelude::*;
+    use zline_scene::{GouraudClamp, LightingSides, Material, Mesh};
+    use zline_shading::{Attenuation, Light, LightingModel, PreparedLights, PreparedMaterial};
+
+    use super::*;
+    use crate::setup::{DepthEncoding, Viewer};
+    use crate::vertex::{transform_mesh, ObjectTransforms, Screen, VertexLights, Viewport};
+    use crate::volume::ClipVolume;
+
+    /// A chunk's primitives, bit for bit (`{:?}` prints every float's
+    /// sign and NaN).
+    fn bits(chunk: &PrimitiveChunk) -> String {
+        let t = &chunk.tables;
+        format!("{:?}\n{:?}\n{:?}\n{:?}", chunk.draws, chunk.bounds, t.gouraud, t.phong)
+    }
+
+    fn vec3(r: f32) -> impl Strategy<Value = Vec3> {
+        (-r..r, -r..r, -r..r).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// Random meshes seen from random places — triangles in front,
+        /// behind, across the near plane and the guard band, sub-pixel
+        /// and degenerate, indices out of range — set up by the lanes and
+        /// one at a time by `setup_triangle` give the same primitives.
+        #[test]
+        fn lanes_equal_setup_triangle(
+            positions in prop::collection::vec(vec3(2.0), 3..40),
+            normals in prop::collection::vec(vec3(1.0), 40),
+            indices in prop::collection::vec(prop::array::uniform3(0u32..42), 1..60),
+            eye in vec3(4.0),
+            (phong, front_only, two_sided, linear, reversed, clamp) in
+                (any::<bool>(), any::<bool>(), any::<bool>(), any::<bool>(), any::<bool>(), any::<bool>()),
+            (width, height) in (1u32..400, 1u32..300),
+        ) {
+            let n = positions.len();
+            let normals = Some(normals[..n].to_vec());
+            let mut mesh = Mesh::new("random", positions, normals, vec![], Material::default()).unwrap();
+            // Unchecked, as a hand-built mesh may be: some out of range.
+            mesh.triangles = indices;
+            let eye_from_world = Mat4::look_at_rh(eye, Vec3::ZERO, Vec3::Y);
+            let clip_from_eye = Mat4::perspective_rh_gl(1.0, width as f32 / height as f32, 0.5, 20.0);
+            let t = ObjectTransforms::new(clip_from_eye, eye_from_world, Mat4::IDENTITY);
+            let model = LightingModel {
+                ambient: Vec3::splat(0.1),
+                lights: vec![Light::Point {
+                    position: Vec3::new(3.0, 4.0, 5.0),
+                    color: Vec3::ONE,
+                    attenuation: Attenuation::new(1.0, 0.01, 0.0),
+                }],
+                environment: None,
+            };
+            let lights = PreparedLights::new(&model, &eye_from_world);
+            let material = PreparedMaterial::new(Material::default());
+            let faces = if front_only { Faces::Front } else { Faces::Both };
+            let sides = if two_sided { LightingSides::TwoSided } else { LightingSides::OneSided };
+            let viewport = Viewport { width, height };
+            let volume = ClipVolume::new(width, height);
+            let ctx = SetupContext {
+                viewport,
+                volume,
+                depth: if reversed {
+                    DepthEncoding::Reversed { a: 1.05, b: 1.1, perspective: true }
+                } else {
+                    DepthEncoding::Normalized
+                },
+                shading: if phong { ShadingMode::Phong } else { ShadingMode::Gouraud },
+                vertex_lighting: if phong { VertexLighting::Unlit } else { VertexLighting::VertexStage },
+                interpolation: if linear { Interpolation::ScreenLinear } else { Interpolation::PerspectiveCorrect },
+                faces,
+                sides,
+                gouraud_clamp: if clamp { GouraudClamp::PerVertex } else { GouraudClamp::PerSample },
+                viewer: Viewer::AtOrigin,
+                material: (&material, 3),
+                lighting: &lights,
+                adaptive: None,
+                diffuse_only: (&material, 3),
+                texture: None,
+                vertex_colors: VertexColors::Absent,
+                normal_map: None,
+                normals: false,
+            };
+            let lit = (!phong).then_some(VertexLights {
+                lights: &lights,
+                material: &material,
+                clamp: ctx.gouraud_clamp,
+                turned: ctx.turns_back_faces(),
+            });
+            let mut vertices = Vec::new();
+            transform_mesh(&mesh, &t, lit, &Screen { viewport, volume }, &mut vertices);
+            let kind = LanesKind::choose(&ctx, false);
+            prop_assert_eq!(kind, Some(if phong { LanesKind::Phong } else { LanesKind::Gouraud }));
+            prop_assert_eq!(LanesKind::choose(&ctx, true), None);
+
+            let mut scalar = PrimitiveChunk::default();
+            for tri in &mesh.triangles {
+                if let Some(tri) = gather(&vertices, tri) {
+                    setup_triangle(tri, &ctx, &mut scalar);
+                }
+            }
+            let mut lanes = PrimitiveChunk::default();
+            let (vertices, triangles, kind) = (&vertices[..], &mesh.triangles[..], kind.unwrap());
+            zline_simd::vectorize(SetupTriangles { vertices, triangles, ctx: &ctx, kind, out: &mut lanes });
+            prop_assert_eq!(bits(&lanes), bits(&scalar));
+        }
+    }
+}
