@@ -179,6 +179,8 @@ impl FrameTables {
 struct BandBuffers {
     target: TileTarget,
     order: Vec<(f32, PrimitiveRef)>,
+    /// The band's tiles with nothing to draw, filled after the others.
+    untouched: Vec<Rect>,
 }
 
 /// What the whole frame shares: sizes, matrices, depth encoding.
@@ -650,15 +652,6 @@ pub fn is_transparent(object: &Object) -> bool {
 /// depend on them.
 fn triangle_chunk(n: usize, threads: usize) -> usize {
     n.div_ceil(threads.max(1) * 4).clamp(MIN_TRIANGLE_CHUNK, TRIANGLE_CHUNK)
-}
-
-/// Fills a tile's pixels in `band` (the image rows from the tile's first
-/// row) with one packed colour.
-fn fill_rect(band: &mut [u32], width: usize, rect: Rect, color: u32) {
-    for row in 0..rect.height() as usize {
-        let start = row * width + rect.x0 as usize;
-        band[start..start + rect.width() as usize].fill(color);
-    }
 }
 
 /// The three vertices of a triangle; `None` when an index is out of range

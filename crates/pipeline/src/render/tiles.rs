@@ -8,7 +8,9 @@ use rayon::iter::Either;
 use rayon::prelude::*;
 use zline_scene::{Scene, Visibility};
 
-use super::{fill_rect, opaque_primitives, pixels_of, BandBuffers, Frame, Renderer};
+use zline_raster::Rect;
+
+use super::{opaque_primitives, pixels_of, BandBuffers, Frame, Renderer};
 use crate::bin::{Bins, PrimitiveRef, TileGrid};
 use crate::fog::FogPass;
 use crate::image::{quantize_rgba, Image};
@@ -59,12 +61,20 @@ impl Renderer {
                 // contended (and a poisoned one holds plain buffers).
                 let thread = rayon::current_thread_index().unwrap_or(0) % threads;
                 let mut guard = buffers[thread].lock().unwrap_or_else(PoisonError::into_inner);
-                let BandBuffers { target, order } = &mut *guard;
-                (0..grid.cols)
+                let BandBuffers { target, order, untouched } = &mut *guard;
+                untouched.clear();
+                let shaded = (0..grid.cols)
                     .map(|col| {
-                        passes.draw((target, order), (col, row as u32), band, depth_band.as_deref_mut())
+                        let tile = (col, row as u32);
+                        let drawn = passes.draw((target, order), tile, band, depth_band.as_deref_mut());
+                        drawn.unwrap_or_else(|| {
+                            untouched.push(pixels_of(grid.rect(col, row as u32), n));
+                            0
+                        })
                     })
-                    .sum::<u64>()
+                    .sum::<u64>();
+                fill_rects(band, width as usize, untouched, passes.background.1);
+                shaded
             })
             .sum()
     }
@@ -178,14 +188,16 @@ pub(super) struct TilePasses<'a> {
 impl TilePasses<'_> {
     /// Draws tile (`col`, `row`) with `target` and resolves it into `band`
     /// (and its depth into `depth_band` when the depth image is asked
-    /// for). Returns the samples shaded.
+    /// for). Returns the samples shaded, or `None` for a tile with nothing
+    /// to draw, whose pixels the caller fills with the background
+    /// ([`fill_rects`]).
     fn draw(
         &self,
         (target, order): (&mut TileTarget, &mut Vec<(f32, PrimitiveRef)>),
         (col, row): (u32, u32),
         band: &mut [u32],
         depth_band: Option<&mut [f32]>,
-    ) -> u64 {
+    ) -> Option<u64> {
         let ((width, n), chunks, bins) = (self.size, self.chunks, self.bins);
         let width = width as usize;
         let tile = row as usize * self.grid.cols as usize + col as usize;
@@ -193,9 +205,7 @@ impl TilePasses<'_> {
             (self.grid.rect(col, row), &bins.opaque[tile], &bins.transparent[tile]);
         let line_bin = self.lines.map_or(&[][..], |l| l.bin_of(tile));
         if opaque.is_empty() && transparent.is_empty() && line_bin.is_empty() && self.sky.is_none() {
-            // Nothing to draw: the background's bytes, without the buffers.
-            fill_rect(band, width, pixels_of(rect, n), self.background.1);
-            return 0;
+            return None; // the background's bytes, without the buffers
         }
         target.clear(rect, self.background.0, self.clear);
         target.paint_sky(self.sky.as_ref());
@@ -235,6 +245,27 @@ impl TilePasses<'_> {
             (true, 1) => target.resolve_coverage(band, width),
             (true, _) => target.resolve_coverage_supersampled(band, width, n),
         }
-        shaded
+        Some(shaded)
+    }
+}
+
+/// Fills the pixels of `rects` (tiles of one band, left to right, all of
+/// the band's rows) in `band` with one packed colour, row by row across
+/// the band and neighbouring tiles as one run: tile by tile, each of a
+/// tile's rows started a new stretch of the image a row below the last,
+/// and the fill ran at half the speed.
+fn fill_rects(band: &mut [u32], width: usize, rects: &[Rect], color: u32) {
+    let Some(first) = rects.first() else {
+        return;
+    };
+    for row in 0..first.height() as usize {
+        let line = &mut band[row * width..(row + 1) * width];
+        let mut rest = rects;
+        while let [r, ..] = rest {
+            // The run of tiles touching end to end from r.
+            let n = 1 + rest.windows(2).take_while(|w| w[0].x1 == w[1].x0).count();
+            line[r.x0 as usize..rest[n - 1].x1 as usize].fill(color);
+            rest = &rest[n..];
+        }
     }
 }
