@@ -8,7 +8,9 @@
 //! same integer tests, the same IEEE operations, no fused multiply-add —
 //! so lane k gets the bits that [`EdgeTable::new`], [`PlaneBasis::new`],
 //! [`DepthPlane::new`] and [`AttributePlanes::new`] give triangle k (the
-//! tests hold them to it). Everything is `#[inline(always)]`: it is meant
+//! tests hold them to it). Everything is `#[inline(always)]`, and written
+//! with loops rather than array `map`s or `from_fn`s (which a build may
+//! leave out of line, a call each compiled for the baseline): it is meant
 //! to be compiled inside the caller's SIMD job.
 
 use crate::edge_table::EdgeTable;
@@ -98,13 +100,21 @@ impl SetupLanes {
         }
         // PlaneBasis::new on the vertices as given.
         let s = SUBPIXEL_ONE as f64;
-        let px: [Lanes<f64>; 3] = t.x.map(|x| x.map(|v| f64::from(v) / s));
-        let py: [Lanes<f64>; 3] = t.y.map(|y| y.map(|v| f64::from(v) / s));
+        // Loops, not array `map`s: those were left out of line in some
+        // builds (a call each, compiled for the baseline).
+        let mut px = [[0.0; SETUP_LANES]; 3];
+        let mut py = [[0.0; SETUP_LANES]; 3];
+        for j in 0..3 {
+            for k in 0..SETUP_LANES {
+                px[j][k] = f64::from(t.x[j][k]) / s;
+                py[j][k] = f64::from(t.y[j][k]) / s;
+            }
+        }
         let mut det = [0.0; SETUP_LANES];
         let mut basis_x = [[0.0; SETUP_LANES]; 3];
         let mut basis_y = [[0.0; SETUP_LANES]; 3];
         for k in 0..SETUP_LANES {
-            let [(x0, y0), (x1, y1), (x2, y2)] = [0, 1, 2].map(|j| (px[j][k], py[j][k]));
+            let (x0, y0, x1, y1, x2, y2) = (px[0][k], py[0][k], px[1][k], py[1][k], px[2][k], py[2][k]);
             det[k] = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0);
             let inv = 1.0 / det[k];
             basis_x[0][k] = (y1 - y2) * inv;
@@ -158,8 +168,18 @@ impl SetupLanes {
     /// f32, for vertex values `v[j][k]`.
     #[inline(always)]
     pub fn attribute_gradients(&self, v: &[Lanes<f32>; 3]) -> (Lanes<f32>, Lanes<f32>) {
-        let (dx, dy) = self.gradients(&v.map(|v| v.map(f64::from)));
-        (dx.map(|g| g as f32), dy.map(|g| g as f32))
+        let mut wide = [[0.0; SETUP_LANES]; 3];
+        for j in 0..3 {
+            for k in 0..SETUP_LANES {
+                wide[j][k] = f64::from(v[j][k]);
+            }
+        }
+        let (dx, dy) = self.gradients(&wide);
+        let mut out = ([0.0; SETUP_LANES], [0.0; SETUP_LANES]);
+        for k in 0..SETUP_LANES {
+            (out.0[k], out.1[k]) = (dx[k] as f32, dy[k] as f32);
+        }
+        out
     }
 
     /// Triangle `k`'s edge table.

@@ -236,8 +236,11 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
             Lane::Lanes if setup.drawn(k) => {
                 let edges: EdgeTable = setup.edge_table(k);
                 let depth: DepthPlane = setup.depth_plane(k, depth[0][k], (dzdx[k], dzdy[k]));
-                let v0 = std::array::from_fn(|i| planes[i][0][k]);
-                let d = (std::array::from_fn(|i| dx[i][k]), std::array::from_fn(|i| dy[i][k]));
+                // Loops, not `from_fn`s (which a build may leave out of line).
+                let (mut v0, mut d) = ([0.0; N], ([0.0; N], [0.0; N]));
+                for i in 0..N {
+                    (v0[i], d.0[i], d.1[i]) = (planes[i][0][k], dx[i][k], dy[i][k]);
+                }
                 let shader = setup.attribute_planes(k, v0, d);
                 K::push(ctx, Primitive { edges, depth, shader }, (sort[k], far[k]), out);
             }

@@ -316,8 +316,10 @@ fn lit_color(parts: LitParts, clamp: GouraudClamp, ceiling: f32) -> Vec3 {
 
 /// True when the triangle's front (counter-clockwise) side faces away from
 /// the viewer, decided in eye space on the original triangle.
+#[inline]
 fn seen_from_behind(tri: &[&ClipVertex; 3], viewer: Viewer) -> bool {
-    let p = tri.map(|v| v.eye.as_dvec3());
+    // Not `tri.map`: some builds left that out of line in setup's lanes.
+    let p = [tri[0].eye.as_dvec3(), tri[1].eye.as_dvec3(), tri[2].eye.as_dvec3()];
     let normal = (p[1] - p[0]).cross(p[2] - p[0]);
     let to_viewer = match viewer {
         Viewer::AlongMinusZ => glam::DVec3::Z,
@@ -652,6 +654,7 @@ impl Planes<'_> {
 /// on the snapped vertices.
 #[inline]
 pub fn is_front_facing(p: &[FixedPoint; 3]) -> bool {
-    let [a, b, c] = p.map(|q| (i64::from(q.x), i64::from(q.y)));
+    let xy = |q: FixedPoint| (i64::from(q.x), i64::from(q.y));
+    let [a, b, c] = [xy(p[0]), xy(p[1]), xy(p[2])];
     (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0) < 0
 }
