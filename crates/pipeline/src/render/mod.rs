@@ -24,9 +24,10 @@ use crate::bin::{bin_primitives, bin_primitives_painter, Bins, PrimitiveRef, Til
 use crate::image::Image;
 use crate::lines::{LineFrame, Lines};
 use crate::lod::{Choice, LodView};
+use crate::setup::lanes::{LanesKind, SetupTriangles};
 use crate::setup::{
-    setup_triangle, AlphaUse, DepthEncoding, Faces, LanesKind, LevelOfDetail, NormalMapUse, PassKind,
-    PrimitiveChunk, SetupContext, SetupTriangles, TextureUse, VertexColors, Viewer,
+    setup_triangle, AlphaUse, DepthEncoding, Faces, LevelOfDetail, NormalMapUse, PassKind, PrimitiveChunk,
+    SetupContext, TextureUse, VertexColors, Viewer,
 };
 use crate::shadow;
 use crate::shadow_map::ShadowMaps;

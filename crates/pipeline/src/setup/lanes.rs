@@ -27,7 +27,7 @@ use crate::vertex::{ClipVertex, VertexLighting};
 
 /// The kernels the lanes path sets up.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LanesKind {
+pub(crate) enum LanesKind {
     /// Untextured Gouraud lit by the vertex stage: the colour.
     Gouraud,
     /// Untextured Phong without vertex colours: the normal and the eye
@@ -40,7 +40,7 @@ impl LanesKind {
     /// sets it up: flat shading (lit per triangle), textures, vertex
     /// colours, maps, the adaptive mode, the normals frame, and the pixel
     /// inspector's triangle sources.
-    pub fn choose(ctx: &SetupContext<'_>, sources: bool) -> Option<LanesKind> {
+    pub(crate) fn choose(ctx: &SetupContext<'_>, sources: bool) -> Option<LanesKind> {
         let plain = !sources
             && ctx.adaptive.is_none()
             && ctx.texture.is_none()
@@ -57,17 +57,17 @@ impl LanesKind {
 
 /// Sets up `triangles` (indices into `vertices`) into `out` as
 /// [`setup_triangle`] would, one at a time, but eight at a time in lanes.
-pub struct SetupTriangles<'a> {
+pub(crate) struct SetupTriangles<'a> {
     /// The object's transformed vertices.
-    pub vertices: &'a [ClipVertex],
+    pub(crate) vertices: &'a [ClipVertex],
     /// The triangles, in mesh order.
-    pub triangles: &'a [[u32; 3]],
+    pub(crate) triangles: &'a [[u32; 3]],
     /// The object.
-    pub ctx: &'a SetupContext<'a>,
+    pub(crate) ctx: &'a SetupContext<'a>,
     /// What the object's primitives are ([`LanesKind::choose`]).
-    pub kind: LanesKind,
+    pub(crate) kind: LanesKind,
     /// Where the primitives go.
-    pub out: &'a mut PrimitiveChunk,
+    pub(crate) out: &'a mut PrimitiveChunk,
 }
 
 impl zline_simd::Vectorized for SetupTriangles<'_> {

@@ -9,10 +9,8 @@
 //! screen-linear interpolation; the shading mode decides which attributes
 //! exist at all, so a flat triangle carries none.
 
-mod lanes;
+pub(crate) mod lanes;
 mod primitive;
-
-pub use lanes::{LanesKind, SetupTriangles};
 
 pub use primitive::{
     layout, AlphaUse, Draw, Flat, Gouraud, Kernel, KernelTables, LevelOfDetail, PassKind, Perturbed, Phong,
