@@ -47,6 +47,33 @@ fn scene_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../benches/glref")
 }
 
+/// How the scene files name glref's folder: its default place, relative
+/// to `benches/glref`.
+const GLREF_IN_SCENES: &str = "../../../shared/tools/glref/";
+
+/// Scene `name` with its meshes and textures read from `glref` (the scene
+/// files name glref's default place): a copy with the paths rewritten,
+/// loaded from the temporary folder.
+fn load_scene(name: &str, glref: &Path) -> Result<Scene> {
+    let toml = scene_dir().join(format!("{name}.toml"));
+    let text = std::fs::read_to_string(&toml).with_context(|| format!("{}: cannot read", toml.display()))?;
+    let folder = glref.canonicalize().with_context(|| format!("{}: no such folder", glref.display()))?;
+    let folder = folder.to_str().context("glref's path is not UTF-8")?.replace('\\', "/");
+    if folder.contains('"') {
+        bail!("{folder}: a quote in glref's path cannot go into a scene file");
+    }
+    let copy = std::env::temp_dir().join(format!("zline-versus-{}-{name}.toml", std::process::id()));
+    std::fs::write(&copy, text.replace(GLREF_IN_SCENES, &format!("{folder}/")))
+        .with_context(|| format!("{}: cannot write", copy.display()))?;
+    let options = zline::io::LoadOptions { allow_outside: true };
+    let scene = zline::io::load_scene_with_options(&copy, options);
+    // The copy is only read here; a failed removal leaves a small file.
+    let _ = std::fs::remove_file(&copy);
+    scene.with_context(|| {
+        format!("{} with glref at {folder}: (the meshes come from glref's setup.sh)", toml.display())
+    })
+}
+
 struct Entry {
     label: &'static str,
     json: PathBuf,
@@ -73,10 +100,7 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         if args.filter.as_deref().is_some_and(|f| !name.contains(f) && !label.contains(f)) {
             continue;
         }
-        let toml = scene_dir().join(format!("{name}.toml"));
-        let options = zline::io::LoadOptions { allow_outside: true };
-        let scene = zline::io::load_scene_with_options(&toml, options)
-            .with_context(|| format!("{}: (the meshes come from glref's setup.sh)", toml.display()))?;
+        let scene = load_scene(name, &args.glref)?;
         let triangles = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
         entries.push(Entry {
             label,
@@ -218,7 +242,18 @@ mod tests {
     #[test]
     fn every_scene_has_its_zline_file() {
         for (name, _) in SCENES {
-            assert!(scene_dir().join(format!("{name}.toml")).exists(), "{name}.toml");
+            let text = std::fs::read_to_string(scene_dir().join(format!("{name}.toml"))).unwrap();
+            // Every file it reads is glref's, named the way `load_scene` rewrites.
+            assert!(text.contains(GLREF_IN_SCENES), "{name}.toml");
+            let models = text.lines().filter(|l| l.trim_start().starts_with("model")).count();
+            let glref = text.lines().filter(|l| l.contains(GLREF_IN_SCENES)).count();
+            assert!(models >= 1 && glref >= models, "{name}.toml");
         }
+    }
+
+    #[test]
+    fn a_missing_glref_folder_is_named() {
+        let err = load_scene("sphere_flat", Path::new("/nonexistent/glref")).unwrap_err();
+        assert!(format!("{err:#}").contains("/nonexistent/glref: no such folder"), "{err:#}");
     }
 }
