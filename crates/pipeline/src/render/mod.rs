@@ -26,8 +26,8 @@ use crate::lines::{LineFrame, Lines};
 use crate::lod::{Choice, LodView};
 use crate::setup::lanes::{LanesKind, SetupTriangles};
 use crate::setup::{
-    setup_triangle, AlphaUse, DepthEncoding, Faces, LevelOfDetail, NormalMapUse, PassKind, PrimitiveChunk,
-    SetupContext, TextureUse, VertexColors, Viewer,
+    gather, setup_triangle, AlphaUse, DepthEncoding, Faces, LevelOfDetail, NormalMapUse, PassKind,
+    PrimitiveChunk, SetupContext, TextureUse, VertexColors, Viewer,
 };
 use crate::shadow;
 use crate::shadow_map::ShadowMaps;
@@ -653,11 +653,4 @@ pub fn is_transparent(object: &Object) -> bool {
 /// depend on them.
 fn triangle_chunk(n: usize, threads: usize) -> usize {
     n.div_ceil(threads.max(1) * 4).clamp(MIN_TRIANGLE_CHUNK, TRIANGLE_CHUNK)
-}
-
-/// The three vertices of a triangle; `None` when an index is out of range
-/// (meshes are validated on load, but a hand-built one may not be).
-#[inline]
-fn gather<'a>(vertices: &'a [ClipVertex], t: &[u32; 3]) -> Option<[&'a ClipVertex; 3]> {
-    Some([vertices.get(t[0] as usize)?, vertices.get(t[1] as usize)?, vertices.get(t[2] as usize)?])
 }

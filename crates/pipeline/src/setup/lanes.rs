@@ -20,8 +20,8 @@ use zline_shading::ShadingMode;
 use zline_simd::lanes::Level;
 
 use super::{
-    is_front_facing, seen_from_behind, setup_triangle, Faces, Gouraud, Kernel, Phong, Primitive,
-    PrimitiveChunk, SetupContext, VertexColors,
+    gather, is_front_facing, seen_from_behind, setup_triangle, sort_keys, Faces, Gouraud, Kernel,
+    KernelTables, Phong, Primitive, PrimitiveChunk, SetupContext, VertexColors,
 };
 use crate::vertex::{ClipVertex, VertexLighting};
 
@@ -89,21 +89,22 @@ impl zline_simd::Vectorized for SetupTriangles<'_> {
 /// first q (1/w or 1), then the vertex values [`Self::values`] gives, each
 /// times q.
 trait LaneKernel<const N: usize> {
+    /// What the kernel's table holds beside the edges and depth.
+    type Shader;
     /// Planes 1.. of a vertex (its normal turned when `back`), before q.
     fn values(v: &ClipVertex, back: bool) -> [f32; N];
-    /// Appends the primitive.
-    fn push(
-        ctx: &SetupContext<'_>,
-        primitive: Primitive<AttributePlanes<N>>,
-        depths: (f32, f32),
-        out: &mut PrimitiveChunk,
-    );
+    /// The kernel and the shader data of a primitive with `planes`.
+    fn shader(ctx: &SetupContext<'_>, planes: AttributePlanes<N>) -> (Kernel, Self::Shader);
+    /// The kernel's table.
+    fn table(tables: &mut KernelTables) -> &mut Vec<Primitive<Self::Shader>>;
 }
 
 /// [`LanesKind::Gouraud`].
 struct GouraudLanes;
 
 impl LaneKernel<4> for GouraudLanes {
+    type Shader = Gouraud;
+
     #[inline(always)]
     fn values(v: &ClipVertex, back: bool) -> [f32; 4] {
         // Seen from behind: the colour the vertex stage lit with the normal
@@ -113,16 +114,13 @@ impl LaneKernel<4> for GouraudLanes {
     }
 
     #[inline(always)]
-    fn push(
-        ctx: &SetupContext<'_>,
-        p: Primitive<AttributePlanes<4>>,
-        depths: (f32, f32),
-        out: &mut PrimitiveChunk,
-    ) {
-        let kernel = Kernel::Gouraud { interpolation: ctx.interpolation, clamp: ctx.gouraud_clamp };
-        let PrimitiveChunk { draws, bounds, tables, .. } = out;
-        let primitive = Primitive { edges: p.edges, depth: p.depth, shader: Gouraud { planes: p.shader } };
-        PrimitiveChunk::push((draws, bounds), &mut tables.gouraud, kernel, primitive, depths);
+    fn shader(ctx: &SetupContext<'_>, planes: AttributePlanes<4>) -> (Kernel, Gouraud) {
+        (Kernel::Gouraud { interpolation: ctx.interpolation, clamp: ctx.gouraud_clamp }, Gouraud { planes })
+    }
+
+    #[inline(always)]
+    fn table(tables: &mut KernelTables) -> &mut Vec<Primitive<Gouraud>> {
+        &mut tables.gouraud
     }
 }
 
@@ -130,6 +128,8 @@ impl LaneKernel<4> for GouraudLanes {
 struct PhongLanes;
 
 impl LaneKernel<7> for PhongLanes {
+    type Shader = Phong<7>;
+
     #[inline(always)]
     fn values(v: &ClipVertex, back: bool) -> [f32; 7] {
         let n = if back { -v.normal } else { v.normal };
@@ -137,27 +137,23 @@ impl LaneKernel<7> for PhongLanes {
     }
 
     #[inline(always)]
-    fn push(
-        ctx: &SetupContext<'_>,
-        p: Primitive<AttributePlanes<7>>,
-        depths: (f32, f32),
-        out: &mut PrimitiveChunk,
-    ) {
-        let kernel = Kernel::Phong(ctx.interpolation);
-        let PrimitiveChunk { draws, bounds, tables, .. } = out;
-        let shader = Phong { planes: p.shader, material: ctx.material.1 };
-        let primitive = Primitive { edges: p.edges, depth: p.depth, shader };
-        PrimitiveChunk::push((draws, bounds), &mut tables.phong, kernel, primitive, depths);
+    fn shader(ctx: &SetupContext<'_>, planes: AttributePlanes<7>) -> (Kernel, Phong<7>) {
+        (Kernel::Phong(ctx.interpolation), Phong { planes, material: ctx.material.1 })
+    }
+
+    #[inline(always)]
+    fn table(tables: &mut KernelTables) -> &mut Vec<Primitive<Phong<7>>> {
+        &mut tables.phong
     }
 }
 
 /// What the first pass decided for one triangle of a group.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Lane {
+#[derive(Clone, Copy, Debug)]
+enum Lane<'a> {
     /// No primitive (outside the view volume, culled, bad index).
     Skip,
-    /// Needs clipping: [`setup_triangle`] sets it up.
-    Scalar,
+    /// Needs clipping: [`setup_triangle`] sets these vertices up.
+    Scalar([&'a ClipVertex; 3]),
     /// In the lanes.
     Lanes,
 }
@@ -171,6 +167,7 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
     out: &mut PrimitiveChunk,
 ) {
     let mut lane = [Lane::Skip; SETUP_LANES];
+    let mut any_lanes = false;
     let mut points = TriangleLanes::default();
     // Depth values, NC depths (the sort keys) and planes [q, values·q],
     // per vertex j and lane k.
@@ -185,7 +182,7 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
             continue; // entirely outside one plane of the view volume (NaN vertices included)
         }
         if tri[0].clip_code | tri[1].clip_code | tri[2].clip_code != 0 {
-            lane[k] = Lane::Scalar;
+            lane[k] = Lane::Scalar(tri);
             continue;
         }
         let fixed = [tri[0].projected.fixed, tri[1].projected.fixed, tri[2].projected.fixed];
@@ -193,7 +190,7 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
             continue; // culled (SPEC §2)
         }
         let back = ctx.turns_back_faces() && seen_from_behind(&tri, ctx.viewer);
-        lane[k] = Lane::Lanes;
+        (lane[k], any_lanes) = (Lane::Lanes, true);
         points.set(k, fixed);
         for (j, v) in tri.iter().enumerate() {
             depth[j][k] = ctx.depth.value(v, &v.projected);
@@ -209,9 +206,9 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
             }
         }
     }
-    if !lane.contains(&Lane::Lanes) {
-        for (k, t) in group.iter().enumerate() {
-            if let (Lane::Scalar, Some(tri)) = (lane[k], gather(vertices, t)) {
+    if !any_lanes {
+        for l in lane {
+            if let Lane::Scalar(tri) = l {
                 setup_triangle(tri, ctx, out);
             }
         }
@@ -224,15 +221,11 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
     for i in 0..N {
         (dx[i], dy[i]) = setup.attribute_gradients(&planes[i]);
     }
-    let (sort, far) = sort_keys(&nc);
-    for (k, t) in group.iter().enumerate() {
-        match lane[k] {
+    let (sort, far) = sort_keys_x8(&nc);
+    for (k, l) in lane.into_iter().enumerate() {
+        match l {
             Lane::Skip => {}
-            Lane::Scalar => {
-                if let Some(tri) = gather(vertices, t) {
-                    setup_triangle(tri, ctx, out);
-                }
-            }
+            Lane::Scalar(tri) => setup_triangle(tri, ctx, out),
             Lane::Lanes if setup.drawn(k) => {
                 let edges: EdgeTable = setup.edge_table(k);
                 let depth: DepthPlane = setup.depth_plane(k, depth[0][k], (dzdx[k], dzdy[k]));
@@ -241,31 +234,24 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
                 for i in 0..N {
                     (v0[i], d.0[i], d.1[i]) = (planes[i][0][k], dx[i][k], dy[i][k]);
                 }
-                let shader = setup.attribute_planes(k, v0, d);
-                K::push(ctx, Primitive { edges, depth, shader }, (sort[k], far[k]), out);
+                let (kernel, shader) = K::shader(ctx, setup.attribute_planes(k, v0, d));
+                let PrimitiveChunk { draws, bounds, tables, .. } = &mut *out;
+                let primitive = Primitive { edges, depth, shader };
+                PrimitiveChunk::push((draws, bounds), K::table(tables), kernel, primitive, (sort[k], far[k]));
             }
             Lane::Lanes => {}
         }
     }
 }
 
-/// The draw's sort keys from the vertices' NC depths, as `super::emit`
-/// computes them: the mean and the largest, in f32.
+/// Every lane's [`sort_keys`].
 #[inline(always)]
-fn sort_keys(z: &[Lanes<f64>; 3]) -> (Lanes<f32>, Lanes<f32>) {
-    let mut sort = [0.0; SETUP_LANES];
-    let mut far = [0.0; SETUP_LANES];
-    for k in 0..SETUP_LANES {
-        sort[k] = ((z[0][k] + z[1][k] + z[2][k]) / 3.0) as f32;
-        far[k] = z[0][k].max(z[1][k]).max(z[2][k]) as f32;
+fn sort_keys_x8(z: &[Lanes<f64>; 3]) -> (Lanes<f32>, Lanes<f32>) {
+    let mut keys = ([0.0; SETUP_LANES], [0.0; SETUP_LANES]);
+    for (k, ((&a, &b), &c)) in z[0].iter().zip(&z[1]).zip(&z[2]).enumerate() {
+        (keys.0[k], keys.1[k]) = sort_keys([a, b, c]);
     }
-    (sort, far)
-}
-
-/// The three vertices of a triangle; `None` when an index is out of range.
-#[inline(always)]
-fn gather<'a>(vertices: &'a [ClipVertex], t: &[u32; 3]) -> Option<[&'a ClipVertex; 3]> {
-    Some([vertices.get(t[0] as usize)?, vertices.get(t[1] as usize)?, vertices.get(t[2] as usize)?])
+    keys
 }
 
 #[cfg(test)]

@@ -451,8 +451,7 @@ fn emit(
         Interpolation::PerspectiveCorrect => p.map(|v| v.inv_w),
         Interpolation::ScreenLinear => [1.0; 3],
     };
-    let sort_depth = ((p[0].z + p[1].z + p[2].z) / 3.0) as f32;
-    let far_depth = p[0].z.max(p[1].z).max(p[2].z) as f32;
+    let (sort_depth, far_depth) = sort_keys([p[0].z, p[1].z, p[2].z]);
     let planes = Planes { tri, q, basis: &basis };
     let PrimitiveChunk { draws, bounds, tables, .. } = out;
     let mut push = Push { draws, bounds, edges, depth, depths: (sort_depth, far_depth) };
@@ -461,6 +460,21 @@ fn emit(
         (_, _, None) => emit_untextured(&planes, flat, &sc, ctx, (tables, &mut push)),
         (_, _, Some(texture)) => emit_textured(&planes, (flat, texture), &sc, ctx, (tables, &mut push)),
     }
+}
+
+/// A draw's sort keys from its vertices' NC depths: the mean (the
+/// transparency pass's back to front) and the largest (the painter's), in
+/// f32.
+#[inline(always)]
+pub(crate) fn sort_keys(z: [f64; 3]) -> (f32, f32) {
+    (((z[0] + z[1] + z[2]) / 3.0) as f32, z[0].max(z[1]).max(z[2]) as f32)
+}
+
+/// The three vertices of a triangle; `None` when an index is out of range
+/// (meshes are validated on load, but a hand-built one may not be).
+#[inline(always)]
+pub(crate) fn gather<'a>(vertices: &'a [ClipVertex], t: &[u32; 3]) -> Option<[&'a ClipVertex; 3]> {
+    Some([vertices.get(t[0] as usize)?, vertices.get(t[1] as usize)?, vertices.get(t[2] as usize)?])
 }
 
 /// What every primitive of one triangle shares, and the chunk's draw list
