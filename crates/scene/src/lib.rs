@@ -41,7 +41,7 @@ pub use limits::{
     MAX_SHADOW_MAP_SIZE, MAX_SSAA, MAX_TEXTURE_PIXELS, MAX_TEXTURE_PIXELS_PER_MODEL, MAX_TEXT_FILE_BYTES,
     MAX_TRIANGLES, MAX_VERTICES,
 };
-pub use mesh::{face_normal, FALLBACK_NORMAL};
+pub use mesh::{face_normal, CLOSURE_TOLERANCE, FALLBACK_NORMAL};
 pub use model::{
     Camera, DepthMode, GouraudClamp, Interpolation, LightingSides, Mesh, NormalEncoding, NormalMap, Object,
     Projection, RenderSettings, Scene, ShadowMode, ShadowPlane, Shadows, SurfaceMaps, TextureMap,

@@ -119,6 +119,14 @@ impl Mesh {
     /// (between vertex positions, so split vertices count as one) is used
     /// once in each direction, by exactly two triangles. Such a mesh, when
     /// opaque, can have its back faces culled (SPEC §2).
+    ///
+    /// Positions are compared on a grid of [`CLOSURE_TOLERANCE`] times the
+    /// mesh's largest extent: corners that a generator meant to be one
+    /// point but computed apart (a UV sphere's pole at sin π ≈ 1.2e-16
+    /// instead of 0) count as one, so a surface is closed when its gaps,
+    /// if any, are narrower than a grid step. Two positions in one cell
+    /// are at most √3 steps apart; two that close but in neighbouring cells
+    /// stay apart, which can only leave a mesh open (culling off).
     pub fn is_closed(&self) -> bool {
         // Sorting, not hashing (hashing 3 edges per triangle measured ~10 %
         // of a whole-process bunny thumbnail). Each edge between position
@@ -130,7 +138,7 @@ impl Mesh {
             // as open, which only costs culling.
             return false;
         }
-        let class = position_classes(&self.positions);
+        let class = position_classes(&self.positions, closure_grid(&self.positions));
         let mut keys: Vec<u64> = Vec::with_capacity(self.triangles.len() * 3);
         for tri in &self.triangles {
             let [a, b, c] = tri.map(|i| u64::from(class[i as usize]));
@@ -233,12 +241,38 @@ fn position_key(p: Vec3) -> [u32; 3] {
     (p + Vec3::ZERO).to_array().map(f32::to_bits)
 }
 
-/// For each vertex, one vertex at the same position (the same for all of
-/// them; −0.0 and +0.0 alike): the classes of [`weld_by_position`] named
-/// by a member instead of numbered, found by sorting.
-fn position_classes(positions: &[Vec3]) -> Vec<u32> {
+/// The largest gap, relative to a mesh's largest extent, that
+/// [`Mesh::is_closed`] takes for no gap: 2⁻²⁰. A gap of that size shows
+/// only when the mesh spans more than about 2,400 pixels (√3 · 2²⁰ / 256: a
+/// fixed-point step of 1/256 pixel, SPEC §3), and a mesh's own corners
+/// computed apart by float rounding differ by far less (a few units in the
+/// last place of an f32, 2⁻²³ of the coordinate).
+pub const CLOSURE_TOLERANCE: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// The grid [`Mesh::is_closed`] compares positions on: its origin (the
+/// bounds' low corner) and step ([`CLOSURE_TOLERANCE`] times the largest
+/// extent; 1 for a mesh of one point, whose positions all fall in one cell
+/// anyway).
+fn closure_grid(positions: &[Vec3]) -> (DVec3, f64) {
+    let Some((lo, hi)) = bounds_of(positions.iter().copied()) else {
+        return (DVec3::ZERO, 1.0);
+    };
+    let extent = (hi.as_dvec3() - lo.as_dvec3()).max_element();
+    (lo.as_dvec3(), if extent > 0.0 { extent * CLOSURE_TOLERANCE } else { 1.0 })
+}
+
+/// A position's cell on the grid `(origin, step)`: at most 2²⁰ + 1 cells
+/// an axis, each coordinate rounded to the nearest (equal positions, −0.0
+/// and +0.0 among them, always share a cell).
+fn grid_key(p: Vec3, (origin, step): (DVec3, f64)) -> [u32; 3] {
+    ((p.as_dvec3() - origin) / step).round().to_array().map(|c| c as u32)
+}
+
+/// For each vertex, one vertex in the same cell of `grid` (the same for
+/// all of them), found by sorting.
+fn position_classes(positions: &[Vec3], grid: (DVec3, f64)) -> Vec<u32> {
     let mut order: Vec<([u32; 3], u32)> =
-        positions.iter().enumerate().map(|(i, &p)| (position_key(p), i as u32)).collect();
+        positions.iter().enumerate().map(|(i, &p)| (grid_key(p, grid), i as u32)).collect();
     order.sort_unstable();
     let mut class = vec![0; positions.len()];
     let mut first = 0;
@@ -377,16 +411,66 @@ mod tests {
     /// classes used once, and its reverse too.
     fn closed_by_hashing(mesh: &Mesh) -> bool {
         use std::collections::HashMap;
-        let (group_of, _) = weld_by_position(&mesh.positions);
+        let grid = closure_grid(&mesh.positions);
         let mut directed = HashMap::new();
         for tri in &mesh.triangles {
-            let [a, b, c] = tri.map(|i| group_of[i as usize]);
+            let [a, b, c] = tri.map(|i| grid_key(mesh.positions[i as usize], grid));
             for edge in [(a, b), (b, c), (c, a)].into_iter().filter(|(p, q)| p != q) {
                 *directed.entry(edge).or_insert(0u32) += 1;
             }
         }
         !directed.is_empty()
             && directed.iter().all(|(&(p, q), &n)| n == 1 && directed.get(&(q, p)) == Some(&1))
+    }
+
+    /// A UV sphere as generators write it: the seam's column and each
+    /// pole's fan of corners duplicated, every corner computed from its
+    /// angles (so the south pole's corners lie about 1.2e-16 apart, sin π
+    /// not being 0), plus `offset` added to the first south-pole corner.
+    fn generated_sphere(offset: Vec3) -> Mesh {
+        let (stacks, slices) = (6u32, 12u32);
+        let cols = slices + 1;
+        let mut positions = Vec::new();
+        for i in 0..=stacks {
+            let phi = std::f64::consts::PI * f64::from(i) / f64::from(stacks);
+            for j in 0..=slices {
+                let theta = std::f64::consts::TAU * f64::from(j % slices) / f64::from(slices);
+                let p = glam::DVec3::new(phi.sin() * theta.cos(), phi.cos(), -phi.sin() * theta.sin());
+                positions.push(p.as_vec3());
+            }
+        }
+        positions[(stacks * cols) as usize] += offset;
+        let mut triangles = Vec::new();
+        for i in 0..stacks {
+            for j in 0..slices {
+                let (a, d) = (i * cols + j, i * cols + j + 1);
+                let (b, c) = (a + cols, d + cols);
+                if i != 0 {
+                    triangles.push([a, b, d]);
+                }
+                if i != stacks - 1 {
+                    triangles.push([b, c, d]);
+                }
+            }
+        }
+        Mesh::new("generated", positions, None, triangles, Material::default()).unwrap()
+    }
+
+    #[test]
+    fn corners_apart_by_rounding_close_a_mesh_and_a_real_gap_does_not() {
+        let sphere = generated_sphere(Vec3::ZERO);
+        let south: Vec<Vec3> = sphere.positions[sphere.positions.len() - 13..].to_vec();
+        assert!(south.iter().any(|&p| p != south[0]), "the fan's corners differ: {south:?}");
+        assert!(sphere.is_closed(), "corners 1e-16 apart are one point");
+        assert!(closed_by_hashing(&sphere));
+        // Beyond the tolerance (2 × 2⁻²⁰ of the extent 2), the gap is real.
+        let step = (2.0 * CLOSURE_TOLERANCE) as f32;
+        assert!(!generated_sphere(Vec3::new(4.0 * step, 0.0, 0.0)).is_closed());
+        assert!(generated_sphere(Vec3::new(0.25 * step, 0.0, 0.0)).is_closed());
+        // Far from the origin, the grid follows the bounds, not the origin.
+        let mut far = generated_sphere(Vec3::ZERO);
+        far.positions.iter_mut().for_each(|p| *p += Vec3::splat(1.0e4));
+        assert!(far.is_closed(), "only positions equal once moved: still closed");
     }
 
     proptest::proptest! {
