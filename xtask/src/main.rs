@@ -167,6 +167,11 @@ enum Task {
         /// medians) per scene and thread count.
         #[arg(long)]
         stages: bool,
+        /// Draw every back face, as glref asks llvmpipe to (no culling):
+        /// the same work on both sides. By default zline culls the closed,
+        /// opaque meshes, as it does for any user (SPEC §2).
+        #[arg(long)]
+        no_culling: bool,
     },
     /// Write the elevation files of assets/terrain/ (deterministic
     /// diamond-square hills): hills.png, 257x257 16-bit greyscale, and
@@ -278,18 +283,27 @@ fn main() -> Result<()> {
         Task::Report { assets, out, chart, frames, size, filter, font } => {
             report::run(&report::Args { assets, out, chart, frames, size, filter, font })
         }
-        Task::Versus { glref, rounds, frames, threads, lp_threads, filter, zline_only, stages } => {
-            versus::run(&versus::Args {
-                glref,
-                rounds,
-                frames,
-                threads,
-                lp_threads,
-                filter,
-                zline_only,
-                stages,
-            })
-        }
+        Task::Versus {
+            glref,
+            rounds,
+            frames,
+            threads,
+            lp_threads,
+            filter,
+            zline_only,
+            stages,
+            no_culling,
+        } => versus::run(&versus::Args {
+            glref,
+            rounds,
+            frames,
+            threads,
+            lp_threads,
+            filter,
+            zline_only,
+            stages,
+            no_culling,
+        }),
         Task::Modules { verbose } => modules::run(verbose),
         Task::TraceReport { assets, width, accel, antialias, truth, embree } => {
             let all = !(accel || antialias || truth || embree.is_some());

@@ -40,6 +40,9 @@ pub(crate) struct Args {
     pub zline_only: bool,
     /// Also print where zline's time goes, per scene and thread count.
     pub stages: bool,
+    /// Draw every back face (glref's llvmpipe culls none); by default
+    /// zline culls closed, opaque meshes as for any user.
+    pub no_culling: bool,
 }
 
 /// The zline scene files, next to the workspace root.
@@ -100,7 +103,10 @@ pub(crate) fn run(args: &Args) -> Result<()> {
         if args.filter.as_deref().is_some_and(|f| !name.contains(f) && !label.contains(f)) {
             continue;
         }
-        let scene = load_scene(name, &args.glref)?;
+        let mut scene = load_scene(name, &args.glref)?;
+        if args.no_culling {
+            scene.objects.iter_mut().for_each(|o| o.cull_back_faces = false);
+        }
         let triangles = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
         entries.push(Entry {
             label,
@@ -170,6 +176,18 @@ pub(crate) fn run(args: &Args) -> Result<()> {
     println!(
         "\n{} rounds; a round times each scene with zline ({} warm frames per thread count, median) then llvmpipe (glref -n {}, LP_NUM_THREADS={}); the table shows the median of the round medians.",
         args.rounds, args.frames, args.frames, args.lp_threads
+    );
+    let culled: Vec<String> = entries
+        .iter()
+        .map(|e| {
+            let culled = e.scene.objects.iter().filter(|o| o.cull_back_faces).count();
+            format!("{} {culled} of {}", e.label, e.scene.objects.len())
+        })
+        .collect();
+    println!(
+        "Objects whose back faces zline culls (closed, opaque meshes, SPEC §2; llvmpipe draws every back face{}): {}.",
+        if args.no_culling { "; --no-culling: zline too" } else { "; --no-culling draws them in zline too" },
+        culled.join(", ")
     );
     Ok(())
 }
