@@ -11,11 +11,13 @@
 //! against 4 ns inlined, in a micro benchmark.
 
 use std::arch::x86_64::{
-    __m256, _mm256_castps128_ps256, _mm256_insertf128_ps, _mm256_loadu_ps, _mm256_permute2f128_ps,
-    _mm256_setzero_ps, _mm256_shuffle_ps, _mm256_unpackhi_ps, _mm256_unpacklo_ps, _mm_loadu_ps,
+    __m256, _mm256_and_si256, _mm256_castps128_ps256, _mm256_cmpeq_epi32, _mm256_insertf128_ps,
+    _mm256_loadu_ps, _mm256_loadu_si256, _mm256_max_epu32, _mm256_movemask_epi8, _mm256_permute2f128_ps,
+    _mm256_set1_epi32, _mm256_setzero_ps, _mm256_shuffle_ps, _mm256_unpackhi_ps, _mm256_unpacklo_ps,
+    _mm_loadu_ps,
 };
 
-use crate::bounds::{all_in_range, cold};
+use crate::bounds::cold;
 use crate::isa::Isa;
 use crate::scalar;
 
@@ -134,10 +136,20 @@ impl Avx2 {
         Avx2(())
     }
 
+    /// [`crate::bounds::all_in_range`] in vector instructions (its twin,
+    /// tested equal): written as the scalar fold, LLVM moved the lanes out
+    /// one by one into a chain of compares, about 30 instructions per
+    /// eight indices on every texture sample.
+    #[inline(always)]
+    pub(crate) fn all_in_range(self, idx: &[[i32; 8]], len: usize) -> bool {
+        // SAFETY: the token proves AVX2.
+        unsafe { all_in_range(idx, len) }
+    }
+
     /// [`crate::gather_texels_x8`].
     #[inline(always)]
     pub(crate) fn gather_texels_x8(self, texels: &[[f32; 4]], idx: [i32; 8]) -> [[f32; 8]; 4] {
-        if all_in_range(&[idx], texels.len()) {
+        if self.all_in_range(&[idx], texels.len()) {
             // SAFETY: the token proves AVX2; every index is in 0..texels.len().
             unsafe { gather_texels_x8(texels, idx) }
         } else {
@@ -153,7 +165,7 @@ impl Avx2 {
         a: [i32; 8],
         b: [i32; 8],
     ) -> [[f32; 8]; 8] {
-        if all_in_range(&[a, b], texels.len()) {
+        if self.all_in_range(&[a, b], texels.len()) {
             // SAFETY: the token proves AVX2; every index is in 0..texels.len().
             unsafe { gather_texel_pairs_x8(texels, a, b) }
         } else {
@@ -165,7 +177,7 @@ impl Avx2 {
     #[inline(always)]
     pub(crate) fn gather_adjacent_texels_x8(self, texels: &[[f32; 4]], a: [i32; 8]) -> [[f32; 8]; 8] {
         // a[k] + 1 < len for every lane, so both texels of a lane are inside.
-        if all_in_range(&[a], texels.len().saturating_sub(1)) {
+        if self.all_in_range(&[a], texels.len().saturating_sub(1)) {
             // SAFETY: the token proves AVX2; every a[k] is in 0..texels.len() − 1.
             unsafe { gather_adjacent_texels_x8(texels, a) }
         } else {
@@ -247,6 +259,29 @@ unsafe fn gather_texel_pairs_x8(texels: &[[f32; 4]], a: [i32; 8], b: [i32; 8]) -
 /// transpose (unpacks and shuffles inside the 128-bit halves, then
 /// exchanges of halves).
 ///
+/// [`crate::bounds::all_in_range`]: with the length capped at 2^31 and
+/// `last = cap − 1`, an index (as `u32`: a negative one is at least 2^31)
+/// is in range exactly when its unsigned maximum with `last` is `last`.
+///
+/// # Safety
+/// The CPU has AVX2.
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn all_in_range(idx: &[[i32; 8]], len: usize) -> bool {
+    let cap = len.min(1 << 31) as u32;
+    if cap == 0 {
+        return false;
+    }
+    let last = _mm256_set1_epi32((cap - 1) as i32);
+    let mut all = _mm256_set1_epi32(-1);
+    for lanes in idx {
+        // SAFETY: `lanes` is 32 bytes; an unaligned load needs no alignment.
+        let v = unsafe { _mm256_loadu_si256(lanes.as_ptr().cast()) };
+        all = _mm256_and_si256(all, _mm256_cmpeq_epi32(_mm256_max_epu32(v, last), last));
+    }
+    _mm256_movemask_epi8(all) == -1
+}
+
 /// # Safety
 /// The CPU has AVX2 and every `a[k]` is in `0..texels.len() - 1`.
 #[target_feature(enable = "avx2")]

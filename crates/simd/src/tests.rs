@@ -165,6 +165,43 @@ fn the_range_check_caps_the_length_at_2_pow_31() {
     }
 }
 
+#[cfg(target_arch = "x86_64")]
+proptest::proptest! {
+    /// The AVX2 range check gives the scalar one's answer: indices drawn
+    /// near 0, near the length, negative and at the i32 extremes, lengths
+    /// from 0 past 2^32.
+    #[test]
+    fn the_vector_range_check_equals_the_scalar_one(
+        picks in proptest::collection::vec(proptest::collection::vec((0usize..8, -3i64..3), 8), 1..4),
+        len_pick in 0usize..8,
+    ) {
+        let lens = [0, 1, 4, 100, (1 << 31) - 1, 1 << 31, 1 << 32, usize::MAX];
+        let len = lens[len_pick];
+        let near = |base: i64, d: i64| (base + d).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+        let idx: Vec<[i32; 8]> = picks
+            .iter()
+            .map(|row| {
+                let mut lanes = [0; 8];
+                for (lane, &(kind, d)) in lanes.iter_mut().zip(row) {
+                    let len = len.min(i32::MAX as usize) as i64;
+                    *lane = match kind {
+                        0 => near(0, d),
+                        1 => near(len, d),
+                        2 => near(len / 2, d),
+                        3 => near(i64::from(i32::MIN), d + 3),
+                        4 => near(i64::from(i32::MAX), d - 3),
+                        _ => near(0, d.abs()),
+                    };
+                }
+                lanes
+            })
+            .collect();
+        if let Some(avx2) = crate::avx2::token() {
+            proptest::prop_assert_eq!(avx2.all_in_range(&idx, len), crate::bounds::all_in_range(&idx, len));
+        }
+    }
+}
+
 #[test]
 fn the_environment_can_only_lower_the_instruction_set() {
     let current = Isa::current();
