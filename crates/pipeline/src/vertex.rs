@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use zline_raster::FixedPoint;
 use zline_scene::{GouraudClamp, Mesh};
 use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode, Vec3x8};
-use zline_simd::lanes::{f32x8, Level};
+use zline_simd::lanes::{f32x8, i32x8, Level};
 
 #[cfg(test)]
 use crate::volume::view_code;
@@ -339,11 +339,16 @@ fn transform_group<S: Level>(
     // (each lane is IEEE division, the bits of `Projected::new`); only the
     // lanes that need no clipping are used.
     let quotients = divide_by_w(&clip);
+    let (fixed_x, fixed_y, snapped) = snap_x8::<S>(&quotients, s.viewport);
     for (k, v) in out.iter_mut().enumerate() {
         let clip = Vec4::new(clip[0][k], clip[1][k], clip[2][k], clip[3][k]);
         let mut clip_code = clip_codes[k];
-        let projected =
-            if clip_code == 0 { Projected::from_quotients(quotients[k], s.viewport) } else { None };
+        // `Projected::from_quotients`, its snap done in lanes.
+        let projected = (clip_code == 0 && snapped[k]).then(|| Projected {
+            fixed: FixedPoint { x: fixed_x[k], y: fixed_y[k] },
+            z: quotients[k][2],
+            inv_w: quotients[k][3] as f32,
+        });
         if projected.is_none() {
             clip_code |= NEEDS_SETUP;
         }
@@ -373,6 +378,48 @@ fn lit_x8<S: Level>(l: &VertexLights<'_>, eye: Vec3x8<S>, normal: Vec3x8<S>) -> 
             ambient_diffuse + specular
         }
     }
+}
+
+/// The window positions of eight vertices from their quotients, snapped as
+/// [`Projected::from_quotients`] snaps them (`FixedPoint::snap`: the
+/// window map in f64, rounded to f32; the range test; ×256 rounded to
+/// nearest, halves away from zero, by truncation and the fraction's side),
+/// in lanes: fixed x, fixed y, and whether the lane could be snapped. The
+/// scalar snap cost about 50 instructions a vertex, mostly `as i32`'s
+/// saturating checks.
+#[inline(always)]
+fn snap_x8<S: Level>(q: &[[f64; 4]; 8], viewport: Viewport) -> ([i32; 8], [i32; 8], [bool; 8]) {
+    let (w, h) = (f64::from(viewport.width), f64::from(viewport.height));
+    let (mut wx, mut wy) = ([0.0f32; 8], [0.0f32; 8]);
+    for k in 0..8 {
+        wx[k] = ((q[k][0] + 1.0) * 0.5 * w) as f32;
+        wy[k] = ((1.0 - q[k][1]) * 0.5 * h) as f32;
+    }
+    let (x, y) = (f32x8::<S>::from(wx), f32x8::<S>::from(wy));
+    let limit = f32x8::splat(zline_raster::MAX_WINDOW_COORD);
+    // False for NaN, as `FixedPoint::snap`'s test.
+    let ok = x.abs().cmp_le(limit) & y.abs().cmp_le(limit);
+    let one = f32x8::splat(zline_raster::SUBPIXEL_ONE as f32);
+    let (fx, fy) = (round_x8(x * one).to_array(), round_x8(y * one).to_array());
+    let ok = as_int(ok).to_array().map(|m| m != 0);
+    (fx, fy, ok)
+}
+
+/// A mask's lanes as integers (−1 where it holds, 0 elsewhere).
+#[inline(always)]
+fn as_int<S: Level>(mask: f32x8<S>) -> i32x8<S> {
+    bytemuck::cast(mask)
+}
+
+/// `round_to_i32` of `FixedPoint::snap` in lanes: truncation, then one
+/// step away from zero where the fraction is at least one half. Exact for
+/// |v| ≤ 2^29 (the truncation cannot saturate, and v − t is exact).
+#[inline(always)]
+fn round_x8<S: Level>(v: f32x8<S>) -> i32x8<S> {
+    let t = v.fast_trunc_int();
+    let frac = v - f32x8::from_i32x8(t);
+    let half = f32x8::splat(0.5);
+    t - as_int(frac.cmp_ge(half)) + as_int(frac.cmp_le(-half))
 }
 
 /// x/w, y/w, z/w and 1/w of eight clip positions, in f64.
@@ -467,6 +514,75 @@ mod tests {
         ]);
         out.extend([p.z.to_bits() as u32, (p.z.to_bits() >> 32) as u32]);
         out
+    }
+
+    /// [`snap_x8`] at a level, as a job.
+    struct Snap([[f64; 4]; 8], Viewport);
+
+    impl zline_simd::Vectorized for Snap {
+        type Output = ([i32; 8], [i32; 8], [bool; 8]);
+        fn run<S: Level>(self) -> Self::Output {
+            snap_x8::<S>(&self.0, self.1)
+        }
+    }
+
+    /// The lanes' snap equals `FixedPoint::snap` where rounding is decided
+    /// by a half (±0.5 and ±1.5 fixed-point units, each side of zero),
+    /// at the largest accepted coordinate and past it, and for NaN and
+    /// infinities, at the CPU's level and at the baseline.
+    #[test]
+    fn the_lanes_snap_as_fixed_point_does() {
+        let s = 1.0 / 256.0;
+        let max = f64::from(zline_raster::MAX_WINDOW_COORD);
+        let values = [
+            0.0,
+            0.5 * s,
+            -0.5 * s,
+            1.5 * s,
+            -1.5 * s,
+            2.5 * s,
+            -2.5 * s,
+            0.49 * s,
+            -0.51 * s,
+            1234.5 * s,
+            -1234.5 * s,
+            100.25,
+            -77.75,
+            max,
+            -max,
+            max + 1.0,
+            -max - 1.0,
+            max * 0.75 + 0.5 * s,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1.0e300,
+        ];
+        // With a 2 × 2 viewport the window map is x + 1 and 1 − y, so the
+        // quotients v − 1 and 1 − v land on window coordinate v.
+        let viewport = Viewport { width: 2, height: 2 };
+        for (i, &vx) in values.iter().enumerate() {
+            let mut q = [[0.0; 4]; 8];
+            for (k, lane) in q.iter_mut().enumerate() {
+                let vy = values[(i + 3 * k + 1) % values.len()];
+                let vx = if k == 0 { vx } else { values[(i + k) % values.len()] };
+                *lane = [vx - 1.0, 1.0 - vy, 0.5, 1.0];
+            }
+            let expected: Vec<Option<FixedPoint>> = q
+                .iter()
+                .map(|&[x, y, _, _]| {
+                    FixedPoint::snap(((x + 1.0) * 0.5 * 2.0) as f32, ((1.0 - y) * 0.5 * 2.0) as f32)
+                })
+                .collect();
+            for (fx, fy, ok) in [
+                zline_simd::vectorize(Snap(q, viewport)),
+                snap_x8::<zline_simd::lanes::Baseline>(&q, viewport),
+            ] {
+                let got: Vec<Option<FixedPoint>> =
+                    (0..8).map(|k| ok[k].then_some(FixedPoint { x: fx[k], y: fy[k] })).collect();
+                assert_eq!(got, expected, "quotients {q:?}");
+            }
+        }
     }
 
     proptest! {
