@@ -140,39 +140,7 @@ enum Task {
     /// interleaved: per round every scene with zline at each thread count,
     /// then with llvmpipe; prints the median of the round medians and the
     /// ratio. Needs glref built by its setup.sh.
-    Versus {
-        /// glref's folder (its setup.sh builds glref and the meshes).
-        #[arg(long, default_value = "../shared/tools/glref")]
-        glref: PathBuf,
-        /// Interleaved rounds.
-        #[arg(long, default_value_t = 3)]
-        rounds: usize,
-        /// Warm frames timed per scene and renderer in a round.
-        #[arg(long, default_value_t = 15)]
-        frames: usize,
-        /// zline's thread counts; the ratio uses the last.
-        #[arg(long, value_delimiter = ',', default_value = "1,2")]
-        threads: Vec<usize>,
-        /// llvmpipe's rasterizer threads (LP_NUM_THREADS).
-        #[arg(long, default_value_t = 2)]
-        lp_threads: usize,
-        /// Only scenes whose name contains this text.
-        #[arg(long)]
-        filter: Option<String>,
-        /// Time zline alone (llvmpipe's columns stay empty): for comparing
-        /// two builds of zline run alternately.
-        #[arg(long)]
-        zline_only: bool,
-        /// Also print zline's stage times (geometry, binning, raster;
-        /// medians) per scene and thread count.
-        #[arg(long)]
-        stages: bool,
-        /// Draw every back face, as glref asks llvmpipe to (no culling):
-        /// the same work on both sides. By default zline culls the closed,
-        /// opaque meshes, as it does for any user (SPEC §2).
-        #[arg(long)]
-        no_culling: bool,
-    },
+    Versus(versus::Args),
     /// Write the elevation files of assets/terrain/ (deterministic
     /// diamond-square hills): hills.png, 257x257 16-bit greyscale, and
     /// hills-65.asc, an ESRI ASCII grid of every fourth sample.
@@ -283,27 +251,7 @@ fn main() -> Result<()> {
         Task::Report { assets, out, chart, frames, size, filter, font } => {
             report::run(&report::Args { assets, out, chart, frames, size, filter, font })
         }
-        Task::Versus {
-            glref,
-            rounds,
-            frames,
-            threads,
-            lp_threads,
-            filter,
-            zline_only,
-            stages,
-            no_culling,
-        } => versus::run(&versus::Args {
-            glref,
-            rounds,
-            frames,
-            threads,
-            lp_threads,
-            filter,
-            zline_only,
-            stages,
-            no_culling,
-        }),
+        Task::Versus(args) => versus::run(&args),
         Task::Modules { verbose } => modules::run(verbose),
         Task::TraceReport { assets, width, accel, antialias, truth, embree } => {
             let all = !(accel || antialias || truth || embree.is_some());

@@ -28,20 +28,39 @@ const SCENES: [(&str, &str); 6] = [
     ("big", "1M-triangle sphere"),
 ];
 
-/// What `versus` is asked to do.
+/// What `versus` is asked to do (its command-line arguments).
+#[derive(clap::Args)]
 pub(crate) struct Args {
+    /// glref's folder (its setup.sh builds glref and the meshes).
+    #[arg(long, default_value = "../shared/tools/glref")]
     pub glref: PathBuf,
+    /// Interleaved rounds.
+    #[arg(long, default_value_t = 3)]
     pub rounds: usize,
+    /// Warm frames timed per scene and renderer in a round.
+    #[arg(long, default_value_t = 15)]
     pub frames: usize,
+    /// zline's thread counts; the ratio uses the last.
+    #[arg(long, value_delimiter = ',', default_value = "1,2")]
     pub threads: Vec<usize>,
+    /// llvmpipe's rasterizer threads (LP_NUM_THREADS).
+    #[arg(long, default_value_t = 2)]
     pub lp_threads: usize,
+    /// Only scenes whose name contains this text.
+    #[arg(long)]
     pub filter: Option<String>,
-    /// Time zline alone (to compare two builds of zline, run alternately).
+    /// Time zline alone (llvmpipe's columns stay empty): for comparing
+    /// two builds of zline run alternately.
+    #[arg(long)]
     pub zline_only: bool,
-    /// Also print where zline's time goes, per scene and thread count.
+    /// Also print zline's stage times (geometry, binning, raster;
+    /// medians) per scene and thread count.
+    #[arg(long)]
     pub stages: bool,
-    /// Draw every back face (glref's llvmpipe culls none); by default
-    /// zline culls closed, opaque meshes as for any user.
+    /// Draw every back face, as glref asks llvmpipe to (no culling):
+    /// the same work on both sides. By default zline culls the closed,
+    /// opaque meshes, as it does for any user (SPEC §2).
+    #[arg(long)]
     pub no_culling: bool,
 }
 
