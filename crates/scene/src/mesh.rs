@@ -473,6 +473,25 @@ mod tests {
         assert!(far.is_closed(), "only positions equal once moved: still closed");
     }
 
+    /// The grid follows the mesh's size: a closed tetrahedron is closed at
+    /// 1e-30 and at 1e30 (where the step is far above 1, and far below),
+    /// and without one face it is open at every scale; a mesh of one point
+    /// has no edge and is not closed.
+    #[test]
+    fn closedness_holds_at_every_scale() {
+        let corners = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
+        let faces = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+        for scale in [1.0e-30f32, 1.0e-3, 1.0, 1.0e3, 1.0e30] {
+            let positions: Vec<Vec3> = corners.iter().map(|&c| c * scale).collect();
+            let closed = Mesh::new("t", positions.clone(), None, faces.clone(), Material::default()).unwrap();
+            assert!(closed.is_closed(), "scale {scale}");
+            let open = Mesh::new("t", positions, None, faces[..3].to_vec(), Material::default()).unwrap();
+            assert!(!open.is_closed(), "scale {scale}");
+        }
+        let point = Mesh::new("p", vec![Vec3::ONE; 3], None, vec![[0, 1, 2]], Material::default()).unwrap();
+        assert!(!point.is_closed());
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
         /// Random triangle lists over a few positions (some repeated, −0.0
