@@ -58,11 +58,18 @@ impl Projected {
 
     /// The window mapping of x/w, y/w, z/w and 1/w (in f64, w > 0).
     #[inline(always)]
-    fn from_quotients([x, y, z, inv_w]: [f64; 4], viewport: Viewport) -> Option<Projected> {
-        let (w, h) = (f64::from(viewport.width), f64::from(viewport.height));
-        let fixed = FixedPoint::snap(((x + 1.0) * 0.5 * w) as f32, ((1.0 - y) * 0.5 * h) as f32)?;
-        Some(Projected { fixed, z, inv_w: inv_w as f32 })
+    fn from_quotients(q @ [_, _, z, inv_w]: [f64; 4], viewport: Viewport) -> Option<Projected> {
+        let (x, y) = window(q, viewport);
+        Some(Projected { fixed: FixedPoint::snap(x, y)?, z, inv_w: inv_w as f32 })
     }
+}
+
+/// The window position (in pixels, y down) of quotients x/w, y/w: the
+/// viewport map in f64, rounded to f32 for the snap.
+#[inline(always)]
+fn window([x, y, ..]: [f64; 4], viewport: Viewport) -> (f32, f32) {
+    let (w, h) = (f64::from(viewport.width), f64::from(viewport.height));
+    (((x + 1.0) * 0.5 * w) as f32, ((1.0 - y) * 0.5 * h) as f32)
 }
 
 /// Where an object's vertices are lit — the one place that decides it
@@ -381,19 +388,17 @@ fn lit_x8<S: Level>(l: &VertexLights<'_>, eye: Vec3x8<S>, normal: Vec3x8<S>) -> 
 }
 
 /// The window positions of eight vertices from their quotients, snapped as
-/// [`Projected::from_quotients`] snaps them (`FixedPoint::snap`: the
-/// window map in f64, rounded to f32; the range test; ×256 rounded to
-/// nearest, halves away from zero, by truncation and the fraction's side),
+/// [`Projected::from_quotients`] snaps them ([`window`], then
+/// `FixedPoint::snap`'s range test and ×256 rounded to nearest, halves
+/// away from zero, by truncation and the fraction's side),
 /// in lanes: fixed x, fixed y, and whether the lane could be snapped. The
 /// scalar snap cost about 50 instructions a vertex, mostly `as i32`'s
 /// saturating checks.
 #[inline(always)]
 fn snap_x8<S: Level>(q: &[[f64; 4]; 8], viewport: Viewport) -> ([i32; 8], [i32; 8], [bool; 8]) {
-    let (w, h) = (f64::from(viewport.width), f64::from(viewport.height));
     let (mut wx, mut wy) = ([0.0f32; 8], [0.0f32; 8]);
     for k in 0..8 {
-        wx[k] = ((q[k][0] + 1.0) * 0.5 * w) as f32;
-        wy[k] = ((1.0 - q[k][1]) * 0.5 * h) as f32;
+        (wx[k], wy[k]) = window(q[k], viewport);
     }
     let (x, y) = (f32x8::<S>::from(wx), f32x8::<S>::from(wy));
     let limit = f32x8::splat(zline_raster::MAX_WINDOW_COORD);
@@ -526,7 +531,7 @@ mod tests {
         }
     }
 
-    /// The lanes' snap equals `FixedPoint::snap` where rounding is decided
+    /// The lanes' snap equals `Projected::from_quotients`' where rounding is decided
     /// by a half (±0.5 and ±1.5 fixed-point units, each side of zero),
     /// at the largest accepted coordinate and past it, and for NaN and
     /// infinities, at the CPU's level and at the baseline.
@@ -568,12 +573,8 @@ mod tests {
                 let vx = if k == 0 { vx } else { values[(i + k) % values.len()] };
                 *lane = [vx - 1.0, 1.0 - vy, 0.5, 1.0];
             }
-            let expected: Vec<Option<FixedPoint>> = q
-                .iter()
-                .map(|&[x, y, _, _]| {
-                    FixedPoint::snap(((x + 1.0) * 0.5 * 2.0) as f32, ((1.0 - y) * 0.5 * 2.0) as f32)
-                })
-                .collect();
+            let expected: Vec<Option<FixedPoint>> =
+                q.iter().map(|&q| Projected::from_quotients(q, viewport).map(|p| p.fixed)).collect();
             for (fx, fy, ok) in [
                 zline_simd::vectorize(Snap(q, viewport)),
                 snap_x8::<zline_simd::lanes::Baseline>(&q, viewport),

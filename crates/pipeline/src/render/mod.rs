@@ -180,7 +180,8 @@ impl FrameTables {
 struct BandBuffers {
     target: TileTarget,
     order: Vec<(f32, PrimitiveRef)>,
-    /// The band's tiles with nothing to draw, filled after the others.
+    /// The band's tiles with nothing to draw, as runs of neighbours,
+    /// filled after the others.
     untouched: Vec<Rect>,
 }
 

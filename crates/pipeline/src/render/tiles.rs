@@ -68,7 +68,12 @@ impl Renderer {
                         let tile = (col, row as u32);
                         let drawn = passes.draw((target, order), tile, band, depth_band.as_deref_mut());
                         drawn.unwrap_or_else(|| {
-                            untouched.push(pixels_of(grid.rect(col, row as u32), n));
+                            let rect = pixels_of(grid.rect(col, row as u32), n);
+                            // A tile touching the last one lengthens its run.
+                            match untouched.last_mut() {
+                                Some(last) if last.x1 == rect.x0 => last.x1 = rect.x1,
+                                _ => untouched.push(rect),
+                            }
                             0
                         })
                     })
@@ -249,23 +254,19 @@ impl TilePasses<'_> {
     }
 }
 
-/// Fills the pixels of `rects` (tiles of one band, left to right, all of
-/// the band's rows) in `band` with one packed colour, row by row across
-/// the band and neighbouring tiles as one run: tile by tile, each of a
-/// tile's rows started a new stretch of the image a row below the last,
-/// and the fill ran at half the speed.
-fn fill_rects(band: &mut [u32], width: usize, rects: &[Rect], color: u32) {
-    let Some(first) = rects.first() else {
+/// Fills the pixels of `runs` (runs of neighbouring untouched tiles of one
+/// band, left to right, all of the band's rows) in `band` with one packed
+/// colour, row by row across the band: tile by tile, each of a tile's rows
+/// started a new stretch of the image a row below the last, and the fill
+/// ran at half the speed.
+fn fill_rects(band: &mut [u32], width: usize, runs: &[Rect], color: u32) {
+    let Some(first) = runs.first() else {
         return;
     };
     for row in 0..first.height() as usize {
         let line = &mut band[row * width..(row + 1) * width];
-        let mut rest = rects;
-        while let [r, ..] = rest {
-            // The run of tiles touching end to end from r.
-            let n = 1 + rest.windows(2).take_while(|w| w[0].x1 == w[1].x0).count();
-            line[r.x0 as usize..rest[n - 1].x1 as usize].fill(color);
-            rest = &rest[n..];
+        for r in runs {
+            line[r.x0 as usize..r.x1 as usize].fill(color);
         }
     }
 }
