@@ -33,7 +33,8 @@ use crate::shadow;
 use crate::shadow_map::ShadowMaps;
 use crate::tile::{FrameTexture, SurfaceUse, TileTarget};
 use crate::vertex::{
-    transform_mesh, ClipVertex, ObjectTransforms, Screen, VertexLighting, VertexLights, Viewport,
+    transform_compact, transform_mesh, ClipVertex, CompactVertices, ObjectTransforms, Screen, Source,
+    VertexLighting, VertexLights, Viewport,
 };
 use crate::volume::ClipVolume;
 
@@ -95,7 +96,7 @@ pub fn render(scene: &Scene, options: &RenderOptions) -> (Image, RenderStats) {
 /// test counts). The image is the same as [`render`]'s.
 #[derive(Debug, Default)]
 pub struct Renderer {
-    vertices: Vec<ClipVertex>,
+    vertices: VertexBuffers,
     /// Setup output, one chunk per rayon task; `chunks[..used]` hold this
     /// frame's primitives in draw order.
     chunks: Vec<PrimitiveChunk>,
@@ -572,6 +573,14 @@ impl Renderer {
     }
 }
 
+/// The vertex stage's output for the object being set up: whole records,
+/// or compact ones for an object set up in lanes.
+#[derive(Debug, Default)]
+struct VertexBuffers {
+    full: Vec<ClipVertex>,
+    compact: CompactVertices,
+}
+
 /// Transforms `mesh` (`vertices`) and sets up its triangles in parallel
 /// chunks appended after `chunks[..used]`, all in `pass`; with `sources`
 /// (the pixel inspector), each chunk records which triangle made each
@@ -581,11 +590,18 @@ fn setup_mesh(
     (transforms, lights): (&ObjectTransforms, Option<VertexLights<'_>>),
     ctx: &SetupContext<'_>,
     (pass, sources): (PassKind, bool),
-    (vertices, chunks, used): (&mut Vec<ClipVertex>, &mut Vec<PrimitiveChunk>, &mut usize),
+    (vertices, chunks, used): (&mut VertexBuffers, &mut Vec<PrimitiveChunk>, &mut usize),
 ) {
     let screen = Screen { viewport: ctx.viewport, volume: ctx.volume };
-    transform_mesh(mesh, transforms, lights, &screen, vertices);
-    let vertices = &*vertices;
+    let lanes = LanesKind::choose(ctx, sources);
+    match lanes {
+        Some(kind) => {
+            transform_compact(mesh, transforms, lights, &screen, kind.layout(ctx), &mut vertices.compact)
+        }
+        None => transform_mesh(mesh, transforms, lights, &screen, &mut vertices.full),
+    }
+    let (compact, vertices) = (&vertices.compact, vertices.full.as_slice());
+    let source = Source { mesh, t: transforms, screen: &screen };
     let chunk = triangle_chunk(mesh.triangles.len(), rayon::current_num_threads());
     let (first, n) = (*used, mesh.triangles.len().div_ceil(chunk));
     *used += n;
@@ -593,13 +609,12 @@ fn setup_mesh(
         chunks.resize_with(*used, PrimitiveChunk::default);
     }
     let tris = mesh.triangles.par_chunks(chunk);
-    let lanes = LanesKind::choose(ctx, sources);
     chunks[first..*used].par_iter_mut().zip(tris).enumerate().for_each(|(k, (out, tris))| {
         out.reset(pass);
         (out.object, out.first_triangle) = (ctx.material.1, (k * chunk) as u32);
         if let Some(kind) = lanes {
-            let (vertices, triangles) = (vertices.as_slice(), tris);
-            zline_simd::vectorize(SetupTriangles { vertices, triangles, ctx, kind, out });
+            let (vertices, triangles) = (compact, tris);
+            zline_simd::vectorize(SetupTriangles { vertices, source, triangles, ctx, kind, out });
             return;
         }
         for t in tris {

@@ -20,10 +20,10 @@ use zline_shading::ShadingMode;
 use zline_simd::lanes::Level;
 
 use super::{
-    gather, is_front_facing, seen_from_behind, setup_triangle, sort_keys, Faces, Gouraud, Kernel,
+    is_front_facing, seen_from_behind, setup_triangle, sort_keys, DepthEncoding, Faces, Gouraud, Kernel,
     KernelTables, Phong, Primitive, PrimitiveChunk, SetupContext, VertexColors,
 };
-use crate::vertex::{ClipVertex, VertexLighting};
+use crate::vertex::{CompactVertices, ScreenVertex, Source, ValueLayout, VertexLighting};
 
 /// The kernels the lanes path sets up.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,13 +53,33 @@ impl LanesKind {
             _ => None,
         }
     }
+
+    /// What the lanes read of each vertex besides its [`ScreenVertex`]:
+    /// Gouraud the lit colour, the turned one when back faces are turned,
+    /// and the eye position when back faces are turned (to decide which
+    /// side is seen) or depth is reversed (computed from eye z); Phong the
+    /// normal and the eye position.
+    pub(crate) fn layout(self, ctx: &SetupContext<'_>) -> ValueLayout {
+        let reversed = matches!(ctx.depth, DepthEncoding::Reversed { .. });
+        match self {
+            LanesKind::Gouraud => {
+                let turns = ctx.turns_back_faces();
+                ValueLayout::new([true, turns, false, turns || reversed])
+            }
+            LanesKind::Phong => ValueLayout::new([false, false, true, true]),
+        }
+    }
 }
 
 /// Sets up `triangles` (indices into `vertices`) into `out` as
 /// [`setup_triangle`] would, one at a time, but eight at a time in lanes.
 pub(crate) struct SetupTriangles<'a> {
-    /// The object's transformed vertices.
-    pub(crate) vertices: &'a [ClipVertex],
+    /// The object's transformed vertices, in the layout of
+    /// [`LanesKind::layout`].
+    pub(crate) vertices: &'a CompactVertices,
+    /// What whole records are rebuilt from, for triangles that need
+    /// clipping.
+    pub(crate) source: Source<'a>,
     /// The triangles, in mesh order.
     pub(crate) triangles: &'a [[u32; 3]],
     /// The object.
@@ -75,11 +95,11 @@ impl zline_simd::Vectorized for SetupTriangles<'_> {
 
     #[inline(always)]
     fn run<L: Level>(self) {
-        let SetupTriangles { vertices, triangles, ctx, kind, out } = self;
+        let SetupTriangles { vertices, source, triangles, ctx, kind, out } = self;
         for group in triangles.chunks(SETUP_LANES) {
             match kind {
-                LanesKind::Gouraud => setup_group::<GouraudLanes, 4>(vertices, group, ctx, out),
-                LanesKind::Phong => setup_group::<PhongLanes, 7>(vertices, group, ctx, out),
+                LanesKind::Gouraud => setup_group::<GouraudLanes, 4>((vertices, &source), group, ctx, out),
+                LanesKind::Phong => setup_group::<PhongLanes, 7>((vertices, &source), group, ctx, out),
             }
         }
     }
@@ -91,8 +111,8 @@ impl zline_simd::Vectorized for SetupTriangles<'_> {
 trait LaneKernel<const N: usize> {
     /// What the kernel's table holds beside the edges and depth.
     type Shader;
-    /// Planes 1.. of a vertex (its normal turned when `back`), before q.
-    fn values(v: &ClipVertex, back: bool) -> [f32; N];
+    /// Planes 1.. of vertex `i` (its normal turned when `back`), before q.
+    fn values(v: &CompactVertices, i: usize, back: bool) -> [f32; N];
     /// The kernel and the shader data of a primitive with `planes`.
     fn shader(ctx: &SetupContext<'_>, planes: AttributePlanes<N>) -> (Kernel, Self::Shader);
     /// The kernel's table.
@@ -106,10 +126,12 @@ impl LaneKernel<4> for GouraudLanes {
     type Shader = Gouraud;
 
     #[inline(always)]
-    fn values(v: &ClipVertex, back: bool) -> [f32; 4] {
+    fn values(v: &CompactVertices, i: usize, back: bool) -> [f32; 4] {
         // Seen from behind: the colour the vertex stage lit with the normal
         // turned (`super::turned`).
-        let c = if back { v.tangent.truncate() } else { v.color };
+        let layout = &v.layout;
+        let offset = if back { layout.turned } else { layout.color };
+        let c = v.value(i, offset.unwrap_or_default());
         [0.0, c.x, c.y, c.z]
     }
 
@@ -131,9 +153,11 @@ impl LaneKernel<7> for PhongLanes {
     type Shader = Phong<7>;
 
     #[inline(always)]
-    fn values(v: &ClipVertex, back: bool) -> [f32; 7] {
-        let n = if back { -v.normal } else { v.normal };
-        [0.0, n.x, n.y, n.z, v.eye.x, v.eye.y, v.eye.z]
+    fn values(v: &CompactVertices, i: usize, back: bool) -> [f32; 7] {
+        let (n, eye) =
+            (v.value(i, v.layout.normal.unwrap_or_default()), v.value(i, v.layout.eye.unwrap_or_default()));
+        let n = if back { -n } else { n };
+        [0.0, n.x, n.y, n.z, eye.x, eye.y, eye.z]
     }
 
     #[inline(always)]
@@ -149,11 +173,12 @@ impl LaneKernel<7> for PhongLanes {
 
 /// What the first pass decided for one triangle of a group.
 #[derive(Clone, Copy, Debug)]
-enum Lane<'a> {
+enum Lane {
     /// No primitive (outside the view volume, culled, bad index).
     Skip,
-    /// Needs clipping: [`setup_triangle`] sets these vertices up.
-    Scalar([&'a ClipVertex; 3]),
+    /// Needs clipping: [`setup_triangle`] sets these vertices up, rebuilt
+    /// whole ([`CompactVertices::full`]).
+    Scalar([usize; 3]),
     /// In the lanes.
     Lanes,
 }
@@ -161,7 +186,7 @@ enum Lane<'a> {
 /// Up to eight triangles (see the module doc).
 #[inline(always)]
 fn setup_group<K: LaneKernel<N>, const N: usize>(
-    vertices: &[ClipVertex],
+    (vertices, source): (&CompactVertices, &Source<'_>),
     group: &[[u32; 3]],
     ctx: &SetupContext<'_>,
     out: &mut PrimitiveChunk,
@@ -174,42 +199,49 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
     let mut depth = [[0.0f64; SETUP_LANES]; 3];
     let mut nc = [[0.0f64; SETUP_LANES]; 3];
     let mut planes = [[[0.0f32; SETUP_LANES]; 3]; N];
+    let eye = |i: usize| vertices.value(i, vertices.layout.eye.unwrap_or_default());
     for (k, t) in group.iter().enumerate() {
-        let Some(tri) = gather(vertices, t) else {
+        let Some((index, tri)) = gather(&vertices.screen, t) else {
             continue;
         };
         if tri[0].view_code & tri[1].view_code & tri[2].view_code != 0 {
             continue; // entirely outside one plane of the view volume (NaN vertices included)
         }
         if tri[0].clip_code | tri[1].clip_code | tri[2].clip_code != 0 {
-            lane[k] = Lane::Scalar(tri);
+            lane[k] = Lane::Scalar(index);
             continue;
         }
-        let fixed = [tri[0].projected.fixed, tri[1].projected.fixed, tri[2].projected.fixed];
+        let fixed = [tri[0].fixed, tri[1].fixed, tri[2].fixed];
         if ctx.faces == Faces::Front && !is_front_facing(&fixed) {
             continue; // culled (SPEC §2)
         }
-        let back = ctx.turns_back_faces() && seen_from_behind(&tri, ctx.viewer);
+        let back = ctx.turns_back_faces()
+            && seen_from_behind([eye(index[0]), eye(index[1]), eye(index[2])], ctx.viewer);
         (lane[k], any_lanes) = (Lane::Lanes, true);
         points.set(k, fixed);
-        for (j, v) in tri.iter().enumerate() {
-            depth[j][k] = ctx.depth.value(v, &v.projected);
-            nc[j][k] = v.projected.z;
+        for (j, (v, &i)) in tri.iter().zip(&index).enumerate() {
+            let eye_z = if vertices.layout.eye.is_some() { eye(i).z } else { 0.0 };
+            depth[j][k] = ctx.depth.value(eye_z, v.z);
+            nc[j][k] = v.z;
             let q = match ctx.interpolation {
-                Interpolation::PerspectiveCorrect => v.projected.inv_w,
+                Interpolation::PerspectiveCorrect => v.inv_w,
                 Interpolation::ScreenLinear => 1.0,
             };
-            let values = K::values(v, back);
+            let values = K::values(vertices, i, back);
             planes[0][j][k] = q;
             for i in 1..N {
                 planes[i][j][k] = values[i] * q;
             }
         }
     }
+    let clipped = |index: [usize; 3], out: &mut PrimitiveChunk| {
+        let tri = index.map(|i| vertices.full(i, source));
+        setup_triangle([&tri[0], &tri[1], &tri[2]], ctx, out);
+    };
     if !any_lanes {
         for l in lane {
-            if let Lane::Scalar(tri) = l {
-                setup_triangle(tri, ctx, out);
+            if let Lane::Scalar(index) = l {
+                clipped(index, out);
             }
         }
         return;
@@ -225,7 +257,7 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
     for (k, l) in lane.into_iter().enumerate() {
         match l {
             Lane::Skip => {}
-            Lane::Scalar(tri) => setup_triangle(tri, ctx, out),
+            Lane::Scalar(index) => clipped(index, out),
             Lane::Lanes if setup.drawn(k) => {
                 let edges: EdgeTable = setup.edge_table(k);
                 let depth: DepthPlane = setup.depth_plane(k, depth[0][k], (dzdx[k], dzdy[k]));
@@ -242,6 +274,14 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
             Lane::Lanes => {}
         }
     }
+}
+
+/// A triangle's vertex indices and screen records; `None` when an index is
+/// out of range (as `super::gather`).
+#[inline(always)]
+fn gather<'a>(screen: &'a [ScreenVertex], t: &[u32; 3]) -> Option<([usize; 3], [&'a ScreenVertex; 3])> {
+    let index = [t[0] as usize, t[1] as usize, t[2] as usize];
+    Some((index, [screen.get(index[0])?, screen.get(index[1])?, screen.get(index[2])?]))
 }
 
 /// Every lane's [`sort_keys`].
@@ -262,8 +302,11 @@ mod tests {
     use zline_shading::{Attenuation, Light, LightingModel, PreparedLights, PreparedMaterial};
 
     use super::*;
+    use crate::setup::gather;
     use crate::setup::{DepthEncoding, Viewer};
-    use crate::vertex::{transform_mesh, ObjectTransforms, Screen, VertexLights, Viewport};
+    use crate::vertex::{
+        transform_compact, transform_mesh, ObjectTransforms, Screen, VertexLights, Viewport,
+    };
     use crate::volume::ClipVolume;
 
     /// A chunk's primitives, bit for bit (`{:?}` prints every float's
@@ -297,6 +340,9 @@ mod tests {
             let n = positions.len();
             let normals = Some(normals[..n].to_vec());
             let mut mesh = Mesh::new("random", positions, normals, vec![], Material::default()).unwrap();
+            // Texture coordinates the kernels do not read, but clipping
+            // carries: the rebuilt records must hold them too.
+            mesh.uvs = mesh.normals.iter().map(|v| v.truncate()).collect();
             // Unchecked, as a hand-built mesh may be: some out of range.
             mesh.triangles = indices;
             let eye_from_world = Mat4::look_at_rh(eye, Vec3::ZERO, Vec3::Y);
@@ -359,9 +405,17 @@ mod tests {
                     setup_triangle(tri, &ctx, &mut scalar);
                 }
             }
+            // The lanes read compact records (whole ones rebuilt for clipping).
+            let (kind, screen) = (kind.unwrap(), Screen { viewport, volume });
+            let mut compact = CompactVertices::default();
+            transform_compact(&mesh, &t, lit, &screen, kind.layout(&ctx), &mut compact);
+            let source = Source { mesh: &mesh, t: &t, screen: &screen };
+            for (i, whole) in vertices.iter().enumerate() {
+                prop_assert_eq!(format!("{:?}", compact.full(i, &source)), format!("{whole:?}"));
+            }
             let mut lanes = PrimitiveChunk::default();
-            let (vertices, triangles, kind) = (&vertices[..], &mesh.triangles[..], kind.unwrap());
-            zline_simd::vectorize(SetupTriangles { vertices, triangles, ctx: &ctx, kind, out: &mut lanes });
+            let (vertices, triangles) = (&compact, &mesh.triangles[..]);
+            zline_simd::vectorize(SetupTriangles { vertices, source, triangles, ctx: &ctx, kind, out: &mut lanes });
             prop_assert_eq!(bits(&lanes), bits(&scalar));
         }
     }

@@ -55,13 +55,14 @@ pub enum DepthEncoding {
 }
 
 impl DepthEncoding {
-    /// The value stored for a vertex.
+    /// The value stored for a vertex at eye-space depth `eye_z` and NC
+    /// depth `z`.
     #[inline]
-    fn value(self, v: &ClipVertex, p: &Projected) -> f64 {
+    fn value(self, eye_z: f32, z: f64) -> f64 {
         match self {
-            DepthEncoding::Normalized => p.z,
+            DepthEncoding::Normalized => z,
             DepthEncoding::Reversed { a, b, perspective } => {
-                let z = f64::from(v.eye.z);
+                let z = f64::from(eye_z);
                 let w = if perspective { -z } else { 1.0 };
                 -(a * z + b) / (2.0 * w)
             }
@@ -210,7 +211,7 @@ fn setup_drawn(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut Primitiv
     // doubleSided do. One-sided lighting keeps the normals as given, so the
     // far side of an open mesh is lit as if the viewer stood behind it.
     let flipped: [ClipVertex; 3];
-    let back = ctx.turns_back_faces() && seen_from_behind(&tri, ctx.viewer);
+    let back = ctx.turns_back_faces() && seen_from_behind([tri[0].eye, tri[1].eye, tri[2].eye], ctx.viewer);
     let tri = if back {
         flipped = tri.map(|v| turned(v, ctx));
         [&flipped[0], &flipped[1], &flipped[2]]
@@ -315,9 +316,9 @@ fn lit_color(parts: LitParts, clamp: GouraudClamp, ceiling: f32) -> Vec3 {
 /// True when the triangle's front (counter-clockwise) side faces away from
 /// the viewer, decided in eye space on the original triangle.
 #[inline]
-fn seen_from_behind(tri: &[&ClipVertex; 3], viewer: Viewer) -> bool {
-    // Not `tri.map`: some builds left that out of line in setup's lanes.
-    let p = [tri[0].eye.as_dvec3(), tri[1].eye.as_dvec3(), tri[2].eye.as_dvec3()];
+fn seen_from_behind(eye: [Vec3; 3], viewer: Viewer) -> bool {
+    // Not `eye.map`: some builds left that out of line in setup's lanes.
+    let p = [eye[0].as_dvec3(), eye[1].as_dvec3(), eye[2].as_dvec3()];
     let normal = (p[1] - p[0]).cross(p[2] - p[0]);
     let to_viewer = match viewer {
         Viewer::AlongMinusZ => glam::DVec3::Z,
@@ -440,7 +441,7 @@ fn emit(
     let Some(basis) = PlaneBasis::new(fixed) else {
         return;
     };
-    let depth = DepthPlane::new(&basis, std::array::from_fn(|k| ctx.depth.value(tri[k], &p[k])));
+    let depth = DepthPlane::new(&basis, std::array::from_fn(|k| ctx.depth.value(tri[k].eye.z, p[k].z)));
     let sc = match ctx.adaptive {
         None => {
             Shortcuts { interpolation: ctx.interpolation, material: ctx.material.1, lighting: Shortcut::None }

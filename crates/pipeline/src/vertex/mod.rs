@@ -7,7 +7,8 @@
 //! evaluated at every vertex now (clamped or not, as the scene's
 //! [`GouraudClamp`] says) ([`VertexLighting`] says where each
 //! object is lit). Output: [`ClipVertex`]es with their outcodes and, when
-//! they need no clipping, their [`Projected`] window positions.
+//! they need no clipping, their [`Projected`] window positions; or, for an
+//! object that setup builds in lanes, the compact records of [`compact`].
 
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use rayon::prelude::*;
@@ -16,9 +17,11 @@ use zline_scene::{GouraudClamp, Mesh};
 use zline_shading::{PreparedLights, PreparedMaterial, ShadingMode, Vec3x8};
 use zline_simd::lanes::{f32x8, i32x8, Level};
 
-#[cfg(test)]
-use crate::volume::view_code;
-use crate::volume::{view_codes_x8, ClipVolume};
+use crate::volume::{view_code, view_codes_x8, ClipVolume};
+
+pub mod compact;
+
+pub use compact::{CompactVertices, ScreenVertex, ValueLayout};
 
 /// Vertices per rayon task: big enough that scheduling costs nothing.
 const VERTEX_CHUNK: usize = 4096;
@@ -228,7 +231,15 @@ pub fn transform_mesh(
         let start = chunk * VERTEX_CHUNK;
         let positions = &mesh.positions[start..start + out.len()];
         let normals = &mesh.normals[start..start + out.len()];
-        zline_simd::vectorize(TransformVertices { out: &mut *out, positions, normals, t, screen, lighting });
+        let out_records = Records::Full(&mut *out);
+        zline_simd::vectorize(TransformVertices {
+            out: out_records,
+            positions,
+            normals,
+            t,
+            screen,
+            lighting,
+        });
         if let Some(uvs) = mesh.uvs.get(start..start + out.len()) {
             for (v, &uv) in out.iter_mut().zip(uvs) {
                 v.uv = uv;
@@ -272,7 +283,7 @@ fn transform_tangents(out: &mut [ClipVertex], tangents: &[Vec4], t: &ObjectTrans
 /// `zline_shading::Vec3x8`), also with the normal turned when
 /// [`VertexLights::turned`] asks.
 struct TransformVertices<'a> {
-    out: &'a mut [ClipVertex],
+    out: Records<'a>,
     positions: &'a [Vec3],
     normals: &'a [Vec3],
     t: &'a ObjectTransforms,
@@ -280,16 +291,90 @@ struct TransformVertices<'a> {
     lighting: Option<VertexLights<'a>>,
 }
 
+/// Where [`TransformVertices`] stores its vertices: whole records, or the
+/// compact ones of an object set up in lanes ([`compact`]) — a run-time
+/// choice made once per group of eight, not a second job.
+enum Records<'a> {
+    /// [`ClipVertex`]es.
+    Full(&'a mut [ClipVertex]),
+    /// [`ScreenVertex`]es and the values the layout names.
+    Compact(&'a mut [ScreenVertex], &'a mut [f32], ValueLayout),
+}
+
 impl zline_simd::Vectorized for TransformVertices<'_> {
     type Output = ();
 
     #[inline(always)]
     fn run<S: Level>(self) {
-        let TransformVertices { out, positions, normals, t, screen, lighting } = self;
-        let groups = out.chunks_mut(8).zip(positions.chunks(8).zip(normals.chunks(8)));
-        for (out, (p, n)) in groups {
-            transform_group::<S>(out, p, n, (t, lighting.as_ref()), screen);
+        let TransformVertices { mut out, positions, normals, t, screen, lighting } = self;
+        for (g, (p, n)) in positions.chunks(8).zip(normals.chunks(8)).enumerate() {
+            let lanes = transform_group::<S>(p, n, (t, lighting.as_ref()), screen);
+            let range = g * 8..g * 8 + p.len();
+            match &mut out {
+                Records::Full(out) => store_full(&lanes, &mut out[range]),
+                Records::Compact(screen, values, layout) => {
+                    let values = &mut values[range.start * layout.stride..range.end * layout.stride];
+                    store_compact(&lanes, &mut screen[range], values, &*layout);
+                }
+            }
         }
+    }
+}
+
+/// Eight vertices of [`TransformVertices`] in lanes, transposed: each
+/// array's lane k is vertex k of the group.
+struct GroupLanes {
+    clip: [[f32; 8]; 4],
+    eye: [[f32; 8]; 3],
+    normal: [[f32; 8]; 3],
+    color: [[f32; 8]; 3],
+    turned: [[f32; 8]; 3],
+    /// x/w, y/w, z/w, 1/w.
+    quotients: [[f64; 4]; 8],
+    fixed: ([i32; 8], [i32; 8]),
+    /// Whether the lane could be snapped.
+    snapped: [bool; 8],
+    clip_codes: [u8; 8],
+    view_codes: [u8; 8],
+}
+
+impl GroupLanes {
+    /// Vertex k's window position, depth and outcodes, with
+    /// [`NEEDS_SETUP`] when it must be projected in setup.
+    #[inline(always)]
+    fn screen(&self, k: usize) -> (Projected, u8, u8) {
+        let projected = (self.clip_codes[k] == 0 && self.snapped[k]).then(|| Projected {
+            fixed: FixedPoint { x: self.fixed.0[k], y: self.fixed.1[k] },
+            z: self.quotients[k][2],
+            inv_w: self.quotients[k][3] as f32,
+        });
+        let needs_setup = if projected.is_none() { NEEDS_SETUP } else { 0 };
+        (projected.unwrap_or_default(), self.view_codes[k], self.clip_codes[k] | needs_setup)
+    }
+}
+
+/// Lane k of three arrays as a vector.
+#[inline(always)]
+fn lane3(v: &[[f32; 8]; 3], k: usize) -> Vec3 {
+    Vec3::new(v[0][k], v[1][k], v[2][k])
+}
+
+/// Stores a group as whole records.
+#[inline(always)]
+fn store_full(g: &GroupLanes, out: &mut [ClipVertex]) {
+    for (k, v) in out.iter_mut().enumerate() {
+        let (projected, view_code, clip_code) = g.screen(k);
+        *v = ClipVertex {
+            clip: Vec4::new(g.clip[0][k], g.clip[1][k], g.clip[2][k], g.clip[3][k]),
+            eye: lane3(&g.eye, k),
+            normal: lane3(&g.normal, k),
+            color: lane3(&g.color, k),
+            uv: glam::Vec2::ZERO,
+            tangent: lane3(&g.turned, k).extend(0.0),
+            projected,
+            view_code,
+            clip_code,
+        };
     }
 }
 
@@ -299,12 +384,11 @@ impl zline_simd::Vectorized for TransformVertices<'_> {
 /// through a call.
 #[inline(always)]
 fn transform_group<S: Level>(
-    out: &mut [ClipVertex],
     p: &[Vec3],
     n: &[Vec3],
     (t, lighting): (&ObjectTransforms, Option<&VertexLights<'_>>),
     s: &Screen,
-) {
+) -> GroupLanes {
     let p = [gather::<S>(p, 0), gather(p, 1), gather(p, 2)];
     let e = t.eye_from_object.to_cols_array_2d();
     let eye = [affine(&e, 0, &p), affine(&e, 1, &p), affine(&e, 2, &p)];
@@ -337,39 +421,106 @@ fn transform_group<S: Level>(
     };
     let clip_codes = s.volume.clip_codes_x8(clip);
     let view_codes = view_codes_x8(clip);
-    let eye = [eye[0].to_array(), eye[1].to_array(), eye[2].to_array()];
-    let normal = [normal[0].to_array(), normal[1].to_array(), normal[2].to_array()];
     let clip = [clip[0].to_array(), clip[1].to_array(), clip[2].to_array(), clip[3].to_array()];
-    let color = [color[0].to_array(), color[1].to_array(), color[2].to_array()];
-    let turned = [turned[0].to_array(), turned[1].to_array(), turned[2].to_array()];
     // The divides of all eight lanes, branch-free so that they run packed
     // (each lane is IEEE division, the bits of `Projected::new`); only the
     // lanes that need no clipping are used.
     let quotients = divide_by_w(&clip);
     let (fixed_x, fixed_y, snapped) = snap_x8::<S>(&quotients, s.viewport);
-    for (k, v) in out.iter_mut().enumerate() {
-        let clip = Vec4::new(clip[0][k], clip[1][k], clip[2][k], clip[3][k]);
-        let mut clip_code = clip_codes[k];
-        // `Projected::from_quotients`, its snap done in lanes.
-        let projected = (clip_code == 0 && snapped[k]).then(|| Projected {
-            fixed: FixedPoint { x: fixed_x[k], y: fixed_y[k] },
-            z: quotients[k][2],
-            inv_w: quotients[k][3] as f32,
-        });
-        if projected.is_none() {
-            clip_code |= NEEDS_SETUP;
+    GroupLanes {
+        clip,
+        eye: [eye[0].to_array(), eye[1].to_array(), eye[2].to_array()],
+        normal: [normal[0].to_array(), normal[1].to_array(), normal[2].to_array()],
+        color: [color[0].to_array(), color[1].to_array(), color[2].to_array()],
+        turned: [turned[0].to_array(), turned[1].to_array(), turned[2].to_array()],
+        quotients,
+        fixed: (fixed_x, fixed_y),
+        snapped,
+        clip_codes,
+        view_codes,
+    }
+}
+
+/// What [`CompactVertices::full`] rebuilds a record from.
+#[derive(Clone, Copy, Debug)]
+pub struct Source<'a> {
+    /// The object's mesh.
+    pub mesh: &'a Mesh,
+    /// Its transforms.
+    pub t: &'a ObjectTransforms,
+    /// The screen.
+    pub screen: &'a Screen,
+}
+
+impl CompactVertices {
+    /// Vertex `i` (in range) as [`transform_mesh`] would have
+    /// stored it, bit for bit.
+    pub fn full(&self, i: usize, source: &Source<'_>) -> ClipVertex {
+        let Source { mesh, t, screen } = *source;
+        let mut v = transform_vertex(mesh.positions[i], mesh.normals[i], t, screen);
+        if let Some(offset) = self.layout.color {
+            v.color = self.value(i, offset);
         }
-        *v = ClipVertex {
-            clip,
-            eye: Vec3::new(eye[0][k], eye[1][k], eye[2][k]),
-            normal: Vec3::new(normal[0][k], normal[1][k], normal[2][k]),
-            color: Vec3::new(color[0][k], color[1][k], color[2][k]),
-            uv: glam::Vec2::ZERO,
-            tangent: Vec4::new(turned[0][k], turned[1][k], turned[2][k], 0.0),
-            projected: projected.unwrap_or_default(),
-            view_code: view_codes[k],
-            clip_code,
-        };
+        if let Some(&color) = mesh.colors.get(i) {
+            v.color = color;
+        }
+        if let Some(&uv) = mesh.uvs.get(i) {
+            v.uv = uv;
+        }
+        if let Some(offset) = self.layout.turned {
+            v.tangent = self.value(i, offset).extend(0.0);
+        }
+        let tangent = mesh.normal_map.as_ref().and(mesh.tangents.get(i));
+        if let (Some(&tangent), false) = (tangent, self.lit) {
+            transform_tangents(std::slice::from_mut(&mut v), &[tangent], t);
+        }
+        v
+    }
+}
+
+/// [`transform_mesh`] into compact records holding `layout`'s values
+/// (a layout with a turned colour needs `lighting` with
+/// [`VertexLights::turned`]).
+pub fn transform_compact(
+    mesh: &Mesh,
+    t: &ObjectTransforms,
+    lighting: Option<VertexLights<'_>>,
+    screen: &Screen,
+    layout: ValueLayout,
+    out: &mut CompactVertices,
+) {
+    let n = mesh.positions.len();
+    (out.layout, out.lit) = (layout, lighting.is_some());
+    out.screen.resize(n, ScreenVertex::default());
+    out.values.resize(n * layout.stride, 0.0);
+    let values = out.values.par_chunks_mut((VERTEX_CHUNK * layout.stride).max(1));
+    out.screen.par_chunks_mut(VERTEX_CHUNK).zip(values).enumerate().for_each(|(chunk, (out, values))| {
+        let start = chunk * VERTEX_CHUNK;
+        let positions = &mesh.positions[start..start + out.len()];
+        let normals = &mesh.normals[start..start + out.len()];
+        let out = Records::Compact(out, values, layout);
+        zline_simd::vectorize(TransformVertices { out, positions, normals, t, screen, lighting });
+    });
+}
+
+/// Stores a group in compact records.
+#[inline(always)]
+fn store_compact(g: &GroupLanes, screen: &mut [ScreenVertex], values: &mut [f32], layout: &ValueLayout) {
+    let stored = [
+        (layout.color, &g.color),
+        (layout.turned, &g.turned),
+        (layout.normal, &g.normal),
+        (layout.eye, &g.eye),
+    ];
+    for (k, s) in screen.iter_mut().enumerate() {
+        let (p, view_code, clip_code) = g.screen(k);
+        *s = ScreenVertex { fixed: p.fixed, z: p.z, inv_w: p.inv_w, view_code, clip_code };
+        let v = &mut values[k * layout.stride..];
+        for (offset, lanes) in stored {
+            if let Some(o) = offset {
+                v[o..o + 3].copy_from_slice(&[lanes[0][k], lanes[1][k], lanes[2][k]]);
+            }
+        }
     }
 }
 
@@ -465,7 +616,6 @@ fn linear<S: Level>(m: &[[f32; 3]; 3], row: usize, [x, y, z]: &[f32x8<S>; 3]) ->
 
 /// One vertex: the scalar twin of [`TransformVertices`], which the tests
 /// hold it to bit for bit.
-#[cfg(test)]
 fn transform_vertex(p: Vec3, n: Vec3, t: &ObjectTransforms, s: &Screen) -> ClipVertex {
     let eye = t.eye_from_object.transform_point3(p);
     let normal = (t.normal_eye_from_object * n).normalize_or_zero();
@@ -489,186 +639,4 @@ fn transform_vertex(p: Vec3, n: Vec3, t: &ObjectTransforms, s: &Screen) -> ClipV
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use proptest::prelude::*;
-
-    fn vec3() -> impl Strategy<Value = Vec3> {
-        let c = prop_oneof![
-            8 => -50.0f32..50.0,
-            1 => Just(0.0f32),
-            1 => -1e30f32..1e30,
-            1 => prop_oneof![Just(f32::NAN), Just(f32::INFINITY), Just(-0.0f32), Just(1e-30f32)],
-        ];
-        (c.clone(), c.clone(), c).prop_map(|(x, y, z)| Vec3::new(x, y, z))
-    }
-
-    fn bits(v: &ClipVertex) -> Vec<u32> {
-        let floats = [v.clip.to_array().as_slice(), &v.eye.to_array(), &v.normal.to_array()].concat();
-        let p = v.projected;
-        // A NaN's sign and payload are not specified by Rust or LLVM (which
-        // may swap an addition's operands): every NaN compares as one.
-        let mut out: Vec<u32> =
-            floats.iter().map(|f| if f.is_nan() { u32::MAX } else { f.to_bits() }).collect();
-        out.extend([
-            p.fixed.x as u32,
-            p.fixed.y as u32,
-            p.inv_w.to_bits(),
-            u32::from(v.view_code),
-            u32::from(v.clip_code),
-        ]);
-        out.extend([p.z.to_bits() as u32, (p.z.to_bits() >> 32) as u32]);
-        out
-    }
-
-    /// [`snap_x8`] at a level, as a job.
-    struct Snap([[f64; 4]; 8], Viewport);
-
-    impl zline_simd::Vectorized for Snap {
-        type Output = ([i32; 8], [i32; 8], [bool; 8]);
-        fn run<S: Level>(self) -> Self::Output {
-            snap_x8::<S>(&self.0, self.1)
-        }
-    }
-
-    /// The lanes' snap equals `Projected::from_quotients`' where rounding is decided
-    /// by a half (±0.5 and ±1.5 fixed-point units, each side of zero),
-    /// at the largest accepted coordinate and past it, and for NaN and
-    /// infinities, at the CPU's level and at the baseline.
-    #[test]
-    fn the_lanes_snap_as_fixed_point_does() {
-        let s = 1.0 / 256.0;
-        let max = f64::from(zline_raster::MAX_WINDOW_COORD);
-        let values = [
-            0.0,
-            0.5 * s,
-            -0.5 * s,
-            1.5 * s,
-            -1.5 * s,
-            2.5 * s,
-            -2.5 * s,
-            0.49 * s,
-            -0.51 * s,
-            1234.5 * s,
-            -1234.5 * s,
-            100.25,
-            -77.75,
-            max,
-            -max,
-            max + 1.0,
-            -max - 1.0,
-            max * 0.75 + 0.5 * s,
-            f64::NAN,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            1.0e300,
-        ];
-        // With a 2 × 2 viewport the window map is x + 1 and 1 − y, so the
-        // quotients v − 1 and 1 − v land on window coordinate v.
-        let viewport = Viewport { width: 2, height: 2 };
-        for (i, &vx) in values.iter().enumerate() {
-            let mut q = [[0.0; 4]; 8];
-            for (k, lane) in q.iter_mut().enumerate() {
-                let vy = values[(i + 3 * k + 1) % values.len()];
-                let vx = if k == 0 { vx } else { values[(i + k) % values.len()] };
-                *lane = [vx - 1.0, 1.0 - vy, 0.5, 1.0];
-            }
-            let expected: Vec<Option<FixedPoint>> =
-                q.iter().map(|&q| Projected::from_quotients(q, viewport).map(|p| p.fixed)).collect();
-            for (fx, fy, ok) in [
-                zline_simd::vectorize(Snap(q, viewport)),
-                snap_x8::<zline_simd::lanes::Baseline>(&q, viewport),
-            ] {
-                let got: Vec<Option<FixedPoint>> =
-                    (0..8).map(|k| ok[k].then_some(FixedPoint { x: fx[k], y: fy[k] })).collect();
-                assert_eq!(got, expected, "quotients {q:?}");
-            }
-        }
-    }
-
-    proptest! {
-        /// Every lane of the vectorized transform, at the level the CPU
-        /// runs and at the baseline, equals the scalar twin bit for bit:
-        /// inside, outside, behind the eye, degenerate and non-finite.
-        #[test]
-        fn the_lanes_equal_the_scalar_twin(
-            vertices in proptest::collection::vec((vec3(), vec3()), 1..30),
-            eye in vec3(),
-            perspective in any::<bool>(),
-        ) {
-            let camera = zline_scene::Camera {
-                eye: eye.clamp(Vec3::splat(-5.0), Vec3::splat(5.0)).map(|c| if c.is_nan() { 0.0 } else { c }),
-                target: Vec3::new(0.1, 0.2, -1.0),
-                up: Vec3::Y,
-                projection: if perspective {
-                    zline_scene::Projection::Perspective { fovy_degrees: 60.0, near: 0.5, far: 80.0 }
-                } else {
-                    zline_scene::Projection::Orthographic { height: 40.0, near: 0.5, far: 80.0 }
-                },
-            };
-            let model = Mat4::from_scale_rotation_translation(
-                Vec3::new(1.5, -0.75, 2.0),
-                glam::Quat::from_euler(glam::EulerRot::XYZ, 0.3, -1.1, 0.7),
-                Vec3::new(0.25, -3.0, 1.0),
-            );
-            let t = ObjectTransforms::new(camera.clip_from_eye(4.0 / 3.0), camera.eye_from_world(), model);
-            let screen = Screen { viewport: Viewport { width: 320, height: 240 }, volume: ClipVolume::new(320, 240) };
-            let (positions, normals): (Vec<Vec3>, Vec<Vec3>) = vertices.into_iter().unzip();
-            let twin: Vec<Vec<u32>> =
-                positions.iter().zip(&normals).map(|(&p, &n)| bits(&transform_vertex(p, n, &t, &screen))).collect();
-            for baseline in [false, true] {
-                let mut out = vec![ClipVertex::default(); positions.len()];
-                let (positions, normals, screen) = (&positions, &normals, &screen);
-                let job = TransformVertices { out: &mut out, positions, normals, t: &t, screen, lighting: None };
-                if baseline {
-                    zline_simd::vectorize_at::<zline_simd::lanes::Baseline, _>(job);
-                } else {
-                    zline_simd::vectorize(job);
-                }
-                let lanes: Vec<Vec<u32>> = out.iter().map(bits).collect();
-                prop_assert_eq!(&lanes, &twin, "baseline: {}", baseline);
-            }
-            // Lit from the lanes: each colour is the scalar lighting model
-            // at the vertex's own eye position and normal, clamped per
-            // vertex or the unclamped sum.
-            let model = zline_shading::LightingModel {
-                ambient: Vec3::splat(0.1),
-                lights: vec![
-                    zline_shading::Light::Point {
-                        position: Vec3::new(4.0, 4.0, 5.0),
-                        color: Vec3::ONE,
-                        attenuation: zline_shading::Attenuation::new(1.0, 0.01, 0.005),
-                    },
-                    zline_shading::Light::Directional { direction: Vec3::new(1.0, -0.5, -1.0), color: Vec3::new(0.25, 0.3, 0.6) },
-                ],
-                environment: None,
-            };
-            let lights = PreparedLights::new(&model, &Mat4::IDENTITY);
-            let material = PreparedMaterial::new(zline_shading::Material { ks: Vec3::splat(0.6), ns: 40.0, ..Default::default() });
-            for clamp in [GouraudClamp::PerVertex, GouraudClamp::PerSample] {
-                let mut out = vec![ClipVertex::default(); positions.len()];
-                let lighting = Some(VertexLights { lights: &lights, material: &material, clamp, turned: true });
-                let (positions, normals, screen) = (&positions, &normals, &screen);
-                zline_simd::vectorize(TransformVertices { out: &mut out, positions, normals, t: &t, screen, lighting });
-                // A vertex at a non-finite position is outside every view
-                // volume plane and never drawn; the scalar model returns
-                // black there, the lanes a colour.
-                // The turned colour (two-sided lighting) is the same model
-                // with the normal negated.
-                for v in out.iter().filter(|v| v.eye.is_finite()) {
-                    let lit = |normal: Vec3| match clamp {
-                        GouraudClamp::PerVertex => lights.shade(&material, v.eye, normal, Vec3::ZERO),
-                        GouraudClamp::PerSample => {
-                            let parts = lights.shade_parts(&material, v.eye, normal, Vec3::ZERO);
-                            parts.ambient_diffuse + parts.specular
-                        }
-                    };
-                    let canon = |c: Vec3| c.to_array().map(|f| if f.is_nan() { u32::MAX } else { f.to_bits() });
-                    prop_assert_eq!(canon(v.color), canon(lit(v.normal)), "{:?} at {:?}, {:?}", clamp, v.eye, v.normal);
-                    let turned = v.tangent.truncate();
-                    prop_assert_eq!(canon(turned), canon(lit(-v.normal)), "turned {:?} at {:?}", clamp, v.eye);
-                }
-            }
-        }
-    }
-}
+mod tests;
