@@ -136,7 +136,7 @@ enum Task {
         font: PathBuf,
     },
     /// zline against Mesa's llvmpipe on glref's benchmark scenes
-    /// (benches/glref/*.toml beside <glref>/scenes/*.json), timed
+    /// (benches/glref/*.toml beside `<glref>/scenes/*.json`), timed
     /// interleaved: per round every scene with zline at each thread count,
     /// then with llvmpipe; prints the median of the round medians and the
     /// ratio. Needs glref built by its setup.sh.

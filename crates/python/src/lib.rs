@@ -1,6 +1,6 @@
 //! `zline._zline`: the native half of the `zline` Python package.
 //!
-//! One function, [`render`], takes an input (a file by its name, or meshes
+//! One function, `render`, takes an input (a file by its name, or meshes
 //! as raw little-endian arrays), the image's settings and a camera, and
 //! returns the rendered layers as bytes; the Python half
 //! (`python/zline/__init__.py`) turns them into numpy arrays and documents

@@ -5,7 +5,7 @@
 //! scene's lights are shot once, first, as point sources ([`lights`]); the
 //! equation B_i = E_i + D_i + ρ_i Σ_j F_ij B_j is solved once,
 //! independently of the viewpoint, by Jacobi, Gauss–Seidel or progressive
-//! refinement ([`solve`]). The solution is drawn by the rasterizer: radiosities
+//! refinement ([`solve()`]). The solution is drawn by the rasterizer: radiosities
 //! averaged to the patches' corners and Gouraud-interpolated
 //! ([`Solution::display_scene`]), so a new viewpoint costs one frame.
 

@@ -43,7 +43,7 @@ use crate::fixed::FixedPoint;
 pub const REANCHOR_BLOCK: i32 = 16;
 
 /// What turns three vertex values into a plane's gradients, for one
-/// triangle: ∂v/∂x = Σ cx[k]·v[k], ∂v/∂y = Σ cy[k]·v[k].
+/// triangle: ∂v/∂x = Σ `cx[k]·v[k]`, ∂v/∂y = Σ `cy[k]·v[k]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlaneBasis {
     anchor: (f64, f64),

@@ -6,7 +6,7 @@
 //!
 //! Every lane performs the scalar code's operations in its order — the
 //! same integer tests, the same IEEE operations, no fused multiply-add —
-//! so lane k gets the bits that [`EdgeTable::new`], [`PlaneBasis::new`],
+//! so lane k gets the bits that [`EdgeTable::new`], [`PlaneBasis::new`](crate::PlaneBasis::new),
 //! [`DepthPlane::new`] and [`AttributePlanes::new`] give triangle k (the
 //! tests hold them to it). Everything is `#[inline(always)]`, and written
 //! with loops rather than array `map`s or `from_fn`s (which a build may

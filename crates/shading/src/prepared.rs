@@ -210,7 +210,7 @@ pub struct PreparedMaterial {
     /// For a surface that receives shadows: the first bit of its lights in
     /// a sample's shadow mask. Light k (its index in the scene's list) is
     /// hidden at a sample whose mask has bit `first + k` set
-    /// ([`PreparedLights::shade_parts_x8_shadowed`]).
+    /// ([`PreparedLights::shade_x8_with`]'s mask).
     pub shadow_bits: Option<u32>,
     /// For a Cook–Torrance material: its parameters and α².
     pub microfacet: Option<(Microfacet, f32)>,

@@ -10,7 +10,7 @@ static CURRENT: AtomicU8 = AtomicU8::new(0);
 /// ordered from least to most capable.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Isa {
-    /// No explicit SIMD: the portable [`scalar`] twins.
+    /// No explicit SIMD: the portable [`scalar`](crate::scalar) twins.
     Scalar,
     /// x86-64's own SSE2 (every x86-64 processor; no detection needed).
     Sse2,

@@ -186,7 +186,7 @@ impl SetupContext<'_> {
 /// The two tests that drop most triangles of a closed mesh run here,
 /// inlined into the caller's loop: entirely outside one plane of the view
 /// volume, and (culling, no clipping needed) a back face. The rest is
-/// [`setup_drawn`], out of line.
+/// `setup_drawn`, out of line.
 #[inline(always)]
 pub fn setup_triangle(tri: [&ClipVertex; 3], ctx: &SetupContext<'_>, out: &mut PrimitiveChunk) {
     if tri[0].view_code & tri[1].view_code & tri[2].view_code != 0 {

@@ -12,10 +12,10 @@
 //! of eight columns on the global grid, which keeps blocks inside them for
 //! any tile size.
 //!
-//! Each primitive names its kernel ([`Kernel`], chosen in setup); [`kernel`]
+//! Each primitive names its kernel ([`Kernel`], chosen in setup); `kernel`
 //! holds one span function per kernel table, compiled once per SIMD level,
 //! and the choices that do not change the planes it reads are run-time
-//! values tested per block ([`params`]). The pass (opaque, transparent,
+//! values tested per block (`params`). The pass (opaque, transparent,
 //! transparent with fog) is an argument of the draw, not state kept on the
 //! tile.
 

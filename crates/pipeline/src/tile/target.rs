@@ -22,7 +22,7 @@ pub struct FrameTexture {
     pub texture: Arc<Texture>,
     /// Filtering and wrapping.
     pub sampler: Sampler,
-    /// The cutoff of [`AlphaUse::Mask`].
+    /// The cutoff of [`AlphaUse::Mask`](crate::setup::AlphaUse::Mask).
     pub cutoff: f32,
 }
 

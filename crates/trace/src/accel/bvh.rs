@@ -8,7 +8,7 @@
 //! index.
 //!
 //! **Traversal** reads the binary tree collapsed into nodes of four
-//! children, tested four boxes at once ([`wide`]).
+//! children, tested four boxes at once (`wide`).
 //!
 //! **Exactness.** Brute force's nearest hit is the least by
 //! [`Hit::nearer_than`] of the watertight test's *computed* t values, and a
