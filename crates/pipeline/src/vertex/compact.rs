@@ -1,15 +1,16 @@
 //! Compact vertex records for the objects that setup builds in lanes
 //! (`crate::setup::lanes`): per vertex, a 24-byte [`ScreenVertex`] (window
 //! position, depth, 1/w, outcodes) and only the values the object's kernel
-//! reads ([`ValueLayout`]), instead of a 112-byte [`ClipVertex`](super::ClipVertex). On the
-//! 1M-triangle sphere the stage wrote, and setup read back, 56 MB of
-//! records a frame, most of it never used.
+//! reads ([`ValueLayout`]), instead of a 112-byte
+//! [`ClipVertex`](super::ClipVertex). For a 1M-triangle sphere whole
+//! records are 56 MB a frame, written by the stage and read back by setup,
+//! most of it never used.
 //!
 //! A triangle that needs clipping reads whole records:
-//! [`CompactVertices::full`]
-//! rebuilds a vertex's whole record with the stage's scalar twin
-//! (`transform_vertex`, which the tests hold to the lanes bit for bit) and
-//! the stored values, so clipping sees the bits the whole records held.
+//! [`CompactVertices::full`] rebuilds a vertex's record with the stage's
+//! scalar twin (`transform_vertex`, which the tests hold to the lanes bit
+//! for bit) and the stored values, so clipping sees the bits the whole
+//! records held.
 
 use glam::Vec3;
 use zline_raster::FixedPoint;
@@ -35,15 +36,15 @@ pub struct ScreenVertex {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ValueLayout {
     /// Floats per vertex.
-    pub stride: usize,
+    pub(crate) stride: usize,
     /// `ClipVertex::color`: the colour the stage lit.
-    pub color: Option<usize>,
+    pub(crate) color: Option<usize>,
     /// The colour lit with the normal turned (`VertexLights::turned`).
-    pub turned: Option<usize>,
+    pub(crate) turned: Option<usize>,
     /// `ClipVertex::normal`.
-    pub normal: Option<usize>,
+    pub(crate) normal: Option<usize>,
     /// `ClipVertex::eye`.
-    pub eye: Option<usize>,
+    pub(crate) eye: Option<usize>,
 }
 
 impl ValueLayout {

@@ -492,8 +492,14 @@ pub fn transform_compact(
     let n = mesh.positions.len();
     (out.layout, out.lit) = (layout, lighting.is_some());
     out.screen.resize(n, ScreenVertex::default());
-    out.values.resize(n * layout.stride, 0.0);
-    let values = out.values.par_chunks_mut((VERTEX_CHUNK * layout.stride).max(1));
+    // As many value chunks as vertex chunks: with no values stored, one
+    // unused float each.
+    let (len, chunk) = match layout.stride {
+        0 => (n.div_ceil(VERTEX_CHUNK), 1),
+        stride => (n * stride, VERTEX_CHUNK * stride),
+    };
+    out.values.resize(len, 0.0);
+    let values = out.values.par_chunks_mut(chunk);
     out.screen.par_chunks_mut(VERTEX_CHUNK).zip(values).enumerate().for_each(|(chunk, (out, values))| {
         let start = chunk * VERTEX_CHUNK;
         let positions = &mesh.positions[start..start + out.len()];

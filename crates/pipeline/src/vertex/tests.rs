@@ -179,3 +179,55 @@ proptest! {
         }
     }
 }
+
+/// Compact records hold what whole records hold: the window position,
+/// depth, 1/w and outcodes of each vertex, and the values the layout
+/// names, bit for bit, for every layout (none stored included) and a mesh
+/// spanning several rayon chunks.
+#[test]
+fn compact_records_hold_the_whole_records_values() {
+    let n = VERTEX_CHUNK * 2 + 37;
+    let positions: Vec<Vec3> = (0..n)
+        .map(|i| Vec3::new((i % 97) as f32 * 0.3 - 14.0, (i % 13) as f32 - 6.0, -((i % 41) as f32) - 1.0))
+        .collect();
+    let normals: Vec<Vec3> = positions.iter().map(|p| p.normalize_or_zero()).collect();
+    let mut mesh =
+        Mesh::new("grid", positions, Some(normals), vec![], zline_scene::Material::default()).unwrap();
+    mesh.uvs = mesh.positions.iter().map(|p| p.truncate()).collect();
+    let camera = zline_scene::Camera {
+        eye: Vec3::new(0.0, 0.0, 5.0),
+        target: Vec3::new(0.0, 0.0, -1.0),
+        up: Vec3::Y,
+        projection: zline_scene::Projection::Perspective { fovy_degrees: 60.0, near: 0.5, far: 80.0 },
+    };
+    let t = ObjectTransforms::new(camera.clip_from_eye(4.0 / 3.0), camera.eye_from_world(), Mat4::IDENTITY);
+    let screen = Screen { viewport: Viewport { width: 320, height: 240 }, volume: ClipVolume::new(320, 240) };
+    let mut whole = Vec::new();
+    transform_mesh(&mesh, &t, None, &screen, &mut whole);
+    let source = Source { mesh: &mesh, t: &t, screen: &screen };
+    for stored in 0..16u32 {
+        let layout = ValueLayout::new([0, 1, 2, 3].map(|b| stored & (1 << b) != 0));
+        let mut compact = CompactVertices::default();
+        transform_compact(&mesh, &t, None, &screen, layout, &mut compact);
+        assert_eq!(compact.screen.len(), n);
+        for (i, w) in whole.iter().enumerate() {
+            let s = compact.screen[i];
+            let p = w.projected;
+            assert_eq!(
+                (s.fixed, s.z.to_bits(), s.inv_w.to_bits(), s.view_code, s.clip_code),
+                (p.fixed, p.z.to_bits(), p.inv_w.to_bits(), w.view_code, w.clip_code),
+                "vertex {i}, layout {layout:?}"
+            );
+            let fields = [(layout.color, w.color), (layout.normal, w.normal), (layout.eye, w.eye)];
+            for (offset, want) in fields {
+                if let Some(o) = offset {
+                    assert_eq!(
+                        compact.value(i, o).to_array().map(f32::to_bits),
+                        want.to_array().map(f32::to_bits)
+                    );
+                }
+            }
+            assert_eq!(format!("{:?}", compact.full(i, &source)), format!("{w:?}"), "vertex {i}");
+        }
+    }
+}
