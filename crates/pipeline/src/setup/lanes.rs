@@ -20,10 +20,10 @@ use zline_shading::ShadingMode;
 use zline_simd::lanes::Level;
 
 use super::{
-    is_front_facing, seen_from_behind, setup_triangle, sort_keys, DepthEncoding, Faces, Gouraud, Kernel,
-    KernelTables, Phong, Primitive, PrimitiveChunk, SetupContext, VertexColors,
+    gather, is_front_facing, seen_from_behind, setup_triangle, sort_keys, DepthEncoding, Faces, Gouraud,
+    Kernel, KernelTables, Phong, Primitive, PrimitiveChunk, SetupContext, VertexColors,
 };
-use crate::vertex::{CompactVertices, ScreenVertex, Source, ValueLayout, VertexLighting};
+use crate::vertex::{CompactVertices, Source, ValueLayout, VertexLighting};
 
 /// The kernels the lanes path sets up.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,7 +54,8 @@ impl LanesKind {
         }
     }
 
-    /// What the lanes read of each vertex besides its [`ScreenVertex`]:
+    /// What the lanes read of each vertex besides its
+    /// [`ScreenVertex`](crate::vertex::ScreenVertex):
     /// Gouraud the lit colour, the turned one when back faces are turned,
     /// and the eye position when back faces are turned (to decide which
     /// side is seen) or depth is reversed (computed from eye z); Phong the
@@ -201,9 +202,10 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
     let mut planes = [[[0.0f32; SETUP_LANES]; 3]; N];
     let eye = |i: usize| vertices.value(i, vertices.layout.eye.unwrap_or_default());
     for (k, t) in group.iter().enumerate() {
-        let Some((index, tri)) = gather(&vertices.screen, t) else {
+        let Some(tri) = gather(&vertices.screen, t) else {
             continue;
         };
+        let index = [t[0] as usize, t[1] as usize, t[2] as usize];
         if tri[0].view_code & tri[1].view_code & tri[2].view_code != 0 {
             continue; // entirely outside one plane of the view volume (NaN vertices included)
         }
@@ -276,14 +278,6 @@ fn setup_group<K: LaneKernel<N>, const N: usize>(
     }
 }
 
-/// A triangle's vertex indices and screen records; `None` when an index is
-/// out of range (as `super::gather`).
-#[inline(always)]
-fn gather<'a>(screen: &'a [ScreenVertex], t: &[u32; 3]) -> Option<([usize; 3], [&'a ScreenVertex; 3])> {
-    let index = [t[0] as usize, t[1] as usize, t[2] as usize];
-    Some((index, [screen.get(index[0])?, screen.get(index[1])?, screen.get(index[2])?]))
-}
-
 /// Every lane's [`sort_keys`].
 #[inline(always)]
 fn sort_keys_x8(z: &[Lanes<f64>; 3]) -> (Lanes<f32>, Lanes<f32>) {
@@ -302,7 +296,6 @@ mod tests {
     use zline_shading::{Attenuation, Light, LightingModel, PreparedLights, PreparedMaterial};
 
     use super::*;
-    use crate::setup::gather;
     use crate::setup::{DepthEncoding, Viewer};
     use crate::vertex::{
         transform_compact, transform_mesh, ObjectTransforms, Screen, VertexLights, Viewport,

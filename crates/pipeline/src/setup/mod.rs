@@ -471,10 +471,11 @@ pub(crate) fn sort_keys(z: [f64; 3]) -> (f32, f32) {
     (((z[0] + z[1] + z[2]) / 3.0) as f32, z[0].max(z[1]).max(z[2]) as f32)
 }
 
-/// The three vertices of a triangle; `None` when an index is out of range
-/// (meshes are validated on load, but a hand-built one may not be).
+/// The three vertices (whole records, or compact ones) of a triangle;
+/// `None` when an index is out of range (meshes are validated on load, but
+/// a hand-built one may not be).
 #[inline(always)]
-pub(crate) fn gather<'a>(vertices: &'a [ClipVertex], t: &[u32; 3]) -> Option<[&'a ClipVertex; 3]> {
+pub(crate) fn gather<'a, V>(vertices: &'a [V], t: &[u32; 3]) -> Option<[&'a V; 3]> {
     Some([vertices.get(t[0] as usize)?, vertices.get(t[1] as usize)?, vertices.get(t[2] as usize)?])
 }
 

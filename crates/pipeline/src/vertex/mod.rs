@@ -231,34 +231,35 @@ pub fn transform_mesh(
         let start = chunk * VERTEX_CHUNK;
         let positions = &mesh.positions[start..start + out.len()];
         let normals = &mesh.normals[start..start + out.len()];
-        let out_records = Records::Full(&mut *out);
-        zline_simd::vectorize(TransformVertices {
-            out: out_records,
-            positions,
-            normals,
-            t,
-            screen,
-            lighting,
-        });
-        if let Some(uvs) = mesh.uvs.get(start..start + out.len()) {
-            for (v, &uv) in out.iter_mut().zip(uvs) {
-                v.uv = uv;
-            }
-        }
-        // Tangents are read only by Phong's perturbed kernel; on a Gouraud
-        // object lit here `tangent` holds the turned colour instead.
-        let tangents = mesh.normal_map.as_ref().and(mesh.tangents.get(start..start + out.len()));
-        if let (Some(tangents), None) = (tangents, lighting) {
-            transform_tangents(out, tangents, t);
-        }
-        // Lit vertices have no vertex colours (`VertexLighting::choose`).
-        debug_assert!(lighting.is_none() || mesh.colors.is_empty());
-        if let Some(colors) = mesh.colors.get(start..start + out.len()) {
-            for (v, &c) in out.iter_mut().zip(colors) {
-                v.color = c;
-            }
-        }
+        let records = Records::Full(&mut *out);
+        zline_simd::vectorize(TransformVertices { out: records, positions, normals, t, screen, lighting });
+        complete(out, start, (mesh, t), lighting.is_some());
     });
+}
+
+/// The mesh's own attributes of the records `out` (vertices `start..`),
+/// after the transform: texture coordinates, eye-space tangents (unlit
+/// objects with a normal map) and vertex colours.
+fn complete(out: &mut [ClipVertex], start: usize, (mesh, t): (&Mesh, &ObjectTransforms), lit: bool) {
+    let range = start..start + out.len();
+    if let Some(uvs) = mesh.uvs.get(range.clone()) {
+        for (v, &uv) in out.iter_mut().zip(uvs) {
+            v.uv = uv;
+        }
+    }
+    // Tangents are read only by Phong's perturbed kernel; on a Gouraud
+    // object lit here `tangent` holds the turned colour instead.
+    let tangents = mesh.normal_map.as_ref().and(mesh.tangents.get(range.clone()));
+    if let (Some(tangents), false) = (tangents, lit) {
+        transform_tangents(out, tangents, t);
+    }
+    // Lit vertices have no vertex colours (`VertexLighting::choose`).
+    debug_assert!(!lit || mesh.colors.is_empty());
+    if let Some(colors) = mesh.colors.get(range) {
+        for (v, &c) in out.iter_mut().zip(colors) {
+            v.color = c;
+        }
+    }
 }
 
 /// Tangents go to eye space by eye_from_object's linear part (they are
@@ -458,22 +459,14 @@ impl CompactVertices {
     pub fn full(&self, i: usize, source: &Source<'_>) -> ClipVertex {
         let Source { mesh, t, screen } = *source;
         let mut v = transform_vertex(mesh.positions[i], mesh.normals[i], t, screen);
+        // What the lanes stored (`store_full`), then what the mesh adds.
         if let Some(offset) = self.layout.color {
             v.color = self.value(i, offset);
-        }
-        if let Some(&color) = mesh.colors.get(i) {
-            v.color = color;
-        }
-        if let Some(&uv) = mesh.uvs.get(i) {
-            v.uv = uv;
         }
         if let Some(offset) = self.layout.turned {
             v.tangent = self.value(i, offset).extend(0.0);
         }
-        let tangent = mesh.normal_map.as_ref().and(mesh.tangents.get(i));
-        if let (Some(&tangent), false) = (tangent, self.lit) {
-            transform_tangents(std::slice::from_mut(&mut v), &[tangent], t);
-        }
+        complete(std::slice::from_mut(&mut v), i, (mesh, t), self.lit);
         v
     }
 }
