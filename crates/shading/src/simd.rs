@@ -166,9 +166,9 @@ impl PreparedLights {
                 // Shape::factor's operations, in its order.
                 let x = dist * f32x8::splat(shape.inv_range);
                 let x2 = x * x;
-                let window = (f32x8::ONE - x2 * x2).max(f32x8::ZERO).min(f32x8::ONE);
+                let window = (f32x8::ONE - x2 * x2).clamp(f32x8::ZERO, f32x8::ONE);
                 let along = to_light.dot(Vec3x8::splat(shape.axis)) * f32x8::splat(shape.scale);
-                let c = (f32x8::splat(shape.offset) - along).max(f32x8::ZERO).min(f32x8::ONE);
+                let c = (f32x8::splat(shape.offset) - along).clamp(f32x8::ZERO, f32x8::ONE);
                 intensity = intensity.scale(window * (c * c));
             }
             if let Some(f) = share(k) {

@@ -85,8 +85,8 @@ impl<L: Level> MicrofacetSumsX8<L> {
         let (zero, one) = (f32x8::ZERO, f32x8::ONE);
         let nl = nl.min(one);
         let half = to_light.add(view).normalize_or_zero();
-        let nh = normal.dot(half).max(zero).min(one);
-        let vh = view.dot(half).max(zero).min(one);
+        let nh = normal.dot(half).clamp(zero, one);
+        let vh = view.dot(half).clamp(zero, one);
         let y = one - vh;
         let y2 = y * y;
         let s = y2 * y2 * y;
@@ -150,7 +150,7 @@ impl PreparedLights {
         share: impl Fn(u32) -> Option<f32x8<L>>,
     ) -> (Vec3x8<L>, Vec3x8<L>) {
         let view = Vec3x8::default().sub(point).normalize_or_zero();
-        let nv = normal.dot(view).max(f32x8::ZERO).min(f32x8::ONE);
+        let nv = normal.dot(view).clamp(f32x8::ZERO, f32x8::ONE);
         let metallic = microfacet.metallic;
         let dielectric = Vec3x8::splat(glam::Vec3::splat(DIELECTRIC_F0));
         let f0 = dielectric.add(base.sub(dielectric).scale(metallic));

@@ -45,7 +45,7 @@ impl<L: Level> Vec3x8<L> {
     pub fn clamp01(self) -> Vec3x8<L> {
         let clamp = zline_simd::inlined(
             #[inline(always)]
-            |c: f32x8<L>| c.max(f32x8::ZERO).min(f32x8::ONE),
+            |c: f32x8<L>| c.clamp(f32x8::ZERO, f32x8::ONE),
         );
         Vec3x8 { x: clamp(self.x), y: clamp(self.y), z: clamp(self.z) }
     }
@@ -57,7 +57,7 @@ impl<L: Level> Vec3x8<L> {
         let top = f32x8::splat(ceiling);
         let clamp = zline_simd::inlined(
             #[inline(always)]
-            |c: f32x8<L>| c.max(f32x8::ZERO).min(top),
+            |c: f32x8<L>| c.clamp(f32x8::ZERO, top),
         );
         Vec3x8 { x: clamp(self.x), y: clamp(self.y), z: clamp(self.z) }
     }

@@ -225,6 +225,18 @@ impl<L: Level> f32x8<L> {
         at_level!(rhs.is_nan().blend(self, self.fast_min(rhs)), Self::from_wide(self.w.min(rhs.w)))
     }
 
+    /// `self.max(lo).min(hi)` (NaN becomes `lo`) for bounds that are not
+    /// NaN, in two instructions: `max` and `min` test their right-hand
+    /// lanes for NaN, which bounds never are, so `fast_max` and `fast_min`
+    /// give the same bits (a property test holds them to it at every
+    /// level). With the tests, a shading kernel's final clamp to [0, 1]
+    /// was eight more instructions a block. A NaN bound gives unspecified
+    /// (but not undefined) lanes.
+    #[inline(always)]
+    pub fn clamp(self, lo: Self, hi: Self) -> Self {
+        self.fast_max(lo).fast_min(hi)
+    }
+
     /// All ones where the lane is NaN.
     #[inline(always)]
     pub fn is_nan(self) -> Self {

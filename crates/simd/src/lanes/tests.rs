@@ -198,6 +198,43 @@ fn every_level<J: Vectorized + Copy>(job: J) -> Vec<(&'static str, J::Output)> {
     levels
 }
 
+/// `a.clamp(lo, hi)` and `a.max(lo).min(hi)` per lane pair, at level `L`.
+struct Clamp {
+    a: [f32; 8],
+    lo: [f32; 8],
+    hi: [f32; 8],
+}
+
+impl Vectorized for &Clamp {
+    type Output = ([u32; 8], [u32; 8]);
+
+    #[inline(always)]
+    fn run<L: Level>(self) -> ([u32; 8], [u32; 8]) {
+        let (a, lo, hi) = (f32x8::<L>::from(self.a), f32x8::<L>::from(self.lo), f32x8::<L>::from(self.hi));
+        (bits(a.clamp(lo, hi)), bits(a.max(lo).min(hi)))
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// `clamp` is `max` then `min`, bit for bit (signed zeros, NaN,
+    /// infinities), for bounds that are not NaN, at every level.
+    #[test]
+    fn clamp_is_max_then_min_for_bounds_that_are_not_nan(
+        a in proptest::array::uniform8(lane()),
+        lo in proptest::array::uniform8(lane().prop_filter("not NaN", |x| !x.is_nan())),
+        hi in proptest::array::uniform8(lane().prop_filter("not NaN", |x| !x.is_nan())),
+    ) {
+        let job = Clamp { a, lo, hi };
+        let mut levels = every_level(&job);
+        levels.push(("baseline", (&job).run::<super::Baseline>()));
+        for (level, (got, want)) in levels {
+            prop_assert_eq!(got, want, "{}: clamp of {:?} to {:?}..{:?}", level, a, lo, hi);
+        }
+    }
+}
+
 /// `log2` of the lanes, at level `L`.
 struct Log2([f32; 8]);
 
