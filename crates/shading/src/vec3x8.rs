@@ -51,9 +51,12 @@ impl<L: Level> Vec3x8<L> {
     }
 
     /// Every lane clamped to [0, `ceiling`] (NaN becomes 0); with a
-    /// ceiling of 1 the same operations as [`Self::clamp01`].
+    /// ceiling of 1 the same operations as [`Self::clamp01`]. `ceiling`
+    /// must not be NaN (`f32x8::clamp`'s bounds; the kernels pass
+    /// `PreparedLights::ceiling`, 1 or `f32::MAX`).
     #[inline(always)]
     pub fn clamp_to(self, ceiling: f32) -> Vec3x8<L> {
+        debug_assert!(!ceiling.is_nan(), "a NaN ceiling");
         let top = f32x8::splat(ceiling);
         let clamp = zline_simd::inlined(
             #[inline(always)]
