@@ -125,9 +125,9 @@ impl FogPass {
             },
         );
         let f = falloff.factor(C::distance(&self.rows, row));
-        // NaN (a degenerate projection) becomes full fog, as in `Fog::factor`.
-        let f = f.cmp_eq(f).blend(f, f32x8::ZERO);
-        f.fast_max(f32x8::ZERO).fast_min(f32x8::ONE)
+        // NaN (a degenerate projection) becomes full fog, as in
+        // `Fog::factor`: `clamp` turns it into its lower bound, 0.
+        f.clamp(f32x8::ZERO, f32x8::ONE)
     }
 }
 

@@ -94,8 +94,8 @@ pub fn quantize_rgba(c: Vec4) -> u32 {
 pub fn quantize_rgba_pair(a: Vec4, b: Vec4) -> [u32; 2] {
     let (a, b) = (a.to_array(), b.to_array());
     let v = f32x8::<Baseline>::from([a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]]);
-    let v = v.cmp_eq(v).blend(v, f32x8::ZERO);
-    let v = v.fast_max(f32x8::ZERO).fast_min(f32x8::ONE) * f32x8::splat(255.0) + f32x8::splat(0.5);
+    // `clamp` turns NaN into its lower bound, 0.
+    let v = v.clamp(f32x8::ZERO, f32x8::ONE) * f32x8::splat(255.0) + f32x8::splat(0.5);
     // Each lane holds a value in 0..=255: its low byte, picked by a shuffle.
     let q: [u8; 32] = bytemuck::cast(v.fast_trunc_int().to_array());
     [u32::from_le_bytes([q[0], q[4], q[8], q[12]]), u32::from_le_bytes([q[16], q[20], q[24], q[28]])]

@@ -179,8 +179,8 @@ fn tone_lanes(tone: &zline_shading::ToneMapping, [r, g, b]: [[f32; LANES]; 3]) -
 /// rounded half up, as an integer in 0..=255 per lane.
 #[inline(always)]
 pub(crate) fn quantize_x8<S: Level>(c: f32x8<S>) -> i32x8<S> {
-    let c = c.cmp_eq(c).blend(c, f32x8::ZERO);
-    (c.fast_max(f32x8::ZERO).fast_min(f32x8::ONE) * f32x8::splat(255.0) + f32x8::splat(0.5)).fast_trunc_int()
+    // `clamp` turns NaN into its lower bound, 0.
+    (c.clamp(f32x8::ZERO, f32x8::ONE) * f32x8::splat(255.0) + f32x8::splat(0.5)).fast_trunc_int()
 }
 
 #[cfg(test)]
