@@ -17,9 +17,9 @@ const HEIGHT: u32 = 1080;
 
 /// One benchmark case: a label and how to build its scene (built only
 /// when the case is selected).
-struct Case {
-    name: String,
-    build: Box<dyn Fn() -> Result<Scene>>,
+pub(crate) struct Case {
+    pub(crate) name: String,
+    pub(crate) build: Box<dyn Fn() -> Result<Scene>>,
 }
 
 pub(crate) fn run(
@@ -216,7 +216,7 @@ fn visibility_cases(assets: &Path, out: &mut Vec<Case>) {
     });
 }
 
-fn cases(assets: &Path) -> Result<Vec<Case>> {
+pub(crate) fn cases(assets: &Path) -> Result<Vec<Case>> {
     let mut out = Vec::new();
     if let Some(bunny) = bunny(assets) {
         for mode in [ShadingMode::Gouraud, ShadingMode::Phong] {

@@ -23,6 +23,7 @@ mod report_lod;
 mod report_models;
 mod report_renderers;
 mod report_shadows;
+mod scaling;
 mod terrain;
 mod timing;
 mod trace_aa;
@@ -51,6 +52,31 @@ enum Task {
         /// Thread counts to run.
         #[arg(long, value_delimiter = ',', default_value = "1,2")]
         threads: Vec<usize>,
+        /// The shared asset folder holding obj/bunny/bunny.obj (skipped with
+        /// a message when missing).
+        #[arg(long, default_value = "../shared/assets")]
+        assets: PathBuf,
+        /// Only cases whose name contains this text.
+        #[arg(long)]
+        filter: Option<String>,
+        /// Tile edge in pixels.
+        #[arg(long, default_value_t = zline::pipeline::RenderOptions::default().tile_size)]
+        tile_size: u32,
+    },
+    /// A model of the frame at more threads than this machine has: each
+    /// benchmark scene timed at 1 and 2 threads (alternated), each stage
+    /// extrapolated by Amdahl's law, the raster stage bounded below by its
+    /// bands of tile rows; a markdown table.
+    Scaling {
+        /// Frames timed per thread count and round (after a warm-up).
+        #[arg(long, default_value_t = 15)]
+        frames: usize,
+        /// Rounds, each timing 1 then 2 threads.
+        #[arg(long, default_value_t = 3)]
+        rounds: usize,
+        /// Thread counts the model predicts.
+        #[arg(long, value_delimiter = ',', default_value = "4,8,16,32,64")]
+        model: Vec<usize>,
         /// The shared asset folder holding obj/bunny/bunny.obj (skipped with
         /// a message when missing).
         #[arg(long, default_value = "../shared/assets")]
@@ -243,6 +269,10 @@ fn main() -> Result<()> {
         Task::Bench { frames, threads, assets, filter, tile_size } => {
             let options = zline::pipeline::RenderOptions { tile_size };
             bench::run(frames, &threads, &assets, filter.as_deref(), &options)
+        }
+        Task::Scaling { frames, rounds, model, assets, filter, tile_size } => {
+            let options = zline::pipeline::RenderOptions { tile_size };
+            scaling::run((frames, rounds), &model, &assets, filter.as_deref(), &options)
         }
         Task::DocsImages { out } => docs::run(&out),
         Task::ContactSheet { assets, out, cell } => contact::run(&assets, &out, cell),

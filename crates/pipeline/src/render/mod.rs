@@ -132,6 +132,9 @@ pub struct Renderer {
     /// The adaptive mode draws every mesh in full
     /// ([`Renderer::set_level_of_detail`]).
     full_meshes: bool,
+    /// Per band of tile rows in the last frame, top first: the samples
+    /// shaded and the time its thread took ([`Renderer::band_times`]).
+    bands: Vec<(u64, Duration)>,
 }
 
 /// The frame's lights, materials and textures, indexed by the primitives.
@@ -259,6 +262,16 @@ impl Renderer {
     pub fn render_into(&mut self, scene: &Scene, options: &RenderOptions, image: &mut Image) -> RenderStats {
         self.normals = false;
         self.render_frame(scene, options, image, None)
+    }
+
+    /// The raster stage's time per band of tile rows in the last frame
+    /// drawn, top band first (empty before the first). A band — one row of
+    /// tiles across the image — is the unit the threads share out, so with
+    /// more threads than bands' worth of work the slowest band bounds the
+    /// stage: `cargo xtask scaling` models the frame at more threads from
+    /// these times.
+    pub fn band_times(&self) -> impl ExactSizeIterator<Item = Duration> + '_ {
+        self.bands.iter().map(|&(_, time)| time)
     }
 
     /// Lets the adaptive mode draw simplified meshes (`crate::lod`; the

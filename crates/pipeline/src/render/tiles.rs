@@ -2,8 +2,10 @@
 //! parallel ([`Renderer::draw_tiles`], [`TilePasses`]).
 
 use std::sync::{Mutex, PoisonError};
+use std::time::Instant;
 
 use glam::Vec3;
+
 use rayon::iter::Either;
 use rayon::prelude::*;
 use zline_scene::{Scene, Visibility};
@@ -50,6 +52,9 @@ impl Renderer {
             }
             None => Either::Right((0..image.pixels.len().div_ceil(band_len)).into_par_iter().map(|_| None)),
         };
+        // Taken out for the frame, so the bands can write it while `passes`
+        // borrows the renderer; its capacity is kept from frame to frame.
+        let mut bands = std::mem::take(&mut self.bands);
         let passes = self.tile_passes(scene, frame, grid, matches!(depth_bands, Either::Left(_)));
         image
             .pixels
@@ -57,6 +62,7 @@ impl Renderer {
             .zip(depth_bands)
             .enumerate()
             .map(|(row, (band, mut depth_band))| {
+                let start = Instant::now();
                 // Only this thread takes its own buffers: the lock is never
                 // contended (and a poisoned one holds plain buffers).
                 let thread = rayon::current_thread_index().unwrap_or(0) % threads;
@@ -79,9 +85,12 @@ impl Renderer {
                     })
                     .sum::<u64>();
                 fill_rects(band, width as usize, untouched, passes.background.1);
-                shaded
+                (shaded, start.elapsed())
             })
-            .sum()
+            .collect_into_vec(&mut bands);
+        let shaded = bands.iter().map(|&(n, _)| n).sum();
+        self.bands = bands;
+        shaded
     }
 
     /// What every tile of the frame draws with ([`TilePasses`]).

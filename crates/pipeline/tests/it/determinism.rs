@@ -159,3 +159,21 @@ fn planar_shadows_do_not_change_a_byte_with_tile_size_or_thread_count() {
         }
     }
 }
+
+#[test]
+fn band_times_are_one_per_row_of_tiles_within_the_raster_stage() {
+    let s = test_scene(ShadingMode::Phong, Interpolation::PerspectiveCorrect);
+    let mut renderer = zline_pipeline::Renderer::default();
+    assert_eq!(renderer.band_times().len(), 0, "no frame drawn yet");
+    let mut image = zline_pipeline::Image::empty();
+    for (tile_size, threads) in [(16, 1), (33, 2), (1000, 3)] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let stats = pool.install(|| renderer.render_into(&s, &RenderOptions { tile_size }, &mut image));
+        let rows = s.settings.height.div_ceil(tile_size) as usize;
+        assert_eq!(renderer.band_times().len(), rows, "tile {tile_size}");
+        assert!(stats.fragments > 0);
+        // The bands ran inside the raster stage.
+        let bands: std::time::Duration = renderer.band_times().sum();
+        assert!(threads > 1 || bands <= stats.raster, "{bands:?} > {:?}", stats.raster);
+    }
+}
