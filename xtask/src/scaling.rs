@@ -5,15 +5,17 @@
 //! Amdahl's law: a stage's parallel share p comes from its own times,
 //! T₂ = T₁·(1 − p + p/2), so p = 2·(1 − T₂/T₁) (clamped to [0, 1]), and
 //! T_N = T₁·(1 − p + p/N). The raster stage is modelled from its
-//! structure, at one thread: its unit of parallel work is a band of tile
-//! rows ([`Renderer::band_times`]), so at N threads it takes its time
-//! outside the bands plus the makespan of the bands handed out in order,
-//! each to the thread that frees up first. (On this 2-vCPU machine a
+//! structure, at one thread: its units of parallel work are bands of tile
+//! rows, cut into pieces when there are many threads
+//! ([`zline::pipeline::pieces_per_band`], [`Renderer::unit_times`]), so at
+//! N threads it takes its time outside the units plus the makespan of the
+//! units that N threads would use, timed at one thread, handed out in
+//! order, each to the thread that frees up first. (On this 2-vCPU machine a
 //! 2-thread time moves by tens of per cent between runs, which Amdahl's p
-//! doubles; the bands' one-thread times do not depend on it.) The table
+//! doubles; the units' one-thread times do not depend on it.) The table
 //! prints the model at 2 threads beside the measured time, the one check
 //! this machine allows. It says which parts stay serial and where the
-//! bands' granularity, not the cores, bounds a scene; where a machine with
+//! units' granularity, not the cores, bounds a scene; where a machine with
 //! many cores is lent, `xtask bench --threads 1,2,4,8,16` checks it.
 
 use std::path::Path;
@@ -23,18 +25,27 @@ use anyhow::{Context, Result};
 use zline::pipeline::{Image, RenderOptions, Renderer};
 use zline::scene::Scene;
 
-/// One scene's times at one thread count: per timed frame, the frame and
-/// its stages (geometry, binning, raster) in seconds, and the bands' times.
+/// One scene's times at one thread count and cut of the bands: per timed
+/// frame, the frame and its stages (geometry, binning, raster) in seconds,
+/// and the tile stage's units' times.
 #[derive(Default)]
 struct Timings {
     frames: Vec<[f64; 4]>,
-    bands: Vec<Vec<f64>>,
+    units: Vec<Vec<f64>>,
 }
 
 impl Timings {
-    /// Draws `frames` warm frames of `scene` in `pool` after a warm-up.
-    fn record(&mut self, scene: &Scene, pool: &rayon::ThreadPool, options: &RenderOptions, frames: usize) {
+    /// Draws `frames` warm frames of `scene` in `pool` after a warm-up, the
+    /// bands cut into `pieces` (`None`: as the pool's threads choose).
+    fn record(
+        &mut self,
+        scene: &Scene,
+        (pool, pieces): (&rayon::ThreadPool, Option<usize>),
+        options: &RenderOptions,
+        frames: usize,
+    ) {
         let mut renderer = Renderer::default();
+        renderer.set_band_pieces(pieces);
         let mut image = Image::empty();
         pool.install(|| renderer.render_into(scene, options, &mut image));
         for _ in 0..frames.max(1) {
@@ -43,7 +54,7 @@ impl Timings {
             let frame = start.elapsed().as_secs_f64();
             let s = |d: Duration| d.as_secs_f64();
             self.frames.push([frame, s(stats.geometry), s(stats.binning), s(stats.raster)]);
-            self.bands.push(renderer.band_times().map(|d| d.as_secs_f64()).collect());
+            self.units.push(renderer.unit_times().map(|d| d.as_secs_f64()).collect());
         }
     }
 
@@ -52,10 +63,10 @@ impl Timings {
         median(self.frames.iter().map(|f| f[i]).collect())
     }
 
-    /// Each band's median time.
-    fn band_medians(&self) -> Vec<f64> {
-        let count = self.bands.iter().map(Vec::len).min().unwrap_or(0);
-        (0..count).map(|b| median(self.bands.iter().map(|f| f[b]).collect())).collect()
+    /// Each unit's median time.
+    fn unit_medians(&self) -> Vec<f64> {
+        let count = self.units.iter().map(Vec::len).min().unwrap_or(0);
+        (0..count).map(|b| median(self.units.iter().map(|f| f[b]).collect())).collect()
     }
 }
 
@@ -94,30 +105,31 @@ pub(crate) fn makespan(jobs: &[f64], n: usize) -> f64 {
 }
 
 /// What the model says of one scene at `n` threads: the frame's seconds,
-/// and whether the slowest band alone takes longer than an even share of
-/// the bands would (the bands' granularity bounds the raster stage there).
+/// and whether the slowest unit alone takes longer than an even share of
+/// the units would (the units' granularity bounds the raster stage there).
 ///
 /// `one` and `two` are the frame and its stages (geometry, binning,
-/// raster) at 1 and 2 threads, `bands` the raster stage's bands at one
-/// thread. Geometry, binning and the rest of the frame follow Amdahl's law
-/// with the share their 1- and 2-thread times give. The raster stage is
-/// modelled from its structure, measured at one thread alone: its time
-/// outside the bands stays serial, and the bands are handed out in order.
-pub(crate) fn model(one: [f64; 4], two: [f64; 4], bands: &[f64], n: usize) -> (f64, bool) {
+/// raster) at 1 and 2 threads. Geometry, binning and the rest of the frame
+/// follow Amdahl's law with the share their 1- and 2-thread times give.
+/// The raster stage is modelled from its structure, measured at one thread
+/// with the bands cut as `n` threads cut them: `raster` is its time and
+/// `units` the units' times; the time outside the units stays serial, and
+/// the units are handed out in order.
+pub(crate) fn model(one: [f64; 4], two: [f64; 4], (raster, units): (f64, &[f64]), n: usize) -> (f64, bool) {
     let rest = |t: [f64; 4]| (t[0] - t[1] - t[2] - t[3]).max(0.0);
     let mut total = amdahl(rest(one), parallel_share(rest(one), rest(two)), n);
     for stage in 1..3 {
         total += amdahl(one[stage], parallel_share(one[stage], two[stage]), n);
     }
-    let sum: f64 = bands.iter().sum();
-    let serial = (one[3] - sum).max(0.0);
-    let slowest = bands.iter().copied().fold(0.0, f64::max);
-    (total + serial + makespan(bands, n), slowest > sum / n as f64)
+    let sum: f64 = units.iter().sum();
+    let serial = (raster - sum).max(0.0);
+    let slowest = units.iter().copied().fold(0.0, f64::max);
+    (total + serial + makespan(units, n), slowest > sum / n as f64)
 }
 
 pub(crate) fn run(
     (frames, rounds): (usize, usize),
-    model_threads: &[usize],
+    (model_threads, whole_bands): (&[usize], bool),
     assets: &Path,
     filter: Option<&str>,
     options: &RenderOptions,
@@ -130,48 +142,67 @@ pub(crate) fn run(
     let heads: String = model_threads.iter().map(|n| format!(" {n} threads |")).collect();
     let rules: String = model_threads.iter().map(|_| "---:|").collect();
     println!(
-        "| scene | 1 thread ms | 2 threads ms (model) | p geometry | p binning | raster outside bands ms | bands (slowest ms) |{heads} speedup at {} |",
+        "| scene | 1 thread ms | 2 threads ms (model) | p geometry | p binning | bands × pieces at {} (slowest ms) |{heads} speedup at {} |",
+        model_threads.last().copied().unwrap_or(1),
         model_threads.last().copied().unwrap_or(1)
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|{rules}---:|");
+    println!("|---|---:|---:|---:|---:|---:|{rules}---:|");
+    let tile = options.tile_size.clamp(1, zline::scene::MAX_TILE_SIZE);
     for case in cases.iter().filter(|c| filter.is_none_or(|f| c.name.contains(f))) {
         let scene = (case.build)()?;
+        let (bands, cols) =
+            (scene.settings.height.div_ceil(tile) as usize, scene.settings.width.div_ceil(tile) as usize);
+        // The cut each modelled thread count makes, and one 1-thread timing per cut.
+        let cut = |n: usize| if whole_bands { 1 } else { zline::pipeline::pieces_per_band(n, bands, cols) };
+        let mut cuts: Vec<usize> = model_threads.iter().map(|&n| cut(n)).chain([cut(2)]).collect();
+        cuts.sort_unstable();
+        cuts.dedup();
         let mut timings = [Timings::default(), Timings::default()];
+        let mut at_one: Vec<Timings> = cuts.iter().map(|_| Timings::default()).collect();
         for _ in 0..rounds.max(1) {
             for (t, pool) in timings.iter_mut().zip(&pools) {
-                t.record(&scene, pool, options, frames);
+                t.record(&scene, (pool, None), options, frames);
+            }
+            for (t, &pieces) in at_one.iter_mut().zip(&cuts) {
+                t.record(&scene, (&pools[0], Some(pieces)), options, frames);
             }
         }
         let [one, two] = timings.each_ref().map(|t| [0, 1, 2, 3].map(|i| t.median(i)));
-        let bands = timings[0].band_medians();
-        let slowest = bands.iter().copied().fold(0.0, f64::max);
+        let units: Vec<(f64, Vec<f64>)> = at_one.iter().map(|t| (t.median(3), t.unit_medians())).collect();
+        let of = |n: usize| {
+            let (raster, units) = &units[cuts.binary_search(&cut(n)).expect("every cut was timed")];
+            (*raster, &units[..])
+        };
         let ms = |s: f64| s * 1e3;
+        let last = model_threads.last().copied().unwrap_or(1);
+        let (_, last_units) = of(last);
         let mut row = format!(
-            "| {} | {:.2} | {:.2} ({:.2}) | {:.2} | {:.2} | {:.2} | {} ({:.2}) |",
+            "| {} | {:.2} | {:.2} ({:.2}) | {:.2} | {:.2} | {} × {} ({:.2}) |",
             case.name,
             ms(one[0]),
             ms(two[0]),
-            ms(model(one, two, &bands, 2).0),
+            ms(model(one, two, of(2), 2).0),
             parallel_share(one[1], two[1]),
             parallel_share(one[2], two[2]),
-            ms((one[3] - bands.iter().sum::<f64>()).max(0.0)),
-            bands.len(),
-            ms(slowest)
+            bands,
+            last_units.len() / bands.max(1),
+            ms(last_units.iter().copied().fold(0.0, f64::max))
         );
-        let mut last = one[0];
+        let mut time_at_last = one[0];
         for &n in model_threads {
-            let (time, banded) = model(one, two, &bands, n);
-            row += &format!(" {:.2}{} |", ms(time), if banded { "ᵇ" } else { "" });
-            last = time;
+            let (time, bound) = model(one, two, of(n), n);
+            row += &format!(" {:.2}{} |", ms(time), if bound { "ᵇ" } else { "" });
+            time_at_last = time;
         }
-        row += &format!(" {:.1}× |", one[0] / last);
+        row += &format!(" {:.1}× |", one[0] / time_at_last);
         println!("{row}");
     }
     println!(
         "\nModel: geometry, binning and the rest by Amdahl's law from their 1- and 2-thread medians ({rounds} rounds \
-         of {frames} frames, alternated); the raster stage as its time outside the bands (serial) plus the makespan \
-         of its bands (tile rows, 1-thread medians) handed out in order. ᵇ: the slowest band takes longer than an \
-         even share, so the bands' granularity bounds the raster stage at that count."
+         of {frames} frames, alternated); the raster stage as its time outside its units (serial) plus the makespan \
+         of its units — bands of tile rows{}, timed at one thread — handed out in order. ᵇ: the slowest unit takes \
+         longer than an even share, so the units' granularity bounds the raster stage at that count.",
+        if whole_bands { ", whole" } else { ", cut into the pieces each thread count makes" }
     );
     Ok(())
 }
@@ -204,13 +235,13 @@ mod tests {
     fn one_heavy_band_bounds_the_raster_stage() {
         // 10 ms of raster in one band: no more threads help.
         let (one, two) = ([0.010, 0.0, 0.0, 0.010], [0.005, 0.0, 0.0, 0.005]);
-        let (t, banded) = model(one, two, &[0.010], 16);
+        let (t, banded) = model(one, two, (0.010, &[0.010]), 16);
         assert!(banded && (t - 0.010).abs() < 1e-12);
         // The same work in 16 even bands: 1/16.
-        let (t, banded) = model(one, two, &[0.010 / 16.0; 16], 16);
+        let (t, banded) = model(one, two, (0.010, &[0.010 / 16.0; 16]), 16);
         assert!(!banded && (t - 0.010 / 16.0).abs() < 1e-9, "{t}");
         // 2 ms of it outside the bands stays serial.
-        let (t, _) = model(one, two, &[0.008 / 16.0; 16], 16);
+        let (t, _) = model(one, two, (0.010, &[0.008 / 16.0; 16]), 16);
         assert!((t - (0.002 + 0.008 / 16.0)).abs() < 1e-9, "{t}");
     }
 }

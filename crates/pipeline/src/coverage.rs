@@ -17,20 +17,22 @@
 use zline_raster::LANES;
 use zline_simd::lanes::{f32x8, i32x8, Baseline, Level};
 
+use crate::image::ImageRows;
 use crate::resolve::{quantize_x8, store_block};
 use crate::tile::{load, sample, TileTarget};
 
 impl TileTarget {
     /// [`TileTarget::resolve`] with alpha: eight pixels at a time, straight
     /// colour and coverage (one sample per pixel).
-    pub fn resolve_coverage(&self, band: &mut [u32], width: usize) {
+    pub fn resolve_coverage(&self, out: &mut ImageRows<'_, '_, u32>) {
         if self.stride == 0 {
             return;
         }
         let [red, green, blue] = &self.rgb;
+        let first = out.first() as i32;
         for row in 0..self.rect.height() as usize {
             let line = row * self.stride;
-            let out = &mut band[row * width..(row + 1) * width];
+            let out = out.row(row);
             for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
                 let i = line + (x - self.origin) as usize;
                 let (empty, alpha) = if self.colors_valid {
@@ -44,7 +46,7 @@ impl TileTarget {
                     |plane: &[f32x8]| empty.blend(f32x8::ZERO, load(plane, i)),
                 );
                 let px = pack_straight([p(red), p(green), p(blue)], alpha, &self.tone);
-                store_block(out, x, &self.rect, &px);
+                store_block(out, first, x, &self.rect, &px);
             }
         }
     }
@@ -52,13 +54,13 @@ impl TileTarget {
     /// [`TileTarget::resolve_supersampled`] with alpha: the mean of the n²
     /// samples' premultiplied colours and alphas (a fixed order), then the
     /// straight colour.
-    pub fn resolve_coverage_supersampled(&self, band: &mut [u32], width: usize, n: u32) {
+    pub fn resolve_coverage_supersampled(&self, out: &mut ImageRows<'_, '_, u32>, n: u32) {
         let n = n as i32;
         let scale = 1.0 / (n * n) as f32;
         let [red, green, blue] = &self.rgb;
-        let (py0, px0) = (self.rect.y0 / n, self.rect.x0 / n);
+        let (py0, px0, first) = (self.rect.y0 / n, self.rect.x0 / n, out.first());
         for py in py0..self.rect.y1 / n {
-            let out = &mut band[(py - py0) as usize * width..][..width];
+            let out = out.row((py - py0) as usize);
             for px in px0..self.rect.x1 / n {
                 let mut sum = [0.0f32; 4];
                 for sy in py * n..(py + 1) * n {
@@ -79,7 +81,7 @@ impl TileTarget {
                     }
                 }
                 let mean = sum.map(|v| f32x8::<Baseline>::splat(v * scale));
-                out[px as usize] = pack_straight([mean[0], mean[1], mean[2]], mean[3], &self.tone)[0];
+                out[px as usize - first] = pack_straight([mean[0], mean[1], mean[2]], mean[3], &self.tone)[0];
             }
         }
     }

@@ -23,6 +23,54 @@ pub struct Image {
     pub transparent: bool,
 }
 
+/// The image rows one tile is resolved into: the rows of a band of the
+/// image (a row of tiles), whole, or cut to a run of columns — a piece of
+/// the band, which one thread draws while others draw the band's other
+/// pieces (the rows of a band are shared, their columns are not). Index 0
+/// of a row is image column [`ImageRows::first`].
+#[derive(Debug)]
+pub enum ImageRows<'r, 'a, T> {
+    /// Whole rows, one after the other.
+    Whole {
+        /// The rows' values.
+        values: &'a mut [T],
+        /// Values per row: the image width.
+        width: usize,
+    },
+    /// Row r is `rows[r]`, its first value at image column `first`.
+    Cut {
+        /// The rows, each cut to the piece's columns.
+        rows: &'r mut [&'a mut [T]],
+        /// The image column of each row's first value.
+        first: usize,
+    },
+}
+
+impl<'a, T> ImageRows<'a, 'a, T> {
+    /// The whole rows of `values`, `width` values each.
+    pub fn whole(values: &'a mut [T], width: usize) -> ImageRows<'a, 'a, T> {
+        ImageRows::Whole { values, width }
+    }
+}
+
+impl<T> ImageRows<'_, '_, T> {
+    /// The image column of index 0 in every row.
+    pub fn first(&self) -> usize {
+        match self {
+            ImageRows::Whole { .. } => 0,
+            ImageRows::Cut { first, .. } => *first,
+        }
+    }
+
+    /// Row `r` of these rows (panics past the last, like slice indexing).
+    pub fn row(&mut self, r: usize) -> &mut [T] {
+        match self {
+            ImageRows::Whole { values, width } => &mut values[r * *width..][..*width],
+            ImageRows::Cut { rows, .. } => rows[r],
+        }
+    }
+}
+
 impl Image {
     /// An image with no pixels, to be filled by a renderer.
     pub fn empty() -> Image {

@@ -26,7 +26,7 @@
 use rayon::prelude::*;
 use zline_scene::{LightingSides, Scene, ShadowMode, Visibility, Wireframe};
 
-use crate::image::Image;
+use crate::image::{Image, ImageRows};
 use crate::render::{RenderOptions, RenderStats, Renderer};
 use crate::setup::DepthEncoding;
 use crate::tile::{sample, TileTarget};
@@ -142,13 +142,12 @@ impl EyeDepth {
 impl TileTarget {
     /// Copies the tile's depth out: each pixel of the tile (n×n samples)
     /// gets the smallest stored depth of its samples — the nearest, in both
-    /// encodings — into `band` (rows from the tile's first pixel row,
-    /// `width` pixels each).
-    pub fn export_depth(&self, band: &mut [f32], width: usize, n: u32) {
+    /// encodings — into `out` (rows from the tile's first pixel row).
+    pub fn export_depth(&self, out: &mut ImageRows<'_, '_, f32>, n: u32) {
         let n = n as i32;
-        let (py0, px0) = (self.rect.y0 / n, self.rect.x0 / n);
+        let (py0, px0, first) = (self.rect.y0 / n, self.rect.x0 / n, out.first());
         for py in py0..self.rect.y1 / n {
-            let out = &mut band[(py - py0) as usize * width..][..width];
+            let out = out.row((py - py0) as usize);
             for px in px0..self.rect.x1 / n {
                 let mut nearest = self.far;
                 for sy in py * n..(py + 1) * n {
@@ -156,7 +155,7 @@ impl TileTarget {
                         nearest = nearest.min(sample(&self.depth, self.index(sx, sy)));
                     }
                 }
-                out[px as usize] = nearest;
+                out[px as usize - first] = nearest;
             }
         }
     }

@@ -41,6 +41,7 @@ pub mod tile;
 pub mod vertex;
 pub mod volume;
 
+pub use bin::{pieces_per_band, MAX_PIECES};
 pub use image::Image;
 pub use layers::{render_depth, render_normals, DepthImage, DepthRange};
 pub use object_ids::{render_object_ids, ObjectIds};

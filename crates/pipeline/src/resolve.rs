@@ -8,14 +8,14 @@ use zline_raster::LANES;
 use zline_shading::Vec3x8;
 use zline_simd::lanes::{f32x8, i32x8, Level};
 
+use crate::image::ImageRows;
 use crate::tile::{load, sample, TileTarget};
 
 impl TileTarget {
-    /// Quantizes the tile into `band`, the packed RGBA image rows that hold
-    /// it (`band` starts at the tile's first row; `width` is the image width
-    /// in pixels).
-    pub fn resolve(&self, band: &mut [u32], width: usize) {
-        zline_simd::vectorize(Resolve { target: self, band, width });
+    /// Quantizes the tile into `out`, the packed RGBA image rows that hold
+    /// it (row 0 is the tile's first row).
+    pub fn resolve(&self, out: &mut ImageRows<'_, '_, u32>) {
+        zline_simd::vectorize(Resolve { target: self, out });
     }
 
     /// [`Self::resolve`] at level `S`: the plain loop when the background
@@ -23,11 +23,10 @@ impl TileTarget {
     /// loop must stay as lean as before the sky existed), else the general
     /// one.
     #[inline(always)]
-    fn resolve_at<S: Level>(&self, band: &mut [u32], width: usize) {
+    fn resolve_at<S: Level>(&self, out: &mut ImageRows<'_, '_, u32>) {
         if self.sky_drawn || !self.tone.is_identity() {
             return self.resolve_rows::<S>(
-                band,
-                width,
+                out,
                 #[inline(always)]
                 |i| self.background_block(i),
                 #[inline(always)]
@@ -36,8 +35,7 @@ impl TileTarget {
         }
         let bg = Vec3x8::<S>::splat(self.background);
         self.resolve_rows::<S>(
-            band,
-            width,
+            out,
             #[inline(always)]
             |_| bg,
             #[inline(always)]
@@ -50,8 +48,7 @@ impl TileTarget {
     #[inline(always)]
     fn resolve_rows<S: Level>(
         &self,
-        band: &mut [u32],
-        width: usize,
+        out: &mut ImageRows<'_, '_, u32>,
         background: impl Fn(usize) -> Vec3x8<S>,
         map: impl Fn([f32x8<S>; 3]) -> [f32x8<S>; 3],
     ) {
@@ -59,9 +56,10 @@ impl TileTarget {
             return;
         }
         let [red, green, blue] = &self.rgb;
+        let first = out.first() as i32;
         for row in 0..self.rect.height() as usize {
             let line = row * self.stride;
-            let out = &mut band[row * width..(row + 1) * width];
+            let out = out.row(row);
             for x in (self.origin..self.origin + self.stride as i32).step_by(LANES) {
                 let i = line + (x - self.origin) as usize;
                 let bg = background(i);
@@ -76,23 +74,23 @@ impl TileTarget {
                 );
                 let [r, g, b] = map([c(red, bg.x), c(green, bg.y), c(blue, bg.z)]);
                 let px = pack_rgba(r, g, b);
-                store_block(out, x, &self.rect, &px);
+                store_block(out, first, x, &self.rect, &px);
             }
         }
     }
 
-    /// Box-filters the tile's n×n samples per pixel into `band` (the packed
-    /// image rows from the tile's first pixel row; `width` in pixels): each
+    /// Box-filters the tile's n×n samples per pixel into `out` (the packed
+    /// image rows from the tile's first pixel row): each
     /// pixel gets the mean of its samples' colours (the background where a
     /// sample was never drawn), summed in a fixed order, then SPEC §10's
     /// quantization. The tile's rect is in samples and a multiple of n.
-    pub fn resolve_supersampled(&self, band: &mut [u32], width: usize, n: u32) {
+    pub fn resolve_supersampled(&self, out: &mut ImageRows<'_, '_, u32>, n: u32) {
         let n = n as i32;
         let scale = 1.0 / (n * n) as f32;
         let [red, green, blue] = &self.rgb;
-        let (py0, px0) = (self.rect.y0 / n, self.rect.x0 / n);
+        let (py0, px0, first) = (self.rect.y0 / n, self.rect.x0 / n, out.first());
         for py in py0..self.rect.y1 / n {
-            let out = &mut band[(py - py0) as usize * width..][..width];
+            let out = out.row((py - py0) as usize);
             for px in px0..self.rect.x1 / n {
                 let mut sum = Vec3::ZERO;
                 for sy in py * n..(py + 1) * n {
@@ -104,41 +102,42 @@ impl TileTarget {
                     }
                 }
                 let color = if self.tone.is_identity() { sum * scale } else { self.tone.apply(sum * scale) };
-                out[px as usize] = crate::image::quantize_rgba(color.extend(1.0));
+                out[px as usize - first] = crate::image::quantize_rgba(color.extend(1.0));
             }
         }
     }
 }
 
-/// Writes the eight pixels `px` of columns `x..x + 8` into the image row
-/// `out`, those inside `rect`'s columns only (whole when the block is).
+/// Writes the eight pixels `px` of image columns `x..x + 8` into the image
+/// row `out` (whose index 0 is column `first`), those inside `rect`'s
+/// columns only (whole when the block is).
 #[inline(always)]
-pub(crate) fn store_block(out: &mut [u32], x: i32, rect: &zline_raster::Rect, px: &[u32; LANES]) {
+pub(crate) fn store_block(out: &mut [u32], first: i32, x: i32, rect: &zline_raster::Rect, px: &[u32; LANES]) {
     if x >= rect.x0 && x + LANES as i32 <= rect.x1 {
-        out[x as usize..x as usize + LANES].copy_from_slice(px);
+        let at = (x - first) as usize;
+        out[at..at + LANES].copy_from_slice(px);
         return;
     }
     for (k, &p) in px.iter().enumerate() {
         let c = x + k as i32;
         if (rect.x0..rect.x1).contains(&c) {
-            out[c as usize] = p;
+            out[(c - first) as usize] = p;
         }
     }
 }
 
 /// [`TileTarget::resolve`] as a job of [`zline_simd::vectorize`].
-struct Resolve<'a> {
+struct Resolve<'a, 'r, 'b> {
     target: &'a TileTarget,
-    band: &'a mut [u32],
-    width: usize,
+    out: &'a mut ImageRows<'r, 'b, u32>,
 }
 
-impl zline_simd::Vectorized for Resolve<'_> {
+impl zline_simd::Vectorized for Resolve<'_, '_, '_> {
     type Output = ();
 
     #[inline(always)]
     fn run<S: Level>(self) {
-        self.target.resolve_at::<S>(self.band, self.width);
+        self.target.resolve_at::<S>(self.out);
     }
 }
 

@@ -29,7 +29,7 @@ use zline_scene::Scene;
 use super::tiles::TilePasses;
 use super::{Frame, RenderOptions, Renderer};
 use crate::bin::{OpaqueRef, PrimitiveRef, TileGrid};
-use crate::image::Image;
+use crate::image::{Image, ImageRows};
 use crate::setup::{layout, Kernel, KernelTables, PassKind, PrimitiveChunk, TexturedLighting};
 use crate::tile::{FrameTexture, TileTarget};
 
@@ -473,11 +473,12 @@ impl Renderer {
         let width = frame.width as usize;
         let tile_rows = (rect.height() as u32).div_ceil(n) as usize;
         let mut band = vec![0u32; width * tile_rows];
+        let mut rows = ImageRows::whole(&mut band, width);
         match (passes.coverage, n) {
-            (false, 1) => target.resolve(&mut band, width),
-            (false, _) => target.resolve_supersampled(&mut band, width, n),
-            (true, 1) => target.resolve_coverage(&mut band, width),
-            (true, _) => target.resolve_coverage_supersampled(&mut band, width, n),
+            (false, 1) => target.resolve(&mut rows),
+            (false, _) => target.resolve_supersampled(&mut rows, n),
+            (true, 1) => target.resolve_coverage(&mut rows),
+            (true, _) => target.resolve_coverage_supersampled(&mut rows, n),
         }
         let local_row = (pixel.1 - (rect.y0 as u32) / n) as usize;
         let resolved = band[local_row * width + pixel.0 as usize].to_le_bytes();

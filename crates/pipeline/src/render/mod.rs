@@ -20,7 +20,7 @@ use zline_shading::{
 };
 
 use crate::adaptive::Adaptive;
-use crate::bin::{bin_primitives, bin_primitives_painter, Bins, PrimitiveRef, TileGrid};
+use crate::bin::{bin_primitives, bin_primitives_painter, Bins, PrimitiveRef, TileGrid, MAX_PIECES};
 use crate::image::Image;
 use crate::lines::{LineFrame, Lines};
 use crate::lod::{Choice, LodView};
@@ -132,9 +132,13 @@ pub struct Renderer {
     /// The adaptive mode draws every mesh in full
     /// ([`Renderer::set_level_of_detail`]).
     full_meshes: bool,
-    /// Per band of tile rows in the last frame, top first: the samples
-    /// shaded and the time its thread took ([`Renderer::band_times`]).
-    bands: Vec<(u64, Duration)>,
+    /// Per band of tile rows in the last frame, top first, per piece
+    /// (`pieces` used): the samples shaded and the time taken
+    /// ([`Renderer::unit_times`]).
+    bands: Vec<[(u64, Duration); MAX_PIECES]>,
+    pieces: usize,
+    /// [`Renderer::set_band_pieces`].
+    band_pieces: Option<usize>,
 }
 
 /// The frame's lights, materials and textures, indexed by the primitives.
@@ -262,16 +266,6 @@ impl Renderer {
     pub fn render_into(&mut self, scene: &Scene, options: &RenderOptions, image: &mut Image) -> RenderStats {
         self.normals = false;
         self.render_frame(scene, options, image, None)
-    }
-
-    /// The raster stage's time per band of tile rows in the last frame
-    /// drawn, top band first (empty before the first). A band — one row of
-    /// tiles across the image — is the unit the threads share out, so with
-    /// more threads than bands' worth of work the slowest band bounds the
-    /// stage: `cargo xtask scaling` models the frame at more threads from
-    /// these times.
-    pub fn band_times(&self) -> impl ExactSizeIterator<Item = Duration> + '_ {
-        self.bands.iter().map(|&(_, time)| time)
     }
 
     /// Lets the adaptive mode draw simplified meshes (`crate::lod`; the

@@ -1,8 +1,9 @@
 //! The tile stage of a frame: every tile's passes, bands of tiles in
 //! parallel ([`Renderer::draw_tiles`], [`TilePasses`]).
 
+use std::ops::Range;
 use std::sync::{Mutex, PoisonError};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use glam::Vec3;
 
@@ -13,9 +14,9 @@ use zline_scene::{Scene, Visibility};
 use zline_raster::Rect;
 
 use super::{opaque_primitives, pixels_of, BandBuffers, Frame, Renderer};
-use crate::bin::{Bins, PrimitiveRef, TileGrid};
+use crate::bin::{pieces_per_band, Bins, PrimitiveRef, TileGrid, MAX_PIECES};
 use crate::fog::FogPass;
-use crate::image::{quantize_rgba, Image};
+use crate::image::{quantize_rgba, Image, ImageRows};
 use crate::lines::Lines;
 use crate::setup::{DepthEncoding, PrimitiveChunk};
 use crate::sky::SkyView;
@@ -24,8 +25,10 @@ use crate::tile::{ShadeContext, TileTarget, DEPTH_CLEAR, DEPTH_CLEAR_REVERSED};
 impl Renderer {
     /// Every tile, bands of tiles in parallel: each tile clears its depth,
     /// draws its opaque bin, fogs, draws its transparent bin and resolves
-    /// into the image rows it owns ([`TilePasses::draw`]). Returns the
-    /// samples shaded.
+    /// into the image rows it owns ([`TilePasses::draw`]). A band is cut
+    /// into pieces (runs of its tiles, drawn in parallel too) when the pool
+    /// has more threads than the bands keep busy ([`pieces_per_band`]).
+    /// Returns the samples shaded.
     pub(super) fn draw_tiles(
         &mut self,
         scene: &Scene,
@@ -33,17 +36,22 @@ impl Renderer {
         grid: &TileGrid,
         (image, depth): (&mut Image, Option<&mut Vec<f32>>),
     ) -> u64 {
-        let (width, n) = (frame.width, frame.n);
-        let tile_size = grid.tile_size / n;
+        let (width, n) = (frame.width as usize, frame.n);
+        let tile_size = (grid.tile_size / n) as usize;
         let coverage = scene.settings.transparent_background;
-        image.width = width;
+        image.width = frame.width;
         image.height = frame.height;
         image.transparent = coverage;
-        image.pixels.resize(width as usize * frame.height as usize, 0);
-        let band_len = width as usize * tile_size as usize;
+        image.pixels.resize(width * frame.height as usize, 0);
+        let band_len = width * tile_size;
         let threads = self.prepare_band_buffers(grid, coverage);
         let buffers = &self.buffers[..threads];
         let clear = frame_clear(frame);
+        let cols = grid.cols as usize;
+        let chosen = self.band_pieces.unwrap_or_else(|| pieces_per_band(threads, grid.rows as usize, cols));
+        let pieces = if tile_size > MAX_CUT_ROWS { 1 } else { chosen.clamp(1, cols.clamp(1, MAX_PIECES)) };
+        // Piece k holds tile columns cols·k/pieces onwards; its first pixel column.
+        let first = |k: usize| (k * cols / pieces * tile_size).min(width);
         let depth_bands = match depth {
             Some(d) => {
                 d.clear();
@@ -56,41 +64,96 @@ impl Renderer {
         // borrows the renderer; its capacity is kept from frame to frame.
         let mut bands = std::mem::take(&mut self.bands);
         let passes = self.tile_passes(scene, frame, grid, matches!(depth_bands, Either::Left(_)));
+        // Tiles `tiles` of band `row` into `out` (and `depth`), with this
+        // thread's buffers: the samples shaded and the time taken.
+        let draw = |row: u32,
+                    tiles: Range<usize>,
+                    out: &mut ImageRows<u32>,
+                    mut depth: Option<&mut ImageRows<f32>>| {
+            let start = Instant::now();
+            // Only this thread takes its own buffers: the lock is never
+            // contended (a piece calls no rayon while holding it, and a
+            // poisoned one holds plain buffers).
+            let thread = rayon::current_thread_index().unwrap_or(0) % threads;
+            let mut guard = buffers[thread].lock().unwrap_or_else(PoisonError::into_inner);
+            let BandBuffers { target, order, untouched } = &mut *guard;
+            untouched.clear();
+            let mut shaded = 0;
+            for col in tiles {
+                let tile = (col as u32, row);
+                match passes.draw((target, order), tile, out, depth.as_deref_mut()) {
+                    Some(drawn) => shaded += drawn,
+                    None => {
+                        let rect = pixels_of(grid.rect(col as u32, row), n);
+                        // A tile touching the last one lengthens its run.
+                        match untouched.last_mut() {
+                            Some(last) if last.x1 == rect.x0 => last.x1 = rect.x1,
+                            _ => untouched.push(rect),
+                        }
+                    }
+                }
+            }
+            fill_rects(out, untouched, passes.background.1);
+            (shaded, start.elapsed())
+        };
         image
             .pixels
             .par_chunks_mut(band_len)
             .zip(depth_bands)
             .enumerate()
-            .map(|(row, (band, mut depth_band))| {
-                let start = Instant::now();
-                // Only this thread takes its own buffers: the lock is never
-                // contended (and a poisoned one holds plain buffers).
-                let thread = rayon::current_thread_index().unwrap_or(0) % threads;
-                let mut guard = buffers[thread].lock().unwrap_or_else(PoisonError::into_inner);
-                let BandBuffers { target, order, untouched } = &mut *guard;
-                untouched.clear();
-                let shaded = (0..grid.cols)
-                    .map(|col| {
-                        let tile = (col, row as u32);
-                        let drawn = passes.draw((target, order), tile, band, depth_band.as_deref_mut());
-                        drawn.unwrap_or_else(|| {
-                            let rect = pixels_of(grid.rect(col, row as u32), n);
-                            // A tile touching the last one lengthens its run.
-                            match untouched.last_mut() {
-                                Some(last) if last.x1 == rect.x0 => last.x1 = rect.x1,
-                                _ => untouched.push(rect),
-                            }
-                            0
-                        })
-                    })
-                    .sum::<u64>();
-                fill_rects(band, width as usize, untouched, passes.background.1);
-                (shaded, start.elapsed())
+            .map(|(row, (band, depth_band))| {
+                let mut units = [(0, Duration::ZERO); MAX_PIECES];
+                let row = row as u32;
+                if pieces == 1 {
+                    let mut depth = depth_band.map(|d| ImageRows::whole(d, width));
+                    units[0] = draw(row, 0..cols, &mut ImageRows::whole(band, width), depth.as_mut());
+                    return units;
+                }
+                let rows = band.len() / width.max(1);
+                let (mut cut, mut depth_cut) = (Cut::<u32>::new(), Cut::<f32>::new());
+                cut.fill(band, width, pieces, first);
+                if let Some(d) = depth_band {
+                    depth_cut.fill(d, width, pieces, first);
+                }
+                let has_depth = passes.export_depth;
+                units[..pieces]
+                    .par_iter_mut()
+                    .zip(&mut cut.0[..pieces])
+                    .zip(&mut depth_cut.0[..pieces])
+                    .enumerate()
+                    .for_each(|(k, ((unit, out), depth))| {
+                        let tiles = k * cols / pieces..(k + 1) * cols / pieces;
+                        let mut out = ImageRows::Cut { rows: &mut out[..rows], first: first(k) };
+                        let mut depth = ImageRows::Cut { rows: &mut depth[..rows], first: first(k) };
+                        *unit = draw(row, tiles, &mut out, has_depth.then_some(&mut depth));
+                    });
+                units
             })
             .collect_into_vec(&mut bands);
-        let shaded = bands.iter().map(|&(n, _)| n).sum();
+        let shaded = bands.iter().flat_map(|units| &units[..pieces]).map(|&(n, _)| n).sum();
         self.bands = bands;
+        self.pieces = pieces;
         shaded
+    }
+
+    /// The tile stage's units of parallel work in the last frame drawn —
+    /// bands of tile rows, or their pieces when the bands were cut
+    /// ([`pieces_per_band`]) — band by band from the top, each band's
+    /// pieces left to right: the time each took (empty before the first
+    /// frame). With more threads than units' worth of work, the slowest
+    /// unit bounds the stage: `cargo xtask scaling` models the frame at
+    /// more threads from these times.
+    pub fn unit_times(&self) -> impl Iterator<Item = Duration> + '_ {
+        self.bands.iter().flat_map(|units| &units[..self.pieces]).map(|&(_, time)| time)
+    }
+
+    /// Cuts every band into `pieces` pieces (at most one a tile and
+    /// [`MAX_PIECES`]; bands of tiles above 64 pixels stay whole), or, with
+    /// `None` (the default), as many as [`pieces_per_band`] chooses for the
+    /// pool's threads. The image is the same either way; `cargo xtask
+    /// scaling` times at one thread the pieces more threads would use.
+    pub fn set_band_pieces(&mut self, pieces: Option<usize>) {
+        self.band_pieces = pieces;
     }
 
     /// What every tile of the frame draws with ([`TilePasses`]).
@@ -200,20 +263,19 @@ pub(super) struct TilePasses<'a> {
 }
 
 impl TilePasses<'_> {
-    /// Draws tile (`col`, `row`) with `target` and resolves it into `band`
-    /// (and its depth into `depth_band` when the depth image is asked
-    /// for). Returns the samples shaded, or `None` for a tile with nothing
+    /// Draws tile (`col`, `row`) with `target` and resolves it into `out`,
+    /// its band's rows (and its depth into `depth` when the depth image is
+    /// asked for). Returns the samples shaded, or `None` for a tile with nothing
     /// to draw, whose pixels the caller fills with the background
     /// ([`fill_rects`]).
     fn draw(
         &self,
         (target, order): (&mut TileTarget, &mut Vec<(f32, PrimitiveRef)>),
         (col, row): (u32, u32),
-        band: &mut [u32],
-        depth_band: Option<&mut [f32]>,
+        out: &mut ImageRows<u32>,
+        depth: Option<&mut ImageRows<f32>>,
     ) -> Option<u64> {
-        let ((width, n), chunks, bins) = (self.size, self.chunks, self.bins);
-        let width = width as usize;
+        let ((_, n), chunks, bins) = (self.size, self.chunks, self.bins);
         let tile = row as usize * self.grid.cols as usize + col as usize;
         let (rect, opaque, transparent) =
             (self.grid.rect(col, row), &bins.opaque[tile], &bins.transparent[tile]);
@@ -249,33 +311,63 @@ impl TilePasses<'_> {
         if let Some(lines) = self.lines {
             target.line_pass(lines, line_bin, n);
         }
-        if let Some(depth_band) = depth_band {
-            target.export_depth(depth_band, width, n);
+        if let Some(depth) = depth {
+            target.export_depth(depth, n);
         }
         target.tone = self.tone;
         match (self.coverage, n) {
-            (false, 1) => target.resolve(band, width),
-            (false, _) => target.resolve_supersampled(band, width, n),
-            (true, 1) => target.resolve_coverage(band, width),
-            (true, _) => target.resolve_coverage_supersampled(band, width, n),
+            (false, 1) => target.resolve(out),
+            (false, _) => target.resolve_supersampled(out, n),
+            (true, 1) => target.resolve_coverage(out),
+            (true, _) => target.resolve_coverage_supersampled(out, n),
         }
         Some(shaded)
     }
 }
 
 /// Fills the pixels of `runs` (runs of neighbouring untouched tiles of one
-/// band, left to right, all of the band's rows) in `band` with one packed
+/// band, left to right, all of the band's rows) in `out` with one packed
 /// colour, row by row across the band: tile by tile, each of a tile's rows
 /// started a new stretch of the image a row below the last, and the fill
 /// ran at half the speed.
-fn fill_rects(band: &mut [u32], width: usize, runs: &[Rect], color: u32) {
-    let Some(first) = runs.first() else {
+fn fill_rects(out: &mut ImageRows<u32>, runs: &[Rect], color: u32) {
+    let Some(runs_first) = runs.first() else {
         return;
     };
-    for row in 0..first.height() as usize {
-        let line = &mut band[row * width..(row + 1) * width];
+    let first = out.first();
+    for row in 0..runs_first.height() as usize {
+        let line = out.row(row);
         for r in runs {
-            line[r.x0 as usize..r.x1 as usize].fill(color);
+            line[r.x0 as usize - first..r.x1 as usize - first].fill(color);
+        }
+    }
+}
+
+/// The most pixel rows a band may have to be cut into pieces (taller
+/// bands, of tiles above 64 pixels, stay whole): the cut rows are kept on
+/// the stack, 64 slices a piece.
+const MAX_CUT_ROWS: usize = 64;
+
+/// A band's rows cut at the pieces' first columns: `0[k][r]` is row r of
+/// piece k.
+struct Cut<'a, T>([[&'a mut [T]; MAX_CUT_ROWS]; MAX_PIECES]);
+
+impl<'a, T> Cut<'a, T> {
+    fn new() -> Self {
+        Cut(std::array::from_fn(|_| std::array::from_fn(|_| Default::default())))
+    }
+
+    /// Cuts each row of `band` (`width` values a row, at most
+    /// [`MAX_CUT_ROWS`] rows) into `pieces`, piece k from column `first(k)`.
+    fn fill(&mut self, band: &'a mut [T], width: usize, pieces: usize, first: impl Fn(usize) -> usize) {
+        for (r, line) in band.chunks_mut(width.max(1)).enumerate() {
+            let mut rest = line;
+            for k in 0..pieces {
+                let end = if k + 1 == pieces { width } else { first(k + 1) };
+                let (piece, after) = std::mem::take(&mut rest).split_at_mut(end - first(k));
+                self.0[k][r] = piece;
+                rest = after;
+            }
         }
     }
 }

@@ -161,19 +161,71 @@ fn planar_shadows_do_not_change_a_byte_with_tile_size_or_thread_count() {
 }
 
 #[test]
-fn band_times_are_one_per_row_of_tiles_within_the_raster_stage() {
+fn bands_cut_into_pieces_give_the_same_bytes_and_one_time_per_piece() {
+    // Phong over a wavy grid; plain, with alpha coverage and supersampled,
+    // the colour and the depth image; 211×173 in 16-pixel tiles: 11 bands
+    // of 14 tiles, the last column and row of tiles partial.
+    for (coverage, ssaa) in [(false, 1), (true, 1), (false, 2), (true, 2)] {
+        let mut s = test_scene(ShadingMode::Phong, Interpolation::PerspectiveCorrect);
+        (s.settings.transparent_background, s.settings.ssaa) = (coverage, ssaa);
+        let options = RenderOptions { tile_size: 16 };
+        let mut renderer = zline_pipeline::Renderer::default();
+        assert_eq!(renderer.unit_times().count(), 0, "no frame drawn yet");
+        let (mut reference, mut reference_depth) = (zline_pipeline::Image::empty(), Default::default());
+        renderer.set_band_pieces(Some(1));
+        renderer.render_with_depth(&s, &options, &mut reference, &mut reference_depth);
+        assert_eq!(renderer.unit_times().count(), 11);
+        assert!(reference.to_rgb().iter().any(|&c| c > 40), "nothing drawn");
+        for (pieces, units) in [(2, 22), (3, 33), (7, 77), (14, 154), (100, 154)] {
+            for threads in [1, 3] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let (mut image, mut depth) = (zline_pipeline::Image::empty(), Default::default());
+                renderer.set_band_pieces(Some(pieces));
+                let what = format!("coverage {coverage}, ssaa {ssaa}: {pieces} pieces, {threads} threads");
+                pool.install(|| renderer.render_with_depth(&s, &options, &mut image, &mut depth));
+                assert!(image == reference, "{what}: the image differs");
+                let same = |a: &zline_pipeline::DepthImage, b: &zline_pipeline::DepthImage| {
+                    a.depth.iter().zip(&b.depth).all(|(x, y)| x.to_bits() == y.to_bits())
+                };
+                assert!(same(&depth, &reference_depth), "{what}: the depth differs");
+                assert_eq!(renderer.unit_times().count(), units, "{what}");
+                // Without the depth image too.
+                pool.install(|| renderer.render_into(&s, &options, &mut image));
+                assert!(image == reference, "{what}: the image without depth differs");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_cut_follows_the_thread_count_and_leaves_tall_bands_whole() {
+    use zline_pipeline::{pieces_per_band, MAX_PIECES};
+    // 1920×1080 in 64-pixel tiles: 17 bands of 30 tiles.
+    assert_eq!(pieces_per_band(1, 17, 30), 1);
+    assert_eq!(pieces_per_band(2, 17, 30), 1);
+    assert_eq!(pieces_per_band(8, 17, 30), 2);
+    assert_eq!(pieces_per_band(16, 17, 30), 4);
+    assert_eq!(pieces_per_band(64, 17, 30), MAX_PIECES);
+    // At most one piece a tile.
+    assert_eq!(pieces_per_band(64, 1, 3), 3);
+    assert_eq!(pieces_per_band(4, 0, 0), 1);
+    // Tiles above 64 pixels: the bands stay whole whatever is asked.
+    let s = test_scene(ShadingMode::Gouraud, Interpolation::PerspectiveCorrect);
+    let mut renderer = zline_pipeline::Renderer::default();
+    renderer.set_band_pieces(Some(4));
+    let mut image = zline_pipeline::Image::empty();
+    renderer.render_into(&s, &RenderOptions { tile_size: 65 }, &mut image);
+    assert_eq!(renderer.unit_times().count(), 3, "173 rows in 65-pixel bands, whole");
+    renderer.render_into(&s, &RenderOptions { tile_size: 64 }, &mut image);
+    assert_eq!(renderer.unit_times().count(), 3 * 4);
+}
+
+#[test]
+fn unit_times_lie_within_the_raster_stage() {
     let s = test_scene(ShadingMode::Phong, Interpolation::PerspectiveCorrect);
     let mut renderer = zline_pipeline::Renderer::default();
-    assert_eq!(renderer.band_times().len(), 0, "no frame drawn yet");
     let mut image = zline_pipeline::Image::empty();
-    for (tile_size, threads) in [(16, 1), (33, 2), (1000, 3)] {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        let stats = pool.install(|| renderer.render_into(&s, &RenderOptions { tile_size }, &mut image));
-        let rows = s.settings.height.div_ceil(tile_size) as usize;
-        assert_eq!(renderer.band_times().len(), rows, "tile {tile_size}");
-        assert!(stats.fragments > 0);
-        // The bands ran inside the raster stage.
-        let bands: std::time::Duration = renderer.band_times().sum();
-        assert!(threads > 1 || bands <= stats.raster, "{bands:?} > {:?}", stats.raster);
-    }
+    let stats = renderer.render_into(&s, &RenderOptions { tile_size: 16 }, &mut image);
+    let units: std::time::Duration = renderer.unit_times().sum();
+    assert!(units <= stats.raster, "{units:?} > {:?}", stats.raster);
 }
