@@ -77,9 +77,6 @@ enum Task {
         /// Thread counts the model predicts.
         #[arg(long, value_delimiter = ',', default_value = "4,8,16,32,64")]
         model: Vec<usize>,
-        /// Model the bands whole, as if they were never cut into pieces.
-        #[arg(long)]
-        whole_bands: bool,
         /// The shared asset folder holding obj/bunny/bunny.obj (skipped with
         /// a message when missing).
         #[arg(long, default_value = "../shared/assets")]
@@ -273,9 +270,9 @@ fn main() -> Result<()> {
             let options = zline::pipeline::RenderOptions { tile_size };
             bench::run(frames, &threads, &assets, filter.as_deref(), &options)
         }
-        Task::Scaling { frames, rounds, model, whole_bands, assets, filter, tile_size } => {
+        Task::Scaling { frames, rounds, model, assets, filter, tile_size } => {
             let options = zline::pipeline::RenderOptions { tile_size };
-            scaling::run((frames, rounds), (&model, whole_bands), &assets, filter.as_deref(), &options)
+            scaling::run((frames, rounds), &model, &assets, filter.as_deref(), &options)
         }
         Task::DocsImages { out } => docs::run(&out),
         Task::ContactSheet { assets, out, cell } => contact::run(&assets, &out, cell),
