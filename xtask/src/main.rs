@@ -40,6 +40,27 @@ struct Cli {
     task: Task,
 }
 
+/// The benchmark scenes to draw, and how (`bench`, `scaling`).
+#[derive(clap::Args)]
+struct Scenes {
+    /// The shared asset folder holding obj/bunny/bunny.obj (skipped with
+    /// a message when missing).
+    #[arg(long, default_value = "../shared/assets")]
+    assets: PathBuf,
+    /// Only cases whose name contains this text.
+    #[arg(long)]
+    filter: Option<String>,
+    /// Tile edge in pixels.
+    #[arg(long, default_value_t = zline::pipeline::RenderOptions::default().tile_size)]
+    tile_size: u32,
+}
+
+impl Scenes {
+    fn options(&self) -> zline::pipeline::RenderOptions {
+        zline::pipeline::RenderOptions { tile_size: self.tile_size }
+    }
+}
+
 #[derive(Subcommand)]
 enum Task {
     /// Median frame times at 1920x1080 for the benchmark scenes, with 1 and
@@ -52,21 +73,14 @@ enum Task {
         /// Thread counts to run.
         #[arg(long, value_delimiter = ',', default_value = "1,2")]
         threads: Vec<usize>,
-        /// The shared asset folder holding obj/bunny/bunny.obj (skipped with
-        /// a message when missing).
-        #[arg(long, default_value = "../shared/assets")]
-        assets: PathBuf,
-        /// Only cases whose name contains this text.
-        #[arg(long)]
-        filter: Option<String>,
-        /// Tile edge in pixels.
-        #[arg(long, default_value_t = zline::pipeline::RenderOptions::default().tile_size)]
-        tile_size: u32,
+        #[command(flatten)]
+        scenes: Scenes,
     },
     /// A model of the frame at more threads than this machine has: each
-    /// benchmark scene timed at 1 and 2 threads (alternated), each stage
-    /// extrapolated by Amdahl's law, the raster stage bounded below by its
-    /// bands of tile rows; a markdown table.
+    /// benchmark scene timed at 1 and 2 threads (alternated), geometry and
+    /// binning extrapolated by Amdahl's law, the raster stage from its units
+    /// of work (bands of tile rows, cut as each thread count cuts them)
+    /// timed at one thread; a markdown table.
     Scaling {
         /// Frames timed per thread count and round (after a warm-up).
         #[arg(long, default_value_t = 15)]
@@ -77,16 +91,8 @@ enum Task {
         /// Thread counts the model predicts.
         #[arg(long, value_delimiter = ',', default_value = "4,8,16,32,64")]
         model: Vec<usize>,
-        /// The shared asset folder holding obj/bunny/bunny.obj (skipped with
-        /// a message when missing).
-        #[arg(long, default_value = "../shared/assets")]
-        assets: PathBuf,
-        /// Only cases whose name contains this text.
-        #[arg(long)]
-        filter: Option<String>,
-        /// Tile edge in pixels.
-        #[arg(long, default_value_t = zline::pipeline::RenderOptions::default().tile_size)]
-        tile_size: u32,
+        #[command(flatten)]
+        scenes: Scenes,
     },
     /// Count the compiled kernel jobs per SIMD level in the zline binary,
     /// hold them against the budget in xtask/kernels.toml and check that no
@@ -266,14 +272,16 @@ enum Task {
 
 fn main() -> Result<()> {
     match Cli::parse().task {
-        Task::Bench { frames, threads, assets, filter, tile_size } => {
-            let options = zline::pipeline::RenderOptions { tile_size };
-            bench::run(frames, &threads, &assets, filter.as_deref(), &options)
+        Task::Bench { frames, threads, scenes } => {
+            bench::run(frames, &threads, &scenes.assets, scenes.filter.as_deref(), &scenes.options())
         }
-        Task::Scaling { frames, rounds, model, assets, filter, tile_size } => {
-            let options = zline::pipeline::RenderOptions { tile_size };
-            scaling::run((frames, rounds), &model, &assets, filter.as_deref(), &options)
-        }
+        Task::Scaling { frames, rounds, model, scenes } => scaling::run(
+            (frames, rounds),
+            &model,
+            &scenes.assets,
+            scenes.filter.as_deref(),
+            &scenes.options(),
+        ),
         Task::DocsImages { out } => docs::run(&out),
         Task::ContactSheet { assets, out, cell } => contact::run(&assets, &out, cell),
         Task::Regress { filter } => regress::run(regress::Mode::Check, filter.as_deref()),

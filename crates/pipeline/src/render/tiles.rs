@@ -6,7 +6,6 @@ use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
-
 use rayon::iter::Either;
 use rayon::prelude::*;
 use zline_scene::{Scene, Visibility};
