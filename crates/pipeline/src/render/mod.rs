@@ -331,6 +331,7 @@ impl Renderer {
 
         let start = Instant::now();
         if let Some(rule) = self.overdraw {
+            self.bands.clear(); // no tile is drawn: no unit times
             let size = (frame.width, frame.height, frame.n);
             self.count_tiles(&grid, size, rule, &mut image.pixels);
             (image.width, image.height) = (frame.width, frame.height);

@@ -225,7 +225,15 @@ fn unit_times_lie_within_the_raster_stage() {
     let s = test_scene(ShadingMode::Phong, Interpolation::PerspectiveCorrect);
     let mut renderer = zline_pipeline::Renderer::default();
     let mut image = zline_pipeline::Image::empty();
-    let stats = renderer.render_into(&s, &RenderOptions { tile_size: 16 }, &mut image);
+    // One thread, so the units run one after the other within the stage.
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let stats = pool.install(|| renderer.render_into(&s, &RenderOptions { tile_size: 16 }, &mut image));
     let units: std::time::Duration = renderer.unit_times().sum();
     assert!(units <= stats.raster, "{units:?} > {:?}", stats.raster);
+    // An overdraw frame draws no tile: none, not the last frame's.
+    assert!(renderer.unit_times().count() > 0);
+    let mut overdraw = zline_pipeline::Overdraw::default();
+    let options = RenderOptions { tile_size: 16 };
+    renderer.render_overdraw_into(&s, &options, zline_raster::TieRule::TopLeft, &mut overdraw);
+    assert_eq!(renderer.unit_times().count(), 0);
 }
