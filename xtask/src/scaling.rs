@@ -70,7 +70,7 @@ impl Timings {
     /// a timing, which moves a median but seldom the fastest frame.
     fn fastest(&self) -> [f64; 3] {
         let least = |f: &dyn Fn(&[f64; 4]) -> f64| self.frames.iter().map(f).fold(f64::INFINITY, f64::min);
-        [least(&|t| (t[0] - t[1] - t[2] - t[3]).max(0.0)), least(&|t| t[1]), least(&|t| t[2])]
+        [least(&rest), least(&|t| t[1]), least(&|t| t[2])]
     }
 
     /// The median over frames of the raster stage's time outside its units
@@ -85,6 +85,12 @@ impl Timings {
         let count = self.units.iter().map(Vec::len).min().unwrap_or(0);
         (0..count).map(|b| median(self.units.iter().map(|f| f[b]).collect())).collect()
     }
+}
+
+/// The frame's time outside its three stages (`t`: the frame, geometry,
+/// binning, raster).
+fn rest(t: &[f64; 4]) -> f64 {
+    (t[0] - t[1] - t[2] - t[3]).max(0.0)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -138,8 +144,7 @@ pub(crate) fn model(
     (outside, units): (f64, &[f64]),
     n: usize,
 ) -> (f64, bool) {
-    let rest = (one[0] - one[1] - one[2] - one[3]).max(0.0);
-    let mut total = amdahl(rest, shares[0], n);
+    let mut total = amdahl(rest(&one), shares[0], n);
     for stage in 1..3 {
         total += amdahl(one[stage], shares[stage], n);
     }

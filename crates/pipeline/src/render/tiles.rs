@@ -111,10 +111,10 @@ impl Renderer {
                 let rows = band.len() / width.max(1);
                 let (mut cut, mut depth_cut) = (Cut::<u32>::new(), Cut::<f32>::new());
                 cut.fill(band, width, pieces, first);
+                let has_depth = depth_band.is_some();
                 if let Some(d) = depth_band {
                     depth_cut.fill(d, width, pieces, first);
                 }
-                let has_depth = passes.export_depth;
                 units[..pieces]
                     .par_iter_mut()
                     .zip(&mut cut.0[..pieces])
@@ -202,7 +202,7 @@ impl Renderer {
             }),
             coverage,
             tone: scene.settings.tone_mapping,
-            size: (frame.width, frame.n),
+            ssaa: frame.n,
         }
     }
 
@@ -257,8 +257,8 @@ pub(super) struct TilePasses<'a> {
     pub(super) coverage: bool,
     /// The frame's tone mapping, for the resolve.
     pub(super) tone: zline_shading::ToneMapping,
-    /// The image width and the supersampling factor.
-    pub(super) size: (u32, u32),
+    /// The supersampling factor.
+    pub(super) ssaa: u32,
 }
 
 impl TilePasses<'_> {
@@ -274,7 +274,7 @@ impl TilePasses<'_> {
         out: &mut ImageRows<u32>,
         depth: Option<&mut ImageRows<f32>>,
     ) -> Option<u64> {
-        let ((_, n), chunks, bins) = (self.size, self.chunks, self.bins);
+        let (n, chunks, bins) = (self.ssaa, self.chunks, self.bins);
         let tile = row as usize * self.grid.cols as usize + col as usize;
         let (rect, opaque, transparent) =
             (self.grid.rect(col, row), &bins.opaque[tile], &bins.transparent[tile]);
