@@ -22,8 +22,10 @@ pub(crate) struct Case {
     pub(crate) build: Box<dyn Fn() -> Result<Scene>>,
 }
 
+/// Times each selected case at each thread count: `frames` warm frames,
+/// the bands cut into `pieces` (`None`: as the thread count chooses).
 pub(crate) fn run(
-    frames: usize,
+    (frames, pieces): (usize, Option<usize>),
     threads: &[usize],
     assets: &Path,
     filter: Option<&str>,
@@ -39,7 +41,7 @@ pub(crate) fn run(
         let scene = (case.build)()?;
         for &t in threads {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build().context("thread pool")?;
-            let runs = time_frames(&scene, &pool, options, frames);
+            let runs = time_frames(&scene, (&pool, pieces), options, frames);
             let (median, stats) = runs[runs.len() / 2];
             let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
             println!(
@@ -59,15 +61,17 @@ pub(crate) fn run(
 }
 
 /// `frames` (at least one) warm frames of `scene` drawn in `pool` by one
-/// renderer after one warm-up frame: each frame's seconds and statistics,
+/// renderer after one warm-up frame, its bands cut into `pieces` (`None`:
+/// as the pool's threads choose): each frame's seconds and statistics,
 /// fastest first.
 pub(crate) fn time_frames(
     scene: &Scene,
-    pool: &rayon::ThreadPool,
+    (pool, pieces): (&rayon::ThreadPool, Option<usize>),
     options: &RenderOptions,
     frames: usize,
 ) -> Vec<(f64, RenderStats)> {
     let mut renderer = Renderer::default();
+    renderer.set_band_pieces(pieces);
     let mut image = Image::empty();
     pool.install(|| renderer.render_into(scene, options, &mut image)); // warm-up
     let mut runs: Vec<(f64, RenderStats)> = (0..frames.max(1))

@@ -73,6 +73,10 @@ enum Task {
         /// Thread counts to run.
         #[arg(long, value_delimiter = ',', default_value = "1,2")]
         threads: Vec<usize>,
+        /// Cut each band of tile rows into this many pieces (1 keeps the
+        /// bands whole); by default each thread count chooses its cut.
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+        band_pieces: Option<u16>,
         #[command(flatten)]
         scenes: Scenes,
     },
@@ -272,9 +276,13 @@ enum Task {
 
 fn main() -> Result<()> {
     match Cli::parse().task {
-        Task::Bench { frames, threads, scenes } => {
-            bench::run(frames, &threads, &scenes.assets, scenes.filter.as_deref(), &scenes.options())
-        }
+        Task::Bench { frames, threads, band_pieces, scenes } => bench::run(
+            (frames, band_pieces.map(usize::from)),
+            &threads,
+            &scenes.assets,
+            scenes.filter.as_deref(),
+            &scenes.options(),
+        ),
         Task::Scaling { frames, rounds, model, scenes } => scaling::run(
             (frames, rounds),
             &model,

@@ -218,7 +218,7 @@ fn last(threads: &[usize]) -> usize {
 /// Median ms of `frames` warm frames of `scene` drawn in `pool`, and the
 /// medians of its stages (geometry, binning, raster).
 fn time_zline(scene: &Scene, pool: &rayon::ThreadPool, frames: usize) -> (f64, [f64; 3]) {
-    let runs = crate::bench::time_frames(scene, pool, &RenderOptions::default(), frames);
+    let runs = crate::bench::time_frames(scene, (pool, None), &RenderOptions::default(), frames);
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
     let stage = |f: fn(&RenderStats) -> std::time::Duration| {
         median(&runs.iter().map(|(_, s)| ms(f(s))).collect::<Vec<_>>())
