@@ -3,7 +3,7 @@
 use rayon::prelude::*;
 use zline_raster::Rect;
 
-use crate::setup::{Kernel, PassKind, PrimitiveChunk};
+use crate::setup::{Draw, Kernel, PassKind, PrimitiveChunk};
 
 /// The window cut into square tiles, row-major.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -105,6 +105,37 @@ pub struct Bins {
     pub transparent: Vec<Vec<PrimitiveRef>>,
     /// Planar shadow primitives per tile ([`PassKind::Shadow`]).
     pub shadow: Vec<Vec<PrimitiveRef>>,
+    /// Which bands each chunk's primitives meet, when there are several.
+    bands: ChunkBands,
+}
+
+/// Which bands of tile rows each chunk's primitives meet, found in
+/// parallel before the bands are filled, so that a band reads the bounds of
+/// the chunks that meet it ([`bin_into`]).
+#[derive(Debug, Default)]
+struct ChunkBands {
+    /// The number of bands.
+    bands: usize,
+    /// Per chunk, the first and last band its bounds' rows meet (first
+    /// above last when none).
+    spans: Vec<(u32, u32)>,
+    /// Per chunk and band (at `chunk * bands + band`), for a chunk spread
+    /// over more than [`SCANNED_BANDS`] bands, the indices of its
+    /// primitives whose rows meet the band, in order; empty otherwise.
+    parts: Vec<Vec<u32>>,
+}
+
+/// The most bands a chunk may meet and still be scanned whole by each of
+/// them. A mesh's chunks are runs of neighbouring triangles, often a strip
+/// of the image that meets one or two bands; a chunk spread wider (a
+/// scanned mesh's triangles are often stored in no order of place) is
+/// sorted to the bands it meets, so a band does not read every bound.
+const SCANNED_BANDS: u32 = 2;
+
+/// Whether a chunk meeting bands `first..=last` is spread over more than
+/// [`SCANNED_BANDS`], so its primitives are sorted to the bands.
+fn spread(first: u32, last: u32) -> bool {
+    first + SCANNED_BANDS <= last
 }
 
 /// Fills `bins` for this frame's primitives (see [`Bins`]).
@@ -121,10 +152,12 @@ pub fn bin_primitives_painter(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: 
 }
 
 /// Bins in bands of tile rows, one rayon task a band, as many bands as the
-/// pool has threads (one on one thread): each band scans every primitive's
-/// bounds and appends to its own tiles' lists only, so no list is shared,
-/// no second pass merges anything, and every list is in draw order however
-/// many bands there are.
+/// pool has threads (one on one thread): each band appends to its own
+/// tiles' lists only, so no list is shared, no second pass merges
+/// anything, and every list is in draw order however many bands there
+/// are. With several bands, each band reads only the chunks that meet it,
+/// and of a chunk spread over many bands only its own primitives
+/// ([`ChunkBands`]).
 fn bin_into(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins, painter: bool) {
     reset(&mut bins.opaque, grid.len());
     reset(&mut bins.transparent, grid.len());
@@ -133,15 +166,74 @@ fn bin_into(chunks: &[PrimitiveChunk], grid: &TileGrid, bins: &mut Bins, painter
         return;
     }
     let rows_per_band = rows_per_band(grid);
+    let bands = &mut bins.bands;
+    bands.find(chunks, grid, rows_per_band as u32);
+    let bands = &*bands;
     let tiles = rows_per_band * grid.cols as usize;
     let opaque = bins.opaque.par_chunks_mut(tiles);
     let lists = opaque.zip(bins.transparent.par_chunks_mut(tiles)).zip(bins.shadow.par_chunks_mut(tiles));
     lists.enumerate().for_each(|(band, ((opaque, transparent), shadow))| {
         let first_row = (band * rows_per_band) as u32;
-        let mut band =
+        let mut lists =
             BandLists { opaque, transparent, shadow, first_tile: first_row as usize * grid.cols as usize };
-        band.bin(chunks, grid, first_row, painter);
+        lists.bin((chunks, bands), grid, (band, first_row), painter);
     });
+}
+
+impl ChunkBands {
+    /// Finds, per chunk in parallel, the bands (of `rows_per_band` tile
+    /// rows of `grid`) its bounds' rows meet, and sorts the primitives of a
+    /// chunk spread over more than [`SCANNED_BANDS`] to them. With one
+    /// band, nothing: the band reads every chunk.
+    fn find(&mut self, chunks: &[PrimitiveChunk], grid: &TileGrid, rows_per_band: u32) {
+        self.bands = grid.rows.div_ceil(rows_per_band) as usize;
+        self.spans.clear();
+        if self.bands < 2 {
+            return;
+        }
+        let (bands, band_px, height) = (self.bands, rows_per_band * grid.tile_size, grid.height as i32);
+        // The bands that rows y0..y1 meet, first above last when none.
+        let rows = move |y0: i32, y1: i32| {
+            let (y0, y1) = (y0.max(0), y1.min(height));
+            if y0 < y1 {
+                (y0 as u32 / band_px, (y1 - 1) as u32 / band_px)
+            } else {
+                (1, 0)
+            }
+        };
+        self.parts.resize_with(chunks.len() * bands, Vec::new);
+        let spans = chunks.par_iter().zip(self.parts.par_chunks_mut(bands)).map(|(chunk, parts)| {
+            let (y0, y1) =
+                chunk.bounds.iter().fold((i32::MAX, i32::MIN), |(y0, y1), b| (y0.min(b.y0), y1.max(b.y1)));
+            let (first, last) = rows(y0, y1);
+            parts.iter_mut().for_each(Vec::clear);
+            if spread(first, last) {
+                for (i, b) in chunk.bounds.iter().enumerate() {
+                    let (first, last) = rows(b.y0, b.y1);
+                    for part in parts.get_mut(first as usize..=last as usize).unwrap_or_default() {
+                        part.push(i as u32);
+                    }
+                }
+            }
+            (first, last)
+        });
+        self.spans.par_extend(spans);
+    }
+
+    /// The indices of chunk `c`'s primitives that `band` must read: none
+    /// when the chunk misses the band, those sorted to it when the chunk
+    /// was spread over many bands, else (`None`) every one.
+    fn primitives(&self, c: usize, band: usize) -> Option<&[u32]> {
+        let &(first, last) = self.spans.get(c)?;
+        let band = band as u32;
+        if band < first || band > last {
+            Some(&[])
+        } else if spread(first, last) {
+            Some(&self.parts[c * self.bands + band as usize])
+        } else {
+            None
+        }
+    }
 }
 
 /// Tile rows per band when a grid's tiles are filled in parallel: as many
@@ -162,35 +254,64 @@ struct BandLists<'a> {
 }
 
 impl BandLists<'_> {
-    /// Appends every primitive whose bounds meet the band (tile rows from
-    /// `first_row`) to the lists of the tiles it meets there.
-    fn bin(&mut self, chunks: &[PrimitiveChunk], grid: &TileGrid, first_row: u32, painter: bool) {
-        let ts = grid.tile_size as i32;
+    /// Appends every primitive whose bounds meet band `band` (tile rows
+    /// from `first_row`) to the lists of the tiles it meets there, reading of
+    /// each chunk the primitives [`ChunkBands::primitives`] gives.
+    fn bin(
+        &mut self,
+        (chunks, bands): (&[PrimitiveChunk], &ChunkBands),
+        grid: &TileGrid,
+        (band, first_row): (usize, u32),
+        painter: bool,
+    ) {
         let rows = (self.opaque.len() / grid.cols as usize) as u32;
         let y0 = (first_row * grid.tile_size) as i32;
         let y1 = ((first_row + rows) * grid.tile_size).min(grid.height) as i32;
         let area = Rect { x0: 0, y0, x1: grid.width as i32, y1 };
-        let first = self.first_tile;
         for (c, chunk) in chunks.iter().enumerate() {
-            for (i, (b, d)) in chunk.bounds.iter().zip(&chunk.draws).enumerate() {
-                let b = b.intersect(&area);
-                if b.is_empty() {
-                    continue;
-                }
-                match chunk.pass {
-                    PassKind::Opaque if !painter => {
-                        let r = OpaqueRef { chunk: c as u32, kernel: d.kernel, index: d.index };
-                        for_each_tile(b, ts, grid.cols, |t| self.opaque[t - first].push(r));
-                    }
-                    PassKind::Opaque | PassKind::Transparent { .. } => {
-                        let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
-                        for_each_tile(b, ts, grid.cols, |t| self.transparent[t - first].push(r));
-                    }
-                    PassKind::Shadow { .. } => {
-                        let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
-                        for_each_tile(b, ts, grid.cols, |t| self.shadow[t - first].push(r));
+            match bands.primitives(c, band) {
+                None => {
+                    for (i, (b, d)) in chunk.bounds.iter().zip(&chunk.draws).enumerate() {
+                        self.add((chunk, c, i), (b.intersect(&area), d), grid, painter);
                     }
                 }
+                Some(indices) => {
+                    for &i in indices {
+                        let i = i as usize;
+                        let b = chunk.bounds[i].intersect(&area);
+                        self.add((chunk, c, i), (b, &chunk.draws[i]), grid, painter);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Appends primitive `i` of chunk `c`, of bounds `b` within the band,
+    /// to the lists of the tiles it meets.
+    #[inline(always)]
+    fn add(
+        &mut self,
+        (chunk, c, i): (&PrimitiveChunk, usize, usize),
+        (b, d): (Rect, &Draw),
+        grid: &TileGrid,
+        painter: bool,
+    ) {
+        if b.is_empty() {
+            return;
+        }
+        let (ts, first) = (grid.tile_size as i32, self.first_tile);
+        match chunk.pass {
+            PassKind::Opaque if !painter => {
+                let r = OpaqueRef { chunk: c as u32, kernel: d.kernel, index: d.index };
+                for_each_tile(b, ts, grid.cols, |t| self.opaque[t - first].push(r));
+            }
+            PassKind::Opaque | PassKind::Transparent { .. } => {
+                let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
+                for_each_tile(b, ts, grid.cols, |t| self.transparent[t - first].push(r));
+            }
+            PassKind::Shadow { .. } => {
+                let r = PrimitiveRef { chunk: c as u32, index: i as u32 };
+                for_each_tile(b, ts, grid.cols, |t| self.shadow[t - first].push(r));
             }
         }
     }
@@ -257,7 +378,14 @@ mod tests {
             primitives in proptest::collection::vec((0u8..3, [-40i32..140, -40..140, 0..90, 0..90]), 0..60),
             tile_size in 1u32..50,
             painter in any::<bool>(),
+            strips in any::<bool>(),
         ) {
+            let mut primitives = primitives;
+            if strips {
+                // Chunks as a mesh's often are: strips of the image, whose
+                // spans of rows meet a few bands, edges on band edges too.
+                primitives.sort_by_key(|&(_, [_, y, _, h])| (y, h));
+            }
             let chunks = chunks(&primitives);
             let grid = TileGrid::new(100, 70, tile_size);
             let bin = |threads: usize| {
