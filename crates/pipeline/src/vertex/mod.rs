@@ -23,8 +23,23 @@ pub mod compact;
 
 pub use compact::{CompactVertices, ScreenVertex, ValueLayout};
 
-/// Vertices per rayon task: big enough that scheduling costs nothing.
+/// The most vertices per rayon task: big enough that scheduling costs
+/// nothing.
 const VERTEX_CHUNK: usize = 4096;
+
+/// The fewest vertices per rayon task a big pool cuts a mesh into.
+const MIN_VERTEX_CHUNK: usize = 512;
+
+/// Vertices per rayon task for a mesh of `n` vertices: [`VERTEX_CHUNK`], or
+/// fewer when that would leave threads idle (the 35k-vertex bunny was 9
+/// tasks for 16 threads), so that every thread gets a few; a multiple of 8,
+/// so that only the mesh's last group of eight lanes is partial. A
+/// vertex's record does not depend on the chunks.
+fn vertex_chunk(n: usize) -> usize {
+    n.div_ceil(rayon::current_num_threads().max(1) * 4)
+        .next_multiple_of(8)
+        .clamp(MIN_VERTEX_CHUNK, VERTEX_CHUNK)
+}
 
 /// Window size in pixels (samples when supersampling).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -227,8 +242,9 @@ pub fn transform_mesh(
     out: &mut Vec<ClipVertex>,
 ) {
     out.resize(mesh.positions.len(), ClipVertex::default());
-    out.par_chunks_mut(VERTEX_CHUNK).enumerate().for_each(|(chunk, out)| {
-        let start = chunk * VERTEX_CHUNK;
+    let size = vertex_chunk(out.len());
+    out.par_chunks_mut(size).enumerate().for_each(|(chunk, out)| {
+        let start = chunk * size;
         let positions = &mesh.positions[start..start + out.len()];
         let normals = &mesh.normals[start..start + out.len()];
         let records = Records::Full(&mut *out);
@@ -487,14 +503,15 @@ pub fn transform_compact(
     out.screen.resize(n, ScreenVertex::default());
     // As many value chunks as vertex chunks: with no values stored, one
     // unused float each.
+    let size = vertex_chunk(n);
     let (len, chunk) = match layout.stride {
-        0 => (n.div_ceil(VERTEX_CHUNK), 1),
-        stride => (n * stride, VERTEX_CHUNK * stride),
+        0 => (n.div_ceil(size), 1),
+        stride => (n * stride, size * stride),
     };
     out.values.resize(len, 0.0);
     let values = out.values.par_chunks_mut(chunk);
-    out.screen.par_chunks_mut(VERTEX_CHUNK).zip(values).enumerate().for_each(|(chunk, (out, values))| {
-        let start = chunk * VERTEX_CHUNK;
+    out.screen.par_chunks_mut(size).zip(values).enumerate().for_each(|(chunk, (out, values))| {
+        let start = chunk * size;
         let positions = &mesh.positions[start..start + out.len()];
         let normals = &mesh.normals[start..start + out.len()];
         let out = Records::Compact(out, values, layout);

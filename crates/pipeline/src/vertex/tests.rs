@@ -204,6 +204,22 @@ fn compact_records_hold_the_whole_records_values() {
     let screen = Screen { viewport: Viewport { width: 320, height: 240 }, volume: ClipVolume::new(320, 240) };
     let mut whole = Vec::new();
     transform_mesh(&mesh, &t, None, &screen, &mut whole);
+    // A big pool cuts the mesh into smaller chunks: the same records.
+    for threads in [3, 16] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let mut cut = Vec::new();
+        pool.install(|| transform_mesh(&mesh, &t, None, &screen, &mut cut));
+        assert_eq!(format!("{cut:?}"), format!("{whole:?}"), "{threads} threads");
+        let layout = ValueLayout::new([true; 4]);
+        let (mut one, mut many) = (CompactVertices::default(), CompactVertices::default());
+        transform_compact(&mesh, &t, None, &screen, layout, &mut one);
+        pool.install(|| transform_compact(&mesh, &t, None, &screen, layout, &mut many));
+        assert_eq!(format!("{:?}", many.screen), format!("{:?}", one.screen), "{threads} threads");
+        assert_eq!(
+            many.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            one.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+        );
+    }
     let source = Source { mesh: &mesh, t: &t, screen: &screen };
     for stored in 0..16u32 {
         let layout = ValueLayout::new([0, 1, 2, 3].map(|b| stored & (1 << b) != 0));
