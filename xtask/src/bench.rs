@@ -291,5 +291,38 @@ pub(crate) fn cases(assets: &Path) -> Result<Vec<Case>> {
             build: Box::new(move || Ok(sphere_scene(500, 1000, 2.6, mode))),
         });
     }
+    // Hidden work: the same sphere with a wall drawn before it, in front of
+    // its left half (its triangles there fail the depth test in every
+    // sample: the tiles' coarse depth skips them whole).
+    out.push(Case {
+        name: "sphere 1M gouraud, half behind a wall".into(),
+        build: Box::new(|| {
+            let mut scene = sphere_scene(500, 1000, 2.6, ShadingMode::Gouraud);
+            scene.objects.insert(0, wall()?);
+            Ok(scene)
+        }),
+    });
     Ok(out)
+}
+
+/// An opaque quad facing the camera of [`sphere_scene`] at distance 2.6,
+/// between it and the sphere (z = 1.2), over the left half of the view.
+fn wall() -> Result<Object> {
+    use zline::scene::{Material, Mesh};
+    let positions = vec![
+        Vec3::new(-3.0, -3.0, 1.2),
+        Vec3::new(0.0, -3.0, 1.2),
+        Vec3::new(0.0, 3.0, 1.2),
+        Vec3::new(-3.0, 3.0, 1.2),
+    ];
+    let material = Material::plastic(Vec3::new(0.55, 0.5, 0.45), 0.2, 8.0);
+    let mesh =
+        Mesh::new("wall", positions, None, vec![[0, 1, 2], [0, 2, 3]], material).context("the wall")?;
+    Ok(Object {
+        mesh: Arc::new(mesh),
+        world_from_object: Mat4::IDENTITY,
+        material: None,
+        shading: None,
+        cull_back_faces: false,
+    })
 }

@@ -120,6 +120,28 @@ impl DepthPlane {
         Self::RELATIVE_ERROR * z.abs() + 64.0 * f64::EPSILON * m + f64::MIN_POSITIVE
     }
 
+    /// A lower bound on the stored depth of every sample inside the
+    /// rectangle `[x0, x1] × [y0, y1]` (pixels): the plane's least value
+    /// there (at a corner), less twice the error bound at the rectangle's
+    /// greatest offsets from the anchor and greatest |z| (the bound grows
+    /// with each). Minus infinity when any of it is not finite, so that no
+    /// test against it holds.
+    pub fn least_over(&self, (x0, y0, x1, y1): (f64, f64, f64, f64)) -> f64 {
+        let (ax, ay) = self.anchor;
+        let (tx, ty) =
+            ([self.dzdx * (x0 - ax), self.dzdx * (x1 - ax)], [self.dzdy * (y0 - ay), self.dzdy * (y1 - ay)]);
+        let least = self.z0 + tx[0].min(tx[1]) + ty[0].min(ty[1]);
+        let most = self.z0 + tx[0].max(tx[1]) + ty[0].max(ty[1]);
+        let (ox, oy) = ((x0 - ax).abs().max((x1 - ax).abs()), (y0 - ay).abs().max((y1 - ay).abs()));
+        let bound = self.error_bound(ax + ox, ay + oy, least.abs().max(most.abs()));
+        let all = [self.z0, self.dzdx, self.dzdy, least, most, bound];
+        if all.iter().all(|v| v.is_finite()) {
+            least - 2.0 * bound
+        } else {
+            f64::NEG_INFINITY
+        }
+    }
+
     /// ∂z/∂x.
     #[inline]
     pub fn dzdx(&self) -> f64 {

@@ -183,7 +183,8 @@ pub(super) fn triple<const N: usize, S: Level>(a: &[f32x8<S>; N], i: usize, w: f
 }
 
 impl TileTarget {
-    /// Scan-converts one primitive and runs [`Self::blocks`] on each span.
+    /// Scan-converts one primitive and runs [`Self::blocks`] on each span,
+    /// unless the tile's coarse depth hides it whole (`tile::coarse`).
     ///
     /// The planes are copied to the stack first, so the compiler knows the
     /// kernel's stores into the tile's buffers leave them alone, and the
@@ -200,6 +201,9 @@ impl TileTarget {
         alpha: AlphaTest,
         shade: impl Fn(&[f32x8<S>; N], i32x8<S>) -> (Vec3x8<S>, f32x8<S>) + Copy,
     ) -> u64 {
+        if self.hidden(edges.bounds(), depth) {
+            return 0;
+        }
         let (depth, planes) = (*depth, *planes);
         let mut n = 0;
         edges.scan(

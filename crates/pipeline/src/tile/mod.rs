@@ -19,6 +19,7 @@
 //! transparent with fog) is an argument of the draw, not state kept on the
 //! tile.
 
+mod coarse;
 mod kernel;
 mod lines;
 mod painter;
@@ -69,7 +70,9 @@ impl TileTarget {
             if let Some(ahead) = bin.get(k + PREFETCH_AHEAD) {
                 chunks[ahead.chunk as usize].tables.prefetch(ahead.kernel, ahead.index);
             }
-            shaded += self.draw::<Opaque, S>(&chunks[r.chunk as usize], (r.kernel, r.index), ctx, &Opaque);
+            let n = self.draw::<Opaque, S>(&chunks[r.chunk as usize], (r.kernel, r.index), ctx, &Opaque);
+            self.wrote(n);
+            shaded += n;
         }
         shaded
     }

@@ -105,6 +105,8 @@ pub struct TileTarget {
     /// Alpha per sample, valid where `colors_valid` (before that, a sample
     /// is 1 when drawn and 0 when not, read from the depth buffer).
     pub(crate) alpha: Vec<f32x8>,
+    /// The coarse depth tested before a primitive's spans are walked.
+    pub(crate) coarse: CoarseDepth,
 }
 
 impl TileTarget {
@@ -126,6 +128,7 @@ impl TileTarget {
         self.depth.clear();
         self.depth.resize(n / LANES, f32x8::splat(far));
         self.far = far;
+        self.coarse = CoarseDepth::cleared(far);
         self.background = background;
         self.sky_drawn = false;
         self.colors_valid = false;
@@ -243,4 +246,24 @@ pub(crate) fn store<S: Level>(buf: &mut [f32x8], i: usize, v: f32x8<S>) {
 #[inline(always)]
 pub(crate) fn sample(buf: &[f32x8], i: usize) -> f32 {
     bytemuck::cast_slice::<f32x8, f32>(buf)[i]
+}
+
+/// A tile's coarse depth and the state of its test (see `tile::coarse`).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct CoarseDepth {
+    /// At least every depth the tile's buffer holds.
+    pub(super) most: f32,
+    /// Samples the opaque pass wrote since `most` was found.
+    pub(super) written: u64,
+    /// Tests that failed in a row, at most `tile::coarse`'s `MAX_BACKOFF`.
+    pub(super) misses: u32,
+    /// Primitives to pass untested.
+    pub(super) wait: u32,
+}
+
+impl CoarseDepth {
+    /// A cleared tile's: every sample at `far`.
+    pub(crate) fn cleared(far: f32) -> CoarseDepth {
+        CoarseDepth { most: far, ..CoarseDepth::default() }
+    }
 }

@@ -10,6 +10,7 @@ mod depth_modes;
 mod determinism;
 mod environment;
 mod fog;
+mod hidden;
 mod inspect;
 mod interpolation;
 mod lines;

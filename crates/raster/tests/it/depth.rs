@@ -88,8 +88,61 @@ fn check_depth(t: Tri, k: [i64; 3]) {
     );
 }
 
+/// Every stored depth of `t`'s samples inside a rectangle cut from its
+/// bounds (at fractions `cut` of them) is at least `least_over` that
+/// rectangle: the hierarchical depth test skips only what would fail.
+/// Returns the samples checked.
+#[track_caller]
+fn check_least(t: Tri, k: [i64; 3], cut: [f64; 4]) -> usize {
+    let Some(table) = EdgeTable::new(t) else { return 0 };
+    let basis = PlaneBasis::new(t).expect("a triangle with an edge table has a plane basis");
+    let depth = DepthPlane::new(&basis, k.map(|k| k as f64 / DEPTH_SCALE));
+    let none = AttributePlanes::<0>::new(&basis, [[]; 3]);
+    let b = table.bounds();
+    let at = |lo: i32, hi: i32, f: f64| lo + ((f64::from(hi - lo) * f) as i32).clamp(0, hi - lo);
+    let (x0, y0) = (at(b.x0, b.x1, cut[0]), at(b.y0, b.y1, cut[1]));
+    let (x1, y1) = (at(x0, b.x1, cut[2]), at(y0, b.y1, cut[3]));
+    let least = depth.least_over((f64::from(x0), f64::from(y0), f64::from(x1), f64::from(y1)));
+    let mut checked = 0;
+    for span in all_spans(t).into_iter().filter(|s| (y0..y1).contains(&s.y)) {
+        for_each_sample(&depth, &none, span, |x, z, _| {
+            if (x0..x1).contains(&x) {
+                assert!(
+                    f64::from(z) >= least,
+                    "z {z:e} below {least:e} at ({x}, {}) in [{x0}, {x1}) × [{y0}, {y1}) for {t:?}",
+                    span.y
+                );
+                // The tightest case: the rectangle shrunk to the sample.
+                let (xc, yc) = (f64::from(x) + 0.5, f64::from(span.y) + 0.5);
+                let alone = depth.least_over((xc, yc, xc, yc));
+                assert!(
+                    f64::from(z) >= alone,
+                    "z {z:e} below {alone:e} at ({x}, {}) alone for {t:?}",
+                    span.y
+                );
+                checked += 1;
+            }
+        });
+    }
+    checked
+}
+
 proptest! {
     #![proptest_config(crate::config())]
+
+    /// `least_over` bounds the stored depths below, for general, wide,
+    /// sliver and far triangles and any rectangle of their bounds.
+    #[test]
+    fn no_stored_depth_is_below_least_over((_, t) in any_shape(), k in depths(), cut in [0.0..1.0f64, 0.0..1.0, 0.0..1.0, 0.0..1.0]) {
+        check_least(t, k, cut);
+    }
+
+    /// The same over the whole bounds, which must hold samples.
+    #[test]
+    fn no_stored_depth_is_below_least_over_the_bounds((_, t) in any_shape(), k in depths()) {
+        let checked = check_least(t, k, [0.0, 0.0, 1.0, 1.0]);
+        prop_assert!(checked > 0 || EdgeTable::new(t).is_none() || all_spans(t).is_empty());
+    }
 
     /// General, wide (spans up to 8192 px), sliver and far triangles.
     #[test]
