@@ -70,19 +70,30 @@ pub(crate) fn time_frames(
     options: &RenderOptions,
     frames: usize,
 ) -> Vec<(f64, RenderStats)> {
+    let mut runs = Vec::new();
+    each_frame(scene, (pool, pieces), options, frames, |seconds, stats, _| runs.push((seconds, stats)));
+    runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    runs
+}
+
+/// Draws [`time_frames`]' frames and calls `f` after each with its seconds,
+/// its statistics and the renderer (whose `unit_times` are that frame's).
+pub(crate) fn each_frame(
+    scene: &Scene,
+    (pool, pieces): (&rayon::ThreadPool, Option<usize>),
+    options: &RenderOptions,
+    frames: usize,
+    mut f: impl FnMut(f64, RenderStats, &Renderer),
+) {
     let mut renderer = Renderer::default();
     renderer.set_band_pieces(pieces);
     let mut image = Image::empty();
     pool.install(|| renderer.render_into(scene, options, &mut image)); // warm-up
-    let mut runs: Vec<(f64, RenderStats)> = (0..frames.max(1))
-        .map(|_| {
-            let start = Instant::now();
-            let stats = pool.install(|| renderer.render_into(scene, options, &mut image));
-            (start.elapsed().as_secs_f64(), stats)
-        })
-        .collect();
-    runs.sort_by(|a, b| a.0.total_cmp(&b.0));
-    runs
+    for _ in 0..frames.max(1) {
+        let start = Instant::now();
+        let stats = pool.install(|| renderer.render_into(scene, options, &mut image));
+        f(start.elapsed().as_secs_f64(), stats, &renderer);
+    }
 }
 
 fn settings(shading: ShadingMode) -> RenderSettings {

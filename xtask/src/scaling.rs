@@ -8,7 +8,7 @@
 //! its 1-thread median. The raster stage is modelled from its
 //! structure, at one thread: its units of parallel work are bands of tile
 //! rows, cut into pieces when there are many threads
-//! ([`zline::pipeline::pieces_per_band`], [`Renderer::unit_times`]), so at
+//! ([`zline::pipeline::pieces_per_band`], [`zline::pipeline::Renderer::unit_times`]), so at
 //! N threads it takes its time outside the units plus the makespan of the
 //! units that N threads would use, timed at one thread, handed out in
 //! order, each to the thread that frees up first. (On this 2-vCPU machine a
@@ -20,10 +20,10 @@
 //! many cores is lent, `xtask bench --threads 1,2,4,8,16` checks it.
 
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use anyhow::{Context, Result};
-use zline::pipeline::{Image, RenderOptions, Renderer};
+use zline::pipeline::RenderOptions;
 use zline::scene::Scene;
 
 /// One scene's times at one thread count and cut of the bands: per timed
@@ -45,18 +45,11 @@ impl Timings {
         options: &RenderOptions,
         frames: usize,
     ) {
-        let mut renderer = Renderer::default();
-        renderer.set_band_pieces(pieces);
-        let mut image = Image::empty();
-        pool.install(|| renderer.render_into(scene, options, &mut image));
-        for _ in 0..frames.max(1) {
-            let start = Instant::now();
-            let stats = pool.install(|| renderer.render_into(scene, options, &mut image));
-            let frame = start.elapsed().as_secs_f64();
+        crate::bench::each_frame(scene, (pool, pieces), options, frames, |frame, stats, renderer| {
             let s = |d: Duration| d.as_secs_f64();
             self.frames.push([frame, s(stats.geometry), s(stats.binning), s(stats.raster)]);
             self.units.push(renderer.unit_times().map(|d| d.as_secs_f64()).collect());
-        }
+        });
     }
 
     /// The median of column `i` (0 the frame, 1–3 the stages).

@@ -37,6 +37,7 @@ pub mod setup;
 mod shadow;
 mod shadow_map;
 mod sky;
+mod tasks;
 pub mod tile;
 pub mod vertex;
 pub mod volume;

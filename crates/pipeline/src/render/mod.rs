@@ -41,7 +41,9 @@ use crate::volume::ClipVolume;
 /// Triangles per rayon task in setup.
 const TRIANGLE_CHUNK: usize = 2048;
 
-/// The smallest setup chunk [`triangle_chunk`] makes.
+/// The smallest setup chunk: a small mesh is cut finer than
+/// [`TRIANGLE_CHUNK`] so that every thread gets a few chunks (a 2k sphere in
+/// one chunk was set up on one thread).
 const MIN_TRIANGLE_CHUNK: usize = 256;
 
 /// Settings of the pipeline itself (the scene's settings say what to draw).
@@ -610,7 +612,7 @@ fn setup_mesh(
     }
     let (compact, vertices) = (&vertices.compact, vertices.full.as_slice());
     let source = Source { mesh, t: transforms, screen: &screen };
-    let chunk = triangle_chunk(mesh.triangles.len(), rayon::current_num_threads());
+    let chunk = crate::tasks::task_len(mesh.triangles.len(), (MIN_TRIANGLE_CHUNK, TRIANGLE_CHUNK));
     let (first, n) = (*used, mesh.triangles.len().div_ceil(chunk));
     *used += n;
     if chunks.len() < *used {
@@ -668,13 +670,4 @@ pub fn is_transparent(object: &Object) -> bool {
     let blends =
         object.mesh.diffuse_map.as_ref().is_some_and(|m| m.alpha_blend && !object.mesh.uvs.is_empty());
     object.material().sanitized().opacity < 1.0 || blends
-}
-
-/// Triangles per setup chunk for a mesh of `n` triangles: [`TRIANGLE_CHUNK`],
-/// or fewer for a small mesh so that every thread gets a few chunks (a 2k
-/// sphere in one chunk was set up on one thread). Chunks change only which
-/// thread sets a triangle up, never the draw order, so the image does not
-/// depend on them.
-fn triangle_chunk(n: usize, threads: usize) -> usize {
-    n.div_ceil(threads.max(1) * 4).clamp(MIN_TRIANGLE_CHUNK, TRIANGLE_CHUNK)
 }

@@ -30,15 +30,13 @@ const VERTEX_CHUNK: usize = 4096;
 /// The fewest vertices per rayon task a big pool cuts a mesh into.
 const MIN_VERTEX_CHUNK: usize = 512;
 
-/// Vertices per rayon task for a mesh of `n` vertices: [`VERTEX_CHUNK`], or
-/// fewer when that would leave threads idle (the 35k-vertex bunny was 9
-/// tasks for 16 threads), so that every thread gets a few; a multiple of 8,
-/// so that only the mesh's last group of eight lanes is partial. A
-/// vertex's record does not depend on the chunks.
+/// Vertices per rayon task for a mesh of `n` vertices ([`crate::tasks::task_len`]:
+/// fewer than [`VERTEX_CHUNK`] when that would leave threads idle; the
+/// 35k-vertex bunny was 9 tasks for 16 threads), a multiple of 8 so that
+/// only the mesh's last group of eight lanes is partial. A vertex's record
+/// does not depend on the chunks.
 fn vertex_chunk(n: usize) -> usize {
-    n.div_ceil(rayon::current_num_threads().max(1) * 4)
-        .next_multiple_of(8)
-        .clamp(MIN_VERTEX_CHUNK, VERTEX_CHUNK)
+    crate::tasks::task_len(n, (MIN_VERTEX_CHUNK, VERTEX_CHUNK)).next_multiple_of(8)
 }
 
 /// Window size in pixels (samples when supersampling).
