@@ -31,7 +31,8 @@
 //!
 //! The functions move data (loads and transposes); they do no arithmetic,
 //! so equality with the twins is exact by construction, NaN payloads
-//! included. Measurements: BENCHMARKS.md ("Explicit SIMD").
+//! included. Measurements: BENCHMARKS.md as of `138c02a^` ("Explicit SIMD";
+//! `git show 138c02a^:BENCHMARKS.md`).
 
 #[cfg(target_arch = "x86_64")]
 #[allow(unsafe_code, reason = "the AVX2 kernels call std::arch intrinsics (see the crate policy)")]

@@ -118,7 +118,8 @@ pub fn check_output(path: &Path) -> std::io::Result<()> {
 ///
 /// Compression is the `png` crate's fast mode (fdeflate) with adaptive row
 /// filters: the 1920×1080 bunny thumbnail encodes in about 4 ms to 297 KB,
-/// where the default mode takes about 72 ms for 260 KB (BENCHMARKS.md).
+/// where the default mode takes about 72 ms for 260 KB (BENCHMARKS.md as
+/// of `138c02a^`).
 pub fn save_png(image: &pipeline::Image, path: &Path) -> Result<(), image::ImageError> {
     save_as(image, path, ImageFormat::Png)
 }
