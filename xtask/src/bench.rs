@@ -34,9 +34,9 @@ pub(crate) fn run(
     let cases: Vec<Case> =
         cases(assets)?.into_iter().filter(|c| filter.is_none_or(|f| c.name.contains(f))).collect();
     println!(
-        "| scene | threads | ms/frame (median of {frames}) | geometry ms | binning ms | raster ms | triangles/s | shaded samples/s | samples shaded |"
+        "| scene | threads | ms/frame (median of {frames}) | geometry ms | binning ms | raster ms | triangles/s | shaded samples/s | samples shaded | skipped by hierarchical depth |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for case in &cases {
         let scene = (case.build)()?;
         for &t in threads {
@@ -45,7 +45,7 @@ pub(crate) fn run(
             let (median, stats) = runs[runs.len() / 2];
             let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
             println!(
-                "| {} | {t} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1} M | {:.0} M | {} |",
+                "| {} | {t} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1} M | {:.0} M | {} | {} |",
                 case.name,
                 median * 1e3,
                 ms(stats.geometry),
@@ -53,7 +53,8 @@ pub(crate) fn run(
                 ms(stats.raster),
                 stats.triangles as f64 / median / 1e6,
                 stats.fragments as f64 / median / 1e6,
-                stats.fragments
+                stats.fragments,
+                stats.hidden
             );
         }
     }

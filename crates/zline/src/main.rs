@@ -332,6 +332,12 @@ fn run(cli: Cli) -> Result<()> {
             ms(saved),
             std::fs::metadata(&common.output).map_or(0, |m| m.len())
         );
+        if stats.hidden > 0 {
+            eprintln!(
+                "timings: hierarchical depth: {} primitives skipped whole in tiles already drawn nearer (once per tile and pass)",
+                stats.hidden
+            );
+        }
         if scene.settings.adaptive_tolerance.is_some() {
             eprintln!(
                 "timings: level of detail: {} of {} objects simplified, {} -> {} triangles",

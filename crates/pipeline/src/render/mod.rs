@@ -70,6 +70,12 @@ pub struct RenderStats {
     pub primitives: u64,
     /// Samples that passed the depth test and were shaded.
     pub fragments: u64,
+    /// Primitives skipped whole in a tile by hierarchical depth: the
+    /// tile's every sample drawn, and nearer than the primitive could be
+    /// anywhere within its bounds there (`tile::coarse`). A primitive
+    /// counts once for each tile and pass (opaque, transparent) it is
+    /// skipped in; the count depends on the tile size, not on the threads.
+    pub hidden: u64,
     /// Triangles of the meshes drawn: `triangles` less what the adaptive
     /// mode's simplified levels left out (`crate::lod`).
     pub triangles_drawn: u64,
@@ -340,7 +346,7 @@ impl Renderer {
             stats.raster = start.elapsed();
             return stats;
         }
-        stats.fragments = self.draw_tiles(scene, &frame, &grid, (image, depth));
+        (stats.fragments, stats.hidden) = self.draw_tiles(scene, &frame, &grid, (image, depth));
         stats.raster = start.elapsed();
         stats
     }

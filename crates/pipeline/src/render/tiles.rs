@@ -27,14 +27,15 @@ impl Renderer {
     /// into the image rows it owns ([`TilePasses::draw`]). A band is cut
     /// into pieces (runs of its tiles, drawn in parallel too) when the pool
     /// has more threads than the bands keep busy ([`pieces_per_band`]).
-    /// Returns the samples shaded.
+    /// Returns the samples shaded and the primitives the tiles' coarse
+    /// depth skipped whole ([`super::RenderStats::hidden`]).
     pub(super) fn draw_tiles(
         &mut self,
         scene: &Scene,
         frame: &Frame,
         grid: &TileGrid,
         (image, depth): (&mut Image, Option<&mut Vec<f32>>),
-    ) -> u64 {
+    ) -> (u64, u64) {
         let (width, n) = (frame.width as usize, frame.n);
         let tile_size = (grid.tile_size / n) as usize;
         let coverage = scene.settings.transparent_background;
@@ -130,9 +131,13 @@ impl Renderer {
             })
             .collect_into_vec(&mut bands);
         let shaded = bands.iter().flat_map(|units| &units[..pieces]).map(|&(n, _)| n).sum();
+        // Each tile counts into the target of the thread that drew it; the
+        // sum is the same whichever thread that was.
+        let hidden =
+            buffers.iter().map(|b| b.lock().unwrap_or_else(PoisonError::into_inner).target.hidden).sum();
         self.bands = bands;
         self.pieces = pieces;
-        shaded
+        (shaded, hidden)
     }
 
     /// The tile stage's units of parallel work in the last frame drawn —
@@ -219,6 +224,7 @@ impl Renderer {
         for b in &self.buffers[..threads] {
             let mut guard = b.lock().unwrap_or_else(PoisonError::into_inner);
             guard.target.set_coverage(coverage);
+            guard.target.hidden = 0;
             guard.target.reserve(grid.tile_size, shadows);
             let order = &mut guard.order;
             order.reserve(transparent.saturating_sub(order.len()));

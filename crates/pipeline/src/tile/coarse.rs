@@ -44,6 +44,7 @@ impl TileTarget {
         let corners = (f64::from(b.x0), f64::from(b.y0), f64::from(b.x1), f64::from(b.y1));
         if depth.least_over(corners) >= f64::from(c.most) {
             c.misses = 0;
+            self.hidden += 1;
             return true;
         }
         c.misses = (c.misses + 1).min(MAX_BACKOFF);

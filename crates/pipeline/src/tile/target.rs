@@ -107,6 +107,10 @@ pub struct TileTarget {
     pub(crate) alpha: Vec<f32x8>,
     /// The coarse depth tested before a primitive's spans are walked.
     pub(crate) coarse: CoarseDepth,
+    /// Primitives the coarse depth skipped whole, counted over every tile
+    /// drawn with this target since the count was last set to 0 (a tile's
+    /// clear leaves it); the renderer sums its targets' counts per frame.
+    pub(crate) hidden: u64,
 }
 
 impl TileTarget {

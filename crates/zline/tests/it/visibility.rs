@@ -120,3 +120,32 @@ fn the_z_buffer_does_not_depend_on_the_order_and_culling_only_saves_work() {
     let (a, b) = (drawn(&said).parse::<u64>().unwrap(), drawn(&note).parse::<u64>().unwrap());
     assert!(b > a, "{a} drawn culled, {b} not");
 }
+
+/// `--timings` says how many primitives hierarchical depth skipped: a
+/// sphere behind a wall drawn first has some; drawn before the wall, or
+/// without `--timings`, there is no such line.
+#[test]
+fn timings_count_what_hierarchical_depth_skipped() {
+    let dir = tempfile::tempdir().unwrap();
+    let wall = "[[objects]]\nprimitive = \"plane\"\nsize = 40\nrotate = [90, 0, 0]\n";
+    let sphere = "[[objects]]\nprimitive = \"sphere\"\nrings = 24\nsegments = 32\ntranslate = [0, 0, -3]\n";
+    let head = "[render]\nwidth = 256\nheight = 192\n\n[camera]\neye = [0, 0, 4]\ntarget = [0, 0, 0]\n\n";
+    let run = |objects: &str, timings: bool| {
+        let scene = dir.path().join("wall.toml");
+        std::fs::write(&scene, format!("{head}{objects}")).unwrap();
+        let out = dir.path().join("wall.png");
+        let mut args = vec!["render", scene.to_str().unwrap(), "-o", out.to_str().unwrap()];
+        if timings {
+            args.push("--timings");
+        }
+        let run = zline(&args);
+        let stderr = String::from_utf8_lossy(&run.stderr).into_owned();
+        assert!(run.status.success(), "{stderr}");
+        stderr.lines().find(|l| l.starts_with("timings: hierarchical depth:")).map(str::to_owned)
+    };
+    let line = run(&format!("{wall}\n{sphere}"), true).expect("a line for the sphere behind the wall");
+    let n: u64 = line.split_whitespace().nth(3).and_then(|n| n.parse().ok()).expect("a count");
+    assert!(n > 100, "{line}");
+    assert_eq!(run(&format!("{wall}\n{sphere}"), false), None, "only with --timings");
+    assert_eq!(run(&format!("{sphere}\n{wall}"), true), None, "the wall last hides nothing drawn before it");
+}
